@@ -1,0 +1,42 @@
+#pragma once
+/// Shape descriptions: the geometry a body carries, used for its mass properties now and for
+/// collision (broadphase bounds, narrowphase dispatch) as the collision module grows.
+
+#include "physics/math.h"
+
+#include <array>
+#include <memory>
+#include <vector>
+
+namespace substep {
+
+enum class ShapeType { None, Sphere, Box, Capsule, Plane, Mesh };
+
+/// A closed (for mass properties) or open triangle mesh in its own frame.
+struct TriangleMesh {
+    std::vector<Vec3> vertices;
+    std::vector<std::array<int, 3>> triangles;  ///< counter-clockwise seen from outside
+};
+
+/// One shape in the body's user frame (the frame its pose and joint anchors are given in).
+struct Shape {
+    ShapeType type = ShapeType::None;
+    double radius = 0.0;                 ///< sphere, capsule
+    Vec3 size = Vec3::Zero();            ///< box: full extents
+    double length = 0.0;                 ///< capsule: segment between cap centres, along local y
+    Vec3 normal = Vec3::UnitY();         ///< plane: n·x = offset, world coordinates
+    double offset = 0.0;                 ///< plane
+    std::shared_ptr<const TriangleMesh> mesh;  ///< mesh (already scaled)
+    bool convex = false;                 ///< mesh: collide as its convex hull
+};
+
+inline Shape sphereShape(double radius) { return {.type = ShapeType::Sphere, .radius = radius}; }
+inline Shape boxShape(const Vec3& size) { return {.type = ShapeType::Box, .size = size}; }
+inline Shape capsuleShape(double radius, double length) {
+    return {.type = ShapeType::Capsule, .radius = radius, .length = length};
+}
+inline Shape planeShape(const Vec3& normal, double offset) {
+    return {.type = ShapeType::Plane, .normal = normal, .offset = offset};
+}
+
+}  // namespace substep

@@ -1,0 +1,58 @@
+#pragma once
+/// The two correction operations of paper 3.3: every joint and contact moves bodies through
+/// these, and only these, at the position level; plus their velocity-level counterpart (Eq. 33).
+
+#include "physics/body.h"
+#include "physics/math.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace substep {
+
+enum class SolverType : uint8_t {
+    GaussSeidel,  ///< non-linear Gauss-Seidel: each correction moves the bodies at once (default)
+    Jacobi,       ///< corrections of one iteration are gathered and applied together, averaged
+};
+
+/// Corrections gathered for one body during a Jacobi iteration.
+struct JacobiDelta {
+    Vec3 position = Vec3::Zero();
+    Vec3 rotation = Vec3::Zero();
+    uint32_t count = 0;
+};
+
+/// What a correction needs to know about the current solve.
+struct SolverContext {
+    Body* bodies = nullptr;
+    double h = 0.0;       ///< substep length
+    double invH2 = 0.0;   ///< 1/h², turns compliance α into α̃ = α/h²
+    SolverType solver = SolverType::GaussSeidel;
+    JacobiDelta* deltas = nullptr;  ///< one per body, Jacobi only
+};
+
+/// Eqs. 2-9: moves the point at world offset r0 of body i0 by `delta` relative to the point at
+/// offset r1 of body i1 (|delta| is the constraint value c, its direction n), sharing the
+/// motion by generalised inverse mass. XPBD with compliance α: Δλ = (c − α̃λ)/(w0 + w1 + α̃).
+/// Returns the impulse p = Δλ n given to body 0 (body 1 receives −p).
+Vec3 applyPositionalCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, const Vec3& delta,
+                               const Vec3& r0, const Vec3& r1, double compliance, double& lambda);
+
+/// Eqs. 11-16: turns body i0 by the world rotation vector `rotation` relative to body i1 (its
+/// length is the angle θ), shared by inverse inertia about the axis. Returns the angular
+/// impulse given to body 0 (body 1 receives the opposite).
+Vec3 applyAngularCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, const Vec3& rotation,
+                            double compliance, double& lambda);
+
+/// Eq. 33: changes the relative velocity of the points at r0, r1 (body 0's minus body 1's) by
+/// `deltaVelocity`. Returns the impulse given to body 0.
+Vec3 applyVelocityCorrection(Body& b0, Body& b1, const Vec3& deltaVelocity, const Vec3& r0,
+                             const Vec3& r1);
+
+/// Angular counterpart of Eq. 33: changes ω0 − ω1 by `deltaOmega`.
+Vec3 applyAngularVelocityCorrection(Body& b0, Body& b1, const Vec3& deltaOmega);
+
+/// Applies the Jacobi deltas gathered in one iteration, each averaged over its corrections.
+void applyJacobiDeltas(Body* bodies, JacobiDelta* deltas, size_t count);
+
+}  // namespace substep

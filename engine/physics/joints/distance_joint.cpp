@@ -1,0 +1,36 @@
+// Distance joint: attachment, zero-rest-length spring and rope (paper 3.4.2, Eq. 25).
+//
+//   Δr = p1 − p0, the offset of body 1's anchor from body 0's.
+//   Attachment / spring (d_max = 0):  Δx = Δr, compliance α makes it a spring of stiffness 1/α.
+//   Rope (d_max > 0): only when |Δr| > d_max,  Δx = Δr/|Δr| (|Δr| − d_max)   (Eq. 25)
+//   The correction moves body 0's anchor along Δx (ERRATA item 1), so a stretched joint has
+//   λ > 0 and pulls with f = λ/h² (Eq. 10). Coincident anchors give Δr = 0: nothing to correct.
+
+#include "physics/joints/joint_parts.h"
+
+namespace substep {
+namespace {
+
+/// The correction Δx and the violation |Δx| of a distance joint on the current state.
+Vec3 distanceCorrection(const Joint& joint, const JointAnchors& anchors) {
+    const Vec3 offset = anchors.p1 - anchors.p0;
+    if (joint.maxDistance <= 0.0) return offset;
+    const double length = offset.norm();
+    if (length <= joint.maxDistance) return Vec3::Zero();  // slack rope
+    return offset * ((length - joint.maxDistance) / length);
+}
+
+}  // namespace
+
+void solveDistanceJoint(Joint& joint, SolverContext& ctx) {
+    const JointAnchors anchors = jointAnchors(joint, ctx.bodies);
+    solvePositionPart(joint, ctx, anchors, distanceCorrection(joint, anchors), joint.compliance,
+                      joint.lambdaAttach);
+}
+
+JointEvaluation evaluateDistanceJoint(const Joint& joint, const Body* bodies) {
+    const double violation = distanceCorrection(joint, jointAnchors(joint, bodies)).norm();
+    return {.error = violation, .elasticEnergy = elasticEnergy(violation, joint.compliance)};
+}
+
+}  // namespace substep

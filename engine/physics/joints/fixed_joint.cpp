@@ -1,0 +1,23 @@
+// Fixed joint: the joint frames of both bodies coincide (paper 3.4.1 Eqs. 18-19, 3.4.2).
+//
+//   Orientation: q = (q1 F1)(q0 F0)⁻¹ is the world rotation from body 0's joint frame to
+//   body 1's; body 0 turns by its rotation vector (exact angle rather than 2 q_xyz, which
+//   understates large errors), always hard.
+//   Position: the attachment Δx = p1 − p0 with the joint's compliance.
+
+#include "physics/joints/joint_parts.h"
+
+namespace substep {
+
+void solveFixedJoint(Joint& joint, SolverContext& ctx) {
+    solveOrientationLock(joint, ctx);
+    solveAttachment(joint, ctx);
+}
+
+JointEvaluation evaluateFixedJoint(const Joint& joint, const Body* bodies) {
+    const JointAnchors anchors = jointAnchors(joint, bodies);
+    const double violation = (anchors.p1 - anchors.p0).norm();
+    return {.error = violation, .elasticEnergy = elasticEnergy(violation, joint.compliance)};
+}
+
+}  // namespace substep

@@ -1,0 +1,61 @@
+// Hinge joint (paper 3.4.1): one rotational degree of freedom about the joint axis a.
+//
+//   Axis alignment (Eq. 20): body 0 turns by the rotation taking a0 onto a1 (hard). The exact
+//   angle is used instead of |a0 × a1| = sin θ, and anti-parallel axes (a0 + a1 = 0, no unique
+//   axis) turn about any perpendicular instead of producing a zero or NaN correction.
+//   Angle φ: the angle from b0 to b1 about a0, positive when body 1 turns counter-clockwise
+//   relative to body 0 (right-hand rule).
+//   Drive (Eq. 21): b_target = rot(a0, α) b0; body 0 turns by the rotation taking b_target onto
+//   b1, with the drive compliance. A velocity motor advances α by h·v every substep.
+//   Limits: Algorithm 3 with [n, n0, n1] = [a0, b0, b1] (ERRATA items 3-4).
+//   Position: the attachment Δx = p1 − p0.
+
+#include "physics/joints/joint_parts.h"
+
+namespace substep {
+
+double hingeAngle(const Joint& joint, const Body* bodies) {
+    const Mat3 f0 = worldFrame0(joint, bodies).toRotationMatrix();
+    const Mat3 f1 = worldFrame1(joint, bodies).toRotationMatrix();
+    return signedAngle(f0.col(0), f0.col(1), f1.col(1));
+}
+
+void solveHingeJoint(Joint& joint, SolverContext& ctx) {
+    {
+        const Vec3 a0 = worldFrame0(joint, ctx.bodies) * Vec3::UnitX();
+        const Vec3 a1 = worldFrame1(joint, ctx.bodies) * Vec3::UnitX();
+        solveRotationPart(joint, ctx, rotationBetween(a0, a1), 0.0, joint.lambdaAlign);
+    }
+    if (joint.drive != Joint::Drive::None) {
+        const Mat3 f0 = worldFrame0(joint, ctx.bodies).toRotationMatrix();
+        const Vec3 b1 = worldFrame1(joint, ctx.bodies) * Vec3::UnitY();
+        const Vec3 target = Eigen::AngleAxisd(joint.target, f0.col(0)) * f0.col(1);
+        solveRotationPart(joint, ctx, rotationBetween(target, b1), joint.driveCompliance,
+                          joint.lambdaDrive);
+    }
+    if (joint.hasLimits) {
+        const Mat3 f0 = worldFrame0(joint, ctx.bodies).toRotationMatrix();
+        const Vec3 b1 = worldFrame1(joint, ctx.bodies) * Vec3::UnitY();
+        solveAngleLimit(joint, ctx, f0.col(0), f0.col(1), b1, joint.limits.lower,
+                        joint.limits.upper, joint.limitCompliance, joint.lambdaLimit);
+    }
+    solveAttachment(joint, ctx);
+}
+
+JointEvaluation evaluateHingeJoint(const Joint& joint, const Body* bodies) {
+    const JointAnchors anchors = jointAnchors(joint, bodies);
+    const double gap = (anchors.p1 - anchors.p0).norm();
+    double energy = elasticEnergy(gap, joint.compliance);
+    const double angle = hingeAngle(joint, bodies);
+    if (joint.drive != Joint::Drive::None)
+        energy += elasticEnergy(wrapAngle(angle - joint.target), joint.driveCompliance);
+    if (joint.hasLimits) {
+        const double excess = angle < joint.limits.lower   ? joint.limits.lower - angle
+                              : angle > joint.limits.upper ? angle - joint.limits.upper
+                                                           : 0.0;
+        energy += elasticEnergy(excess, joint.limitCompliance);
+    }
+    return {.error = gap, .elasticEnergy = energy};
+}
+
+}  // namespace substep

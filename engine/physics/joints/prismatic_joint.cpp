@@ -1,0 +1,73 @@
+// Prismatic joint (paper 3.4.2): body 1 slides along body 0's joint axis a; the orientations
+// are locked (hard, as the fixed joint's).
+//
+//   Δr = p1 − p0 in body 0's joint frame [a, b, c]:
+//   off-axis:  Δx = b (Δr·b) + c (Δr·c), with the attachment compliance;
+//   limits:    Δx = a (Δr·a − lower) below, a (Δr·a − upper) above, with the limit compliance;
+//   drive:     Δx = a (Δr·a − target), with the drive compliance (Eq. 25 with d_target;
+//              α = 1/k makes it a spring of stiffness k about the target offset).
+//   The paper folds all limits into one projection; here the parts keep separate compliances
+//   and multipliers, so a soft limit and a hard attachment can coexist.
+
+#include "physics/joints/joint_parts.h"
+
+namespace substep {
+namespace {
+
+struct SlideState {
+    Vec3 axis;
+    double offset;   ///< Δr·a
+    Vec3 offAxis;    ///< Δr minus its a-component
+};
+
+SlideState slideState(const Joint& joint, const Body* bodies, const JointAnchors& anchors) {
+    const Vec3 axis = worldFrame0(joint, bodies) * Vec3::UnitX();
+    const Vec3 offset = anchors.p1 - anchors.p0;
+    const double along = offset.dot(axis);
+    return {axis, along, offset - along * axis};
+}
+
+double limitExcess(const Joint& joint, double offset) {
+    if (!joint.hasLimits) return 0.0;
+    if (offset < joint.limits.lower) return offset - joint.limits.lower;
+    if (offset > joint.limits.upper) return offset - joint.limits.upper;
+    return 0.0;
+}
+
+}  // namespace
+
+void solvePrismaticJoint(Joint& joint, SolverContext& ctx) {
+    solveOrientationLock(joint, ctx);
+    {
+        const JointAnchors anchors = jointAnchors(joint, ctx.bodies);
+        const SlideState s = slideState(joint, ctx.bodies, anchors);
+        solvePositionPart(joint, ctx, anchors, s.offAxis, joint.compliance, joint.lambdaAttach);
+    }
+    if (joint.hasLimits) {
+        const JointAnchors anchors = jointAnchors(joint, ctx.bodies);
+        const SlideState s = slideState(joint, ctx.bodies, anchors);
+        const double excess = limitExcess(joint, s.offset);
+        if (excess != 0.0)
+            solvePositionPart(joint, ctx, anchors, s.axis * excess, joint.limitCompliance,
+                              joint.lambdaLimit);
+    }
+    if (joint.drive == Joint::Drive::Position) {
+        const JointAnchors anchors = jointAnchors(joint, ctx.bodies);
+        const SlideState s = slideState(joint, ctx.bodies, anchors);
+        solvePositionPart(joint, ctx, anchors, s.axis * (s.offset - joint.target),
+                          joint.driveCompliance, joint.lambdaDrive);
+    }
+}
+
+JointEvaluation evaluatePrismaticJoint(const Joint& joint, const Body* bodies) {
+    const SlideState s = slideState(joint, bodies, jointAnchors(joint, bodies));
+    const double offAxis = s.offAxis.norm();
+    const double excess = std::abs(limitExcess(joint, s.offset));
+    double energy = elasticEnergy(offAxis, joint.compliance) +
+                    elasticEnergy(excess, joint.limitCompliance);
+    if (joint.drive == Joint::Drive::Position)
+        energy += elasticEnergy(s.offset - joint.target, joint.driveCompliance);
+    return {.error = offAxis + excess, .elasticEnergy = energy};
+}
+
+}  // namespace substep

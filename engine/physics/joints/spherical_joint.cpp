@@ -1,0 +1,92 @@
+// Spherical (ball-in-socket) joint (paper 3.4.1, Eqs. 22-24): free rotation about the anchor,
+// with optional swing and twist limits that are decoupled.
+//
+//   Swing: the angle between the axes a0 and a1, limited to [0, swing] by Algorithm 3 with
+//   [n, n0, n1] = [a0 × a1 / |a0 × a1|, a0, a1]. Parallel axes need no swing correction;
+//   anti-parallel axes have no unique swing plane, so any perpendicular of a0 is used.
+//   Twist: about n = (a0 + a1)/|a0 + a1| (Eq. 22), between the normals with their n-component
+//   removed and then normalised (Eqs. 23-24, ERRATA item 5). Twist is undefined when the axes
+//   are anti-parallel (a0 + a1 = 0) or a normal lies along n; the twist limit waits until the
+//   swing brings the axes back.
+//   Position: the attachment Δx = p1 − p0.
+
+#include "physics/joints/joint_parts.h"
+
+namespace substep {
+namespace {
+
+/// Unit swing axis n and whether a swing correction can be needed at all.
+bool swingAxis(const Vec3& a0, const Vec3& a1, Vec3& n) {
+    const Vec3 cross = a0.cross(a1);
+    const double length = cross.norm();
+    if (length > kDirectionEpsilon) {
+        n = cross / length;
+        return true;
+    }
+    if (a0.dot(a1) > 0.0) return false;  // aligned
+    n = anyPerpendicular(a0);            // anti-parallel: swing is π in every plane
+    return true;
+}
+
+/// Twist axis and the two projected normals (Eqs. 22-24); false where twist is undefined.
+bool twistFrame(const Mat3& f0, const Mat3& f1, Vec3& n, Vec3& n0, Vec3& n1) {
+    n = f0.col(0) + f1.col(0);
+    const double length = n.norm();
+    if (length < 1e-9) return false;
+    n /= length;
+    n0 = f0.col(1) - n.dot(f0.col(1)) * n;
+    n1 = f1.col(1) - n.dot(f1.col(1)) * n;
+    const double l0 = n0.norm();
+    const double l1 = n1.norm();
+    if (l0 < 1e-9 || l1 < 1e-9) return false;
+    n0 /= l0;
+    n1 /= l1;
+    return true;
+}
+
+}  // namespace
+
+void solveSphericalJoint(Joint& joint, SolverContext& ctx) {
+    if (joint.hasSwingLimit) {
+        const Vec3 a0 = worldFrame0(joint, ctx.bodies) * Vec3::UnitX();
+        const Vec3 a1 = worldFrame1(joint, ctx.bodies) * Vec3::UnitX();
+        Vec3 n;
+        if (swingAxis(a0, a1, n))
+            solveAngleLimit(joint, ctx, n, a0, a1, -joint.swingLimit, joint.swingLimit,
+                            joint.limitCompliance, joint.lambdaLimit);
+    }
+    if (joint.hasTwistLimits) {
+        const Mat3 f0 = worldFrame0(joint, ctx.bodies).toRotationMatrix();
+        const Mat3 f1 = worldFrame1(joint, ctx.bodies).toRotationMatrix();
+        Vec3 n, n0, n1;
+        if (twistFrame(f0, f1, n, n0, n1))
+            solveAngleLimit(joint, ctx, n, n0, n1, joint.twistLimits.lower,
+                            joint.twistLimits.upper, joint.twistCompliance, joint.lambdaTwist);
+    }
+    solveAttachment(joint, ctx);
+}
+
+JointEvaluation evaluateSphericalJoint(const Joint& joint, const Body* bodies) {
+    const JointAnchors anchors = jointAnchors(joint, bodies);
+    const double gap = (anchors.p1 - anchors.p0).norm();
+    double energy = elasticEnergy(gap, joint.compliance);
+    const Mat3 f0 = worldFrame0(joint, bodies).toRotationMatrix();
+    const Mat3 f1 = worldFrame1(joint, bodies).toRotationMatrix();
+    if (joint.hasSwingLimit) {
+        Vec3 n;
+        if (swingAxis(f0.col(0), f1.col(0), n))
+            energy += elasticEnergy(angleLimitViolation(n, f0.col(0), f1.col(0),
+                                                        -joint.swingLimit, joint.swingLimit),
+                                    joint.limitCompliance);
+    }
+    if (joint.hasTwistLimits) {
+        Vec3 n, n0, n1;
+        if (twistFrame(f0, f1, n, n0, n1))
+            energy += elasticEnergy(angleLimitViolation(n, n0, n1, joint.twistLimits.lower,
+                                                        joint.twistLimits.upper),
+                                    joint.twistCompliance);
+    }
+    return {.error = gap, .elasticEnergy = energy};
+}
+
+}  // namespace substep

@@ -1,0 +1,236 @@
+#include "physics/world.h"
+
+#include "physics/joints/joint_parts.h"
+#include "physics/joints/joint_solver.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace substep {
+namespace {
+
+/// Joint frame [a, b, c] from an axis and an optional normal, in one body's user frame. A
+/// missing normal is the same fixed perpendicular of the axis on both sides, so equal axes on
+/// equally oriented bodies give angle 0.
+Quat jointFrame(const Vec3& axis, const std::optional<Vec3>& normal) {
+    const Vec3 a = axis.normalized();
+    Vec3 b = normal ? (*normal - normal->dot(a) * a) : anyPerpendicular(a);
+    b = b.norm() > kDirectionEpsilon ? b.normalized() : anyPerpendicular(a);
+    Mat3 frame;
+    frame.col(0) = a;
+    frame.col(1) = b;
+    frame.col(2) = a.cross(b);
+    return Quat(frame).normalized();
+}
+
+}  // namespace
+
+World::World(const WorldSettings& settings) : settings_(settings) {
+    // Index 0 is the world itself: a static body at the origin that joints "to the world"
+    // attach to, so the solver never tests for a missing body.
+    Body anchor;
+    anchor.alive = true;
+    anchor.generation = 0;
+    bodies_.push_back(anchor);
+}
+
+BodyId World::createBody(const BodyDef& def) {
+    Body body = makeBody(def);
+    body.generation = nextGeneration_++;
+    uint32_t index;
+    if (!freeBodies_.empty()) {
+        index = freeBodies_.back();
+        freeBodies_.pop_back();
+        bodies_[index] = body;
+    } else {
+        index = static_cast<uint32_t>(bodies_.size());
+        bodies_.push_back(body);
+    }
+    return {index, body.generation};
+}
+
+void World::destroyBody(BodyId id) {
+    if (!isValid(id)) return;
+    for (uint32_t j = 0; j < joints_.size(); ++j) {
+        const Joint& joint = joints_[j];
+        if (joint.alive && (joint.body0 == id.index || joint.body1 == id.index))
+            destroyJoint({j, joint.generation});
+    }
+    bodies_[id.index] = Body{};  // dead: static, never integrated
+    freeBodies_.push_back(id.index);
+}
+
+JointId World::createJoint(const JointDef& def) {
+    Joint joint;
+    joint.type = def.type;
+    joint.body0 = def.body0.isNull() ? 0 : def.body0.index;
+    joint.body1 = def.body1.isNull() ? 0 : def.body1.index;
+    // Anchors and frames go from each body's user frame into its principal frame; the world's
+    // are already in world coordinates.
+    const Body& b0 = bodies_[joint.body0];
+    const Body& b1 = bodies_[joint.body1];
+    joint.anchor0 = b0.userRotation * def.anchor0 + b0.userOrigin;
+    joint.anchor1 = b1.userRotation * def.anchor1 + b1.userOrigin;
+    joint.frame0 = (b0.userRotation * jointFrame(def.axis0, def.normal0)).normalized();
+    joint.frame1 = (b1.userRotation * jointFrame(def.axis1, def.normal1)).normalized();
+    joint.compliance = def.compliance;
+    joint.maxDistance = def.maxDistance;
+    joint.hasLimits = def.limits.has_value();
+    if (def.limits) joint.limits = *def.limits;
+    joint.limitCompliance = def.limitCompliance;
+    joint.driveCompliance = def.driveCompliance;
+    if (def.targetVelocity) {
+        joint.drive = Joint::Drive::Velocity;
+        joint.targetVelocity = *def.targetVelocity;
+        joint.target = def.type == JointType::Hinge ? hingeAngle(joint, bodies_.data()) : 0.0;
+    } else if (def.targetAngle || def.targetOffset) {
+        joint.drive = Joint::Drive::Position;
+        joint.target = def.targetAngle ? *def.targetAngle : *def.targetOffset;
+    }
+    joint.hasSwingLimit = def.swingLimit.has_value();
+    joint.swingLimit = def.swingLimit.value_or(0.0);
+    joint.hasTwistLimits = def.twistLimits.has_value();
+    if (def.twistLimits) joint.twistLimits = *def.twistLimits;
+    joint.twistCompliance = def.twistCompliance.value_or(def.limitCompliance);
+    joint.linearDamping = def.linearDamping;
+    joint.angularDamping = def.angularDamping;
+    joint.collide = def.collide;
+    joint.alive = true;
+    joint.generation = nextGeneration_++;
+    anyDamping_ = anyDamping_ || def.linearDamping > 0.0 || def.angularDamping > 0.0;
+
+    uint32_t index;
+    if (!freeJoints_.empty()) {
+        index = freeJoints_.back();
+        freeJoints_.pop_back();
+        joints_[index] = joint;
+    } else {
+        index = static_cast<uint32_t>(joints_.size());
+        joints_.push_back(joint);
+    }
+    return {index, joint.generation};
+}
+
+void World::destroyJoint(JointId id) {
+    if (!isValid(id)) return;
+    joints_[id.index] = Joint{};
+    freeJoints_.push_back(id.index);
+}
+
+bool World::isValid(BodyId id) const {
+    return !id.isNull() && id.index < bodies_.size() && bodies_[id.index].alive &&
+           bodies_[id.index].generation == id.generation;
+}
+
+bool World::isValid(JointId id) const {
+    return !id.isNull() && id.index < joints_.size() && joints_[id.index].alive &&
+           joints_[id.index].generation == id.generation;
+}
+
+void World::step(double dt) {
+    if (!(dt > 0.0) || !std::isfinite(dt)) return;
+    const int substeps = std::max(settings_.substeps, 1);
+    const double h = dt / substeps;
+    lastSubstep_ = h;
+    if (settings_.solver == SolverType::Jacobi) jacobiDeltas_.assign(bodies_.size(), JacobiDelta{});
+
+    for (int s = 0; s < substeps; ++s) {
+        // λ is zeroed before each substep's solve (paper 3.3.1); motors advance their target.
+        for (Joint& joint : joints_) {
+            joint.resetMultipliers();
+            if (joint.drive == Joint::Drive::Velocity)
+                joint.target = wrapAngle(joint.target + h * joint.targetVelocity);
+        }
+        integrate(h);
+        for (int i = 0; i < settings_.iterations; ++i) solvePositions(h);
+        deriveVelocities(h);
+        if (anyDamping_) solveVelocities(h);
+    }
+}
+
+void World::integrate(double h) {
+    const Vec3 gravityStep = h * settings_.gravity;
+    for (Body& b : bodies_) {
+        if (b.invMass == 0.0) continue;
+        b.xPrev = b.x;
+        b.v += gravityStep;
+        b.x += h * b.v;
+        if (!b.rotates()) continue;
+        b.qPrev = b.q;
+        // Algorithm 2: ω ← ω + h I⁻¹(τ − ω × Iω), evaluated in the principal frame where I is
+        // diagonal.
+        Vec3 w = b.q.conjugate() * b.omega;
+        w += h * b.invInertia.cwiseProduct(-w.cross(b.inertia.cwiseProduct(w)));
+        b.omega = b.q * w;
+        addRotation(b.q, h * b.omega);
+    }
+}
+
+void World::solvePositions(double h) {
+    SolverContext ctx{.bodies = bodies_.data(),
+                      .h = h,
+                      .invH2 = 1.0 / (h * h),
+                      .solver = settings_.solver,
+                      .deltas = jacobiDeltas_.data()};
+    for (Joint& joint : joints_)
+        if (joint.alive) solveJointPositions(joint, ctx);
+    if (settings_.solver == SolverType::Jacobi)
+        applyJacobiDeltas(bodies_.data(), jacobiDeltas_.data(), bodies_.size());
+}
+
+void World::deriveVelocities(double h) {
+    const double invH = 1.0 / h;
+    for (Body& b : bodies_) {
+        if (b.invMass == 0.0) continue;
+        b.vPrev = b.v;
+        b.v = (b.x - b.xPrev) * invH;
+        if (!b.rotates()) continue;
+        b.omegaPrev = b.omega;
+        // Algorithm 2: ω = 2 Δq_xyz / h, flipped when Δq_w < 0 (the shorter rotation).
+        const Quat dq = b.q * b.qPrev.conjugate();
+        b.omega = (2.0 * invH) * dq.vec();
+        if (dq.w() < 0.0) b.omega = -b.omega;
+    }
+}
+
+void World::solveVelocities(double h) {
+    for (const Joint& joint : joints_)
+        if (joint.alive) solveJointVelocities(joint, bodies_.data(), h);
+}
+
+JointReadout World::jointReadout(JointId id) const {
+    if (!isValid(id)) return {};
+    return readJoint(joints_[id.index], bodies_.data(), lastSubstep_);
+}
+
+Energies World::energies() const {
+    Energies e;
+    for (const Body& b : bodies_) {
+        if (b.invMass == 0.0) continue;
+        e.kinetic += 0.5 * b.mass * b.v.squaredNorm();
+        if (b.rotates()) {
+            const Vec3 w = b.q.conjugate() * b.omega;
+            e.kinetic += 0.5 * w.dot(b.inertia.cwiseProduct(w));
+        }
+        e.potential -= b.mass * settings_.gravity.dot(b.x);
+    }
+    for (const Joint& joint : joints_)
+        if (joint.alive) e.elastic += readJoint(joint, bodies_.data(), lastSubstep_).elasticEnergy;
+    return e;
+}
+
+double World::maxJointError() const {
+    double largest = 0.0;
+    for (const Joint& joint : joints_)
+        if (joint.alive) largest = std::max(largest, readJoint(joint, bodies_.data(), lastSubstep_).error);
+    return largest;
+}
+
+bool World::isFinite() const {
+    return std::all_of(bodies_.begin(), bodies_.end(), [](const Body& b) {
+        return b.x.allFinite() && b.q.coeffs().allFinite() && b.v.allFinite() &&
+               b.omega.allFinite();
+    });
+}
+
+}  // namespace substep

@@ -1,0 +1,57 @@
+#pragma once
+/// A scene as data: world settings, named bodies and joints, and an optional camera. Scene files
+/// (scene_loader.h) and the built-in scenes both produce one; buildScene turns it into a world.
+
+#include "physics/body.h"
+#include "physics/joints/joint.h"
+#include "physics/math.h"
+#include "physics/world.h"
+
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace substep {
+
+struct SceneBody {
+    std::string name;  ///< may be empty: unnamed bodies get no output columns
+    BodyDef def;
+};
+
+struct SceneJoint {
+    std::string name;   ///< may be empty
+    std::string body0;  ///< body name; empty or "world" means the world
+    std::string body1;
+    JointDef def;       ///< def.body0 / def.body1 are filled in by buildScene
+};
+
+struct SceneCamera {
+    Vec3 position = Vec3(0.0, 1.5, 4.0);
+    Vec3 target = Vec3(0.0, 0.5, 0.0);
+    double fov = 0.8;  ///< vertical field of view (rad)
+};
+
+struct SceneDescription {
+    std::string name;
+    Vec3 gravity = Vec3(0.0, -9.81, 0.0);
+    double dt = 1.0 / 60.0;
+    int substeps = 20;
+    int iterations = 1;
+    std::vector<SceneBody> bodies;
+    std::vector<SceneJoint> joints;
+    std::optional<SceneCamera> camera;
+};
+
+/// A world built from a description, with the ids of its named bodies and joints in file order.
+struct SceneInstance {
+    World world;
+    std::vector<std::pair<std::string, BodyId>> namedBodies;
+    std::vector<std::pair<std::string, JointId>> namedJoints;
+};
+
+/// Builds the world. Body names referenced by joints must exist (the loader checks files;
+/// built-in scenes are checked by their tests): an unknown name throws std::invalid_argument.
+SceneInstance buildScene(const SceneDescription& description);
+
+}  // namespace substep

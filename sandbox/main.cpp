@@ -1,0 +1,96 @@
+// substep: the Substep sandbox's command line (DESIGN.md, "The `substep` command"). It reads top
+// to bottom: declare the commands, parse, dispatch. Each command lives in its own file pair
+// (run_command.h, ...); the ones the contract names but this build lacks answer with exit 2.
+
+#include "run_command.h"
+#include "scenes/scene_registry.h"
+
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
+#include <cstdio>
+#include <string>
+#include <string_view>
+
+namespace {
+
+/// A contract command that is not built yet. Replacing one means adding its `addXxxCommand` /
+/// `xxxCommand` pair (as run_command.h does) and deleting its line from kPendingCommands.
+struct PendingCommand {
+    const char* name;
+    const char* description;
+};
+
+constexpr PendingCommand kPendingCommands[] = {
+    {"render", "Headless PNGs of a scene: render SCENE --frames LIST --out DIR [--size WxH]"},
+    {"capture", "Scripted regression captures against goldens: capture SCRIPT [--update]"},
+    {"bench", "Milliseconds per frame per scene: bench [SCENE ...] [--json F]"},
+    {"sweep", "Error against run time at fixed budgets: sweep SCENE --budget B [...]"},
+};
+
+/// `substep scenes`: one line per built-in scene, names padded into a column.
+int listScenes() {
+    std::size_t width = 0;
+    for (const substep::SceneEntry& entry : substep::builtinScenes()) {
+        width = std::max(width, entry.name.size());
+    }
+    for (const substep::SceneEntry& entry : substep::builtinScenes()) {
+        std::printf("%-*.*s  %.*s\n", static_cast<int>(width), static_cast<int>(entry.name.size()),
+                    entry.name.data(), static_cast<int>(entry.description.size()),
+                    entry.description.data());
+    }
+    return 0;
+}
+
+/// `substep` and `substep view`: the window is not part of this build yet.
+int viewUnavailable() {
+    std::fprintf(stderr,
+                 "substep: the interactive viewer is not in this build yet.\n"
+                 "  substep run SCENE     simulates headless and prints a summary\n"
+                 "  substep render SCENE  renders PNGs headless (once built)\n"
+                 "  substep scenes        lists the built-in scenes\n");
+    return 2;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    // 1. Declare the commands.
+    CLI::App app{"Substep: XPBD rigid bodies, headless and (soon) interactive", "substep"};
+    app.set_version_flag("--version", SUBSTEP_VERSION);
+    app.require_subcommand(0, 1);
+    app.footer("Exit codes: 0 success, 1 a check failed (non-finite state), 2 bad input.");
+
+    std::string viewScene;
+    CLI::App* viewCommand = app.add_subcommand("view", "Interactive window (not in this build yet)");
+    viewCommand->add_option("SCENE", viewScene, "A built-in scene name or a .json scene file");
+
+    CLI::App* scenesCommand = app.add_subcommand("scenes", "List the built-in scenes");
+
+    substep::RunOptions runOptions;
+    CLI::App* runCommand = substep::addRunCommand(app, runOptions);
+
+    // Pending commands take any arguments, so the answer is "not built" rather than a usage error.
+    for (const PendingCommand& pending : kPendingCommands) {
+        app.add_subcommand(pending.name, std::string(pending.description) + " (not built yet)")
+            ->allow_extras();
+    }
+
+    // 2. Parse. CLI11 exits usage errors with codes from 100 up; the contract says 2.
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& error) {
+        return app.exit(error) == 0 ? 0 : 2;
+    }
+
+    // 3. Dispatch to the one command given; none at all means the viewer.
+    if (scenesCommand->parsed()) return listScenes();
+    if (runCommand->parsed()) return substep::runCommand(runOptions);
+    for (const PendingCommand& pending : kPendingCommands) {
+        if (app.get_subcommand(pending.name)->parsed()) {
+            std::fprintf(stderr, "substep %s: not available in this build yet\n", pending.name);
+            return 2;
+        }
+    }
+    return viewUnavailable();
+}

@@ -1,0 +1,296 @@
+#include "run_command.h"
+
+#include "atomic_file.h"
+#include "csv_writer.h"
+#include "scene_source.h"
+#include "state_columns.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <charconv>
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <vector>
+
+namespace substep {
+
+namespace {
+
+/// A bad option value; what() names the option.
+class UsageError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+/// The options once checked: every value within its accepted range.
+struct RunSettings {
+    std::optional<long long> frames;
+    std::optional<double> seconds;
+    std::optional<int> substeps;
+    std::optional<int> iterations;
+    std::optional<double> dt;
+};
+
+long long parseInteger(const char* option, const std::string& text, long long lowest,
+                       long long highest) {
+    long long value = 0;
+    const char* end = text.data() + text.size();
+    const auto [last, error] = std::from_chars(text.data(), end, value);
+    if (error == std::errc::result_out_of_range) value = text.front() == '-' ? lowest - 1 : highest + 1;
+    else if (error != std::errc() || last != end || text.empty()) {
+        throw UsageError(std::string(option) + ": expected a whole number, got '" + text + "'");
+    }
+    if (value < lowest || value > highest) {
+        throw UsageError(std::string(option) + " must be between " + std::to_string(lowest) +
+                         " and " + std::to_string(highest) + ", got " + text);
+    }
+    return value;
+}
+
+double parsePositiveReal(const char* option, const std::string& text) {
+    double value = 0.0;
+    const char* end = text.data() + text.size();
+    const auto [last, error] = std::from_chars(text.data(), end, value);
+    if (error == std::errc::result_out_of_range) {
+        throw UsageError(std::string(option) + ": " + text + " is out of range");
+    }
+    if (error != std::errc() || last != end || text.empty()) {
+        throw UsageError(std::string(option) + ": expected a number, got '" + text + "'");
+    }
+    if (!std::isfinite(value) || value <= 0.0) {
+        throw UsageError(std::string(option) + " must be positive and finite, got " + text);
+    }
+    return value;
+}
+
+RunSettings checkOptions(const RunOptions& options) {
+    RunSettings settings;
+    if (!options.frames.empty() && !options.seconds.empty()) {
+        throw UsageError("--frames and --seconds cannot be used together");
+    }
+    if (!options.frames.empty()) {
+        settings.frames = parseInteger("--frames", options.frames, 0, kMaxFrames);
+    }
+    if (!options.seconds.empty()) settings.seconds = parsePositiveReal("--seconds", options.seconds);
+    if (!options.substeps.empty()) {
+        settings.substeps =
+            static_cast<int>(parseInteger("--substeps", options.substeps, 1, kMaxSubsteps));
+    }
+    if (!options.iterations.empty()) {
+        settings.iterations =
+            static_cast<int>(parseInteger("--iterations", options.iterations, 1, kMaxIterations));
+    }
+    if (!options.dt.empty()) settings.dt = parsePositiveReal("--dt", options.dt);
+    return settings;
+}
+
+/// frames = round(T / dt) (DESIGN.md), --seconds 5 when neither is given.
+long long frameCount(const RunSettings& settings, double dt) {
+    if (settings.frames) return *settings.frames;
+    const double seconds = settings.seconds.value_or(kDefaultSeconds);
+    const double frames = std::round(seconds / dt);
+    if (!(frames <= static_cast<double>(kMaxFrames))) {
+        throw UsageError("--seconds: T/dt is more than " + std::to_string(kMaxFrames) + " frames");
+    }
+    return static_cast<long long>(frames);
+}
+
+bool allFinite(const std::vector<double>& values) {
+    return std::all_of(values.begin(), values.end(), [](double v) { return std::isfinite(v); });
+}
+
+// Ctrl-C ends a long run cleanly: the loop notices, and the temporary outputs are removed.
+volatile std::sig_atomic_t gInterrupted = 0;
+extern "C" void onInterrupt(int signal) { gInterrupted = signal; }
+
+/// Installs onInterrupt for SIGINT and SIGTERM while alive; restores the previous handlers.
+class InterruptGuard {
+public:
+    InterruptGuard() {
+        gInterrupted = 0;
+        previousInt_ = std::signal(SIGINT, onInterrupt);
+        previousTerm_ = std::signal(SIGTERM, onInterrupt);
+    }
+    ~InterruptGuard() {
+        std::signal(SIGINT, previousInt_);
+        std::signal(SIGTERM, previousTerm_);
+    }
+    InterruptGuard(const InterruptGuard&) = delete;
+    InterruptGuard& operator=(const InterruptGuard&) = delete;
+
+private:
+    void (*previousInt_)(int) = SIG_DFL;
+    void (*previousTerm_)(int) = SIG_DFL;
+};
+
+/// What the run measured, for --json and the printed summary.
+struct RunSummary {
+    long long frames = 0;  ///< frames actually stepped (fewer when the state went non-finite)
+    int substeps = 0;
+    int iterations = 0;
+    double wallMsPerFrame = 0.0;
+    double energyInitial = 0.0;
+    double energyFinal = 0.0;
+    double maxError = 0.0;  ///< largest max_error over every row
+    bool finite = true;
+};
+
+std::string summaryJson(const std::string& scene, const RunSummary& summary) {
+    // Field order is part of what people read; nlohmann writes doubles in shortest round-trip
+    // form and non-finite ones as null (JSON has no NaN).
+    nlohmann::ordered_json json;
+    json["scene"] = scene;
+    json["frames"] = summary.frames;
+    json["substeps"] = summary.substeps;
+    json["iterations"] = summary.iterations;
+    json["wall_ms_per_frame"] = summary.wallMsPerFrame;
+    json["energy_initial"] = summary.energyInitial;
+    json["energy_final"] = summary.energyFinal;
+    json["max_error"] = summary.maxError;
+    json["finite"] = summary.finite;
+    return json.dump(2) + "\n";
+}
+
+void printSummary(const SceneSource& source, const RunSummary& summary, double dt) {
+    const SceneDescription& scene = source.description;
+    if (source.builtin) std::printf("scene      %s (built-in)\n", source.label.c_str());
+    else std::printf("scene      %s (%s)\n", scene.name.c_str(), source.label.c_str());
+    std::printf("bodies     %zu\n", scene.bodies.size());
+    std::printf("joints     %zu\n", scene.joints.size());
+    std::printf("frames     %lld of %.6g s = %.6g s\n", summary.frames, dt,
+                static_cast<double>(summary.frames) * dt);
+    std::printf("solver     %d substeps x %d iterations\n", summary.substeps, summary.iterations);
+    std::printf("step time  %.4g ms/frame\n", summary.wallMsPerFrame);
+    std::printf("energy     %.6g J -> %.6g J\n", summary.energyInitial, summary.energyFinal);
+    std::printf("max error  %.3g m\n", summary.maxError);
+    std::printf("finite     %s\n", summary.finite ? "yes" : "no");
+}
+
+/// buildScene, with the scene named in whatever it throws (an unknown body in a built-in scene).
+SceneInstance build(const SceneSource& source) {
+    try {
+        return buildScene(source.description);
+    } catch (const std::exception& error) {
+        throw std::runtime_error(source.label + ": " + error.what());
+    }
+}
+
+int run(const RunOptions& options) {
+    // Check every input before any output exists: a bad option or scene leaves no file behind.
+    const RunSettings settings = checkOptions(options);
+    SceneSource source = resolveScene(options.scene);
+    SceneDescription& description = source.description;
+    if (settings.substeps) description.substeps = *settings.substeps;
+    if (settings.iterations) description.iterations = *settings.iterations;
+    if (settings.dt) description.dt = *settings.dt;
+    const double dt = description.dt;
+    const long long frames = frameCount(settings, dt);
+    SceneInstance scene = build(source);
+    World& world = scene.world;
+
+    std::unique_ptr<AtomicFile> csvFile;
+    std::unique_ptr<AtomicFile> jsonFile;
+    if (!options.csvPath.empty()) csvFile = std::make_unique<AtomicFile>(options.csvPath);
+    if (!options.jsonPath.empty()) jsonFile = std::make_unique<AtomicFile>(options.jsonPath);
+    std::optional<CsvWriter> csv;
+    if (csvFile) {
+        csv.emplace(*csvFile);
+        csv->writeHeader(stateColumnNames(scene));
+    }
+
+    RunSummary summary{.substeps = world.settings().substeps,
+                       .iterations = world.settings().iterations};
+    std::vector<double> row;
+    sampleState(scene, 0.0, row);
+    if (csv) csv->writeRow(0, row);
+    summary.energyInitial = summary.energyFinal = row[kStateEnergy];
+    summary.maxError = row[kStateMaxError];
+    summary.finite = world.isFinite() && allFinite(row);
+
+    // The frame loop: only world.step is timed; sampling and formatting are not the solver's.
+    const InterruptGuard interruptGuard;
+    std::chrono::steady_clock::duration stepTime{};
+    for (long long frame = 1; frame <= frames && summary.finite; ++frame) {
+        if (gInterrupted != 0) {
+            std::fprintf(stderr, "substep run: interrupted; no output written\n");
+            return 128 + gInterrupted;
+        }
+        const auto start = std::chrono::steady_clock::now();
+        world.step(dt);
+        stepTime += std::chrono::steady_clock::now() - start;
+
+        // t is frame * dt, not a running sum, so it carries no accumulated rounding.
+        sampleState(scene, static_cast<double>(frame) * dt, row);
+        if (csv) csv->writeRow(frame, row);
+        summary.frames = frame;
+        summary.energyFinal = row[kStateEnergy];
+        summary.maxError = std::max(summary.maxError, row[kStateMaxError]);
+        summary.finite = world.isFinite() && allFinite(row);
+    }
+    if (summary.frames > 0) {
+        summary.wallMsPerFrame = std::chrono::duration<double, std::milli>(stepTime).count() /
+                                 static_cast<double>(summary.frames);
+    }
+
+    // Outputs appear only now, whole. The CSV goes first: if it cannot be written, the summary
+    // is discarded with it rather than left describing a file that is not there.
+    if (csvFile) csvFile->commit();
+    if (jsonFile) {
+        jsonFile->write(summaryJson(source.label, summary));
+        jsonFile->commit();
+    }
+
+    printSummary(source, summary, dt);
+    if (!summary.finite) {
+        std::fprintf(stderr,
+                     "substep run: the state turned non-finite at frame %lld; stopped there "
+                     "(the last row written is the first non-finite one)\n",
+                     summary.frames);
+        return 1;
+    }
+    return 0;
+}
+
+}  // namespace
+
+CLI::App* addRunCommand(CLI::App& app, RunOptions& options) {
+    CLI::App* command = app.add_subcommand("run", "Headless simulation; prints a summary");
+    command->add_option("SCENE", options.scene, "A built-in scene name or a .json scene file")
+        ->required();
+    command->add_option("--frames", options.frames,
+                        "Frames to simulate (default: --seconds 5)")
+        ->type_name("N");
+    command->add_option("--seconds", options.seconds, "Simulated time; frames = round(T/dt)")
+        ->type_name("T")
+        ->excludes("--frames");
+    command->add_option("--substeps", options.substeps, "Substeps per frame (1-10000)")
+        ->type_name("N");
+    command->add_option("--iterations", options.iterations, "Iterations per substep (1-1000)")
+        ->type_name("N");
+    command->add_option("--dt", options.dt, "Frame length in seconds (default: the scene's)")
+        ->type_name("S");
+    command->add_option("--csv", options.csvPath, "Write a row per frame, row 0 the initial state")
+        ->type_name("F");
+    command->add_option("--json", options.jsonPath, "Write the summary as JSON")->type_name("F");
+    return command;
+}
+
+int runCommand(const RunOptions& options) {
+    // Everything thrown here is bad input (UsageError, UnknownSceneError, SceneError) or an
+    // output that cannot be written (OutputError); each message already names its option or
+    // file. The temporary outputs are gone by now (AtomicFile's destructor).
+    try {
+        return run(options);
+    } catch (const std::exception& error) {
+        std::fprintf(stderr, "substep run: %s\n", error.what());
+        return 2;
+    }
+}
+
+}  // namespace substep

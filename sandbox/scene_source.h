@@ -1,0 +1,30 @@
+#pragma once
+/// The SCENE argument of the `substep` command: a built-in scene name, else a path to a JSON
+/// scene file.
+
+#include "scene/scene.h"
+
+#include <stdexcept>
+#include <string>
+
+namespace substep {
+
+/// SCENE is neither a built-in name nor an existing file; what() says so and points to
+/// `substep scenes`.
+class UnknownSceneError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+struct SceneSource {
+    SceneDescription description;
+    std::string label;  ///< the built-in name, or the file path as given
+    bool builtin = false;
+};
+
+/// Resolves SCENE. Built-in names win, so a file that shares a name is reached as `./NAME`.
+/// Throws UnknownSceneError, or SceneError (scene/scene_loader.h) for an unreadable or invalid
+/// file.
+SceneSource resolveScene(const std::string& argument);
+
+}  // namespace substep

@@ -1,0 +1,319 @@
+// Tests the `substep` program (sandbox/main.cpp, run_command.cpp, scene_source.cpp) by running
+// the built binary against DESIGN.md's command contract: columns, rows, exit codes, summaries,
+// and that bad input never leaves a file behind.
+
+#include "scenes/scene_registry.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+#include <unistd.h>
+#include <vector>
+
+namespace substep {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kHangScene = fs::path(SUBSTEP_TEST_DATA) / "sandbox" / "hang.json";
+constexpr double kHangDt = 0.016666666666666666;  // hang.json's dt
+
+struct Result {
+    int exitCode = -1;
+    std::string out;
+    std::string err;
+};
+
+std::string readFile(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::stringstream text;
+    text << in.rdbuf();
+    return text.str();
+}
+
+std::vector<std::string> lines(const std::string& text) {
+    std::vector<std::string> result;
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line);) result.push_back(line);
+    return result;
+}
+
+std::vector<std::string> split(const std::string& line) {
+    std::vector<std::string> cells;
+    std::istringstream in(line);
+    for (std::string cell; std::getline(in, cell, ',');) cells.push_back(cell);
+    return cells;
+}
+
+std::string quoted(const std::string& text) {
+    std::string result = "'";
+    for (const char c : text) result += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return result + "'";
+}
+
+/// Each test runs the program in its own empty working folder; stdout and stderr are captured
+/// outside it, so "nothing left behind" means the folder holds only what the test put there.
+class SubstepCommand : public ::testing::Test {
+protected:
+    void SetUp() override {
+        root_ = fs::temp_directory_path() /
+                ("substep_command_test_" + std::to_string(getpid()) + "_" +
+                 ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        fs::remove_all(root_);
+        fs::create_directories(work());
+    }
+    void TearDown() override { fs::remove_all(root_); }
+
+    fs::path work() const { return root_ / "work"; }
+
+    Result substep(const std::string& arguments) const {
+        const fs::path out = root_ / "stdout.txt";
+        const fs::path err = root_ / "stderr.txt";
+        const std::string command = "cd " + quoted(work().string()) + " && " +
+                                    quoted(SUBSTEP_EXECUTABLE) + " " + arguments + " >" +
+                                    quoted(out.string()) + " 2>" + quoted(err.string());
+        const int status = std::system(command.c_str());
+        Result result;
+        result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+        result.out = readFile(out);
+        result.err = readFile(err);
+        return result;
+    }
+
+    std::vector<std::string> workEntries() const {
+        std::vector<std::string> names;
+        for (const auto& entry : fs::directory_iterator(work())) {
+            names.push_back(entry.path().filename().string());
+        }
+        std::sort(names.begin(), names.end());
+        return names;
+    }
+
+    fs::path root_;
+};
+
+const std::string kHang = quoted(kHangScene.string());
+
+TEST_F(SubstepCommand, HeaderFollowsTheContract) {
+    const Result result = substep("run " + kHang + " --frames 1 --csv out.csv");
+    ASSERT_EQ(result.exitCode, 0) << result.err;
+    const std::vector<std::string> rows = lines(readFile(work() / "out.csv"));
+    ASSERT_FALSE(rows.empty());
+    EXPECT_TRUE(rows[0].starts_with("frame,t,kinetic,potential,elastic,energy,max_error,b.x,"));
+    EXPECT_EQ(rows[0],
+              "frame,t,kinetic,potential,elastic,energy,max_error,"
+              "b.x,b.y,b.z,b.qw,b.qx,b.qy,b.qz,b.vx,b.vy,b.vz,b.wx,b.wy,b.wz,"
+              "j.force,j.torque,j.error");
+}
+
+TEST_F(SubstepCommand, RowZeroIsTheInitialStateAndTIsFrameTimesDt) {
+    const Result result = substep("run " + kHang + " --frames 30 --csv out.csv");
+    ASSERT_EQ(result.exitCode, 0) << result.err;
+    const std::vector<std::string> rows = lines(readFile(work() / "out.csv"));
+    ASSERT_EQ(rows.size(), 1u + 31u) << "header, row 0, and one row per frame";
+    const std::vector<std::string> header = split(rows[0]);
+    for (std::size_t frame = 0; frame <= 30; ++frame) {
+        const std::vector<std::string> cells = split(rows[frame + 1]);
+        ASSERT_EQ(cells.size(), header.size()) << "row " << frame;
+        EXPECT_EQ(cells[0], std::to_string(frame));
+        EXPECT_EQ(std::strtod(cells[1].c_str(), nullptr), static_cast<double>(frame) * kHangDt);
+    }
+    // Row 0: the pose and velocities of the file, exactly.
+    const std::vector<std::string> row0 = split(rows[1]);
+    auto column = [&](const std::string& name) {
+        const auto it = std::find(header.begin(), header.end(), name);
+        return row0.at(static_cast<std::size_t>(it - header.begin()));
+    };
+    EXPECT_EQ(column("b.x"), "0");
+    EXPECT_EQ(column("b.y"), "1");
+    EXPECT_EQ(column("b.qw"), "1");
+    EXPECT_EQ(column("b.vy"), "0");
+    EXPECT_EQ(column("kinetic"), "0");
+}
+
+TEST_F(SubstepCommand, RerunsAreByteIdentical) {
+    ASSERT_EQ(substep("run " + kHang + " --frames 120 --csv a.csv").exitCode, 0);
+    ASSERT_EQ(substep("run " + kHang + " --frames 120 --csv b.csv").exitCode, 0);
+    const std::string a = readFile(work() / "a.csv");
+    EXPECT_FALSE(a.empty());
+    EXPECT_EQ(a, readFile(work() / "b.csv"));
+}
+
+TEST_F(SubstepCommand, SecondsBecomeRoundedFrames) {
+    ASSERT_EQ(substep("run " + kHang + " --seconds 0.5 --csv out.csv").exitCode, 0);
+    EXPECT_EQ(lines(readFile(work() / "out.csv")).size(), 1u + 1u + 30u);
+
+    // Neither option: 5 s.
+    ASSERT_EQ(substep("run " + kHang + " --json s.json").exitCode, 0);
+    EXPECT_EQ(nlohmann::json::parse(readFile(work() / "s.json")).at("frames"), 300);
+
+    // --dt overrides the scene's: 0.5 s at 0.01 s.
+    ASSERT_EQ(substep("run " + kHang + " --seconds 0.5 --dt 0.01 --json s.json").exitCode, 0);
+    EXPECT_EQ(nlohmann::json::parse(readFile(work() / "s.json")).at("frames"), 50);
+}
+
+TEST_F(SubstepCommand, JsonSummaryHasEveryField) {
+    const Result result =
+        substep("run " + kHang + " --frames 30 --substeps 7 --iterations 2 --json s.json");
+    ASSERT_EQ(result.exitCode, 0) << result.err;
+    const nlohmann::json summary = nlohmann::json::parse(readFile(work() / "s.json"));
+    EXPECT_EQ(summary.at("frames"), 30);
+    EXPECT_EQ(summary.at("substeps"), 7);
+    EXPECT_EQ(summary.at("iterations"), 2);
+    EXPECT_TRUE(summary.at("wall_ms_per_frame").is_number());
+    EXPECT_GE(summary.at("wall_ms_per_frame").get<double>(), 0.0);
+    EXPECT_TRUE(summary.at("energy_initial").is_number());
+    EXPECT_TRUE(summary.at("energy_final").is_number());
+    EXPECT_GE(summary.at("max_error").get<double>(), 0.0);
+    EXPECT_EQ(summary.at("finite"), true);
+    // The scene's own settings when not overridden.
+    ASSERT_EQ(substep("run " + kHang + " --frames 1 --json s.json").exitCode, 0);
+    EXPECT_EQ(nlohmann::json::parse(readFile(work() / "s.json")).at("substeps"), 10);
+}
+
+TEST_F(SubstepCommand, JsonSummaryMatchesTheCsv) {
+    ASSERT_EQ(substep("run " + kHang + " --frames 60 --csv out.csv --json s.json").exitCode, 0);
+    const std::vector<std::string> rows = lines(readFile(work() / "out.csv"));
+    const nlohmann::json summary = nlohmann::json::parse(readFile(work() / "s.json"));
+    const double energyFirst = std::strtod(split(rows[1])[5].c_str(), nullptr);
+    const double energyLast = std::strtod(split(rows.back())[5].c_str(), nullptr);
+    double maxError = 0.0;
+    for (std::size_t i = 1; i < rows.size(); ++i) {
+        maxError = std::max(maxError, std::strtod(split(rows[i])[6].c_str(), nullptr));
+    }
+    EXPECT_EQ(summary.at("energy_initial").get<double>(), energyFirst);
+    EXPECT_EQ(summary.at("energy_final").get<double>(), energyLast);
+    EXPECT_EQ(summary.at("max_error").get<double>(), maxError);
+}
+
+TEST_F(SubstepCommand, BuiltinSceneRuns) {
+    const auto scenes = builtinScenes();
+    ASSERT_FALSE(scenes.empty());
+    const std::string name(scenes.front().name);
+    const Result result = substep("run " + name + " --frames 3 --csv out.csv");
+    EXPECT_EQ(result.exitCode, 0) << result.err;
+    EXPECT_EQ(lines(readFile(work() / "out.csv")).size(), 1u + 1u + 3u);
+    EXPECT_NE(result.out.find(name), std::string::npos) << result.out;
+}
+
+TEST_F(SubstepCommand, TruncatedSceneExits2NamingTheFileAndWritesNothing) {
+    const std::string text = readFile(kHangScene);
+    std::ofstream(work() / "broken.json") << text.substr(0, text.size() / 2);
+    const Result result = substep("run broken.json --frames 5 --csv out.csv --json s.json");
+    EXPECT_EQ(result.exitCode, 2);
+    EXPECT_NE(result.err.find("broken.json"), std::string::npos) << result.err;
+    EXPECT_EQ(workEntries(), std::vector<std::string>{"broken.json"});
+}
+
+TEST_F(SubstepCommand, UnknownSceneExits2PointingToTheList) {
+    Result result = substep("run no_such_scene --csv out.csv");
+    EXPECT_EQ(result.exitCode, 2);
+    EXPECT_NE(result.err.find("substep scenes"), std::string::npos) << result.err;
+    result = substep("run missing/scene.json --csv out.csv");
+    EXPECT_EQ(result.exitCode, 2);
+    EXPECT_NE(result.err.find("missing/scene.json"), std::string::npos) << result.err;
+    EXPECT_TRUE(workEntries().empty());
+}
+
+TEST_F(SubstepCommand, FramesWithSecondsIsAUsageError) {
+    const Result result = substep("run " + kHang + " --frames 10 --seconds 1 --csv out.csv");
+    EXPECT_EQ(result.exitCode, 2);
+    EXPECT_FALSE(result.err.empty());
+    EXPECT_TRUE(workEntries().empty());
+}
+
+TEST_F(SubstepCommand, OutOfRangeValuesExit2) {
+    for (const char* options :
+         {"--substeps 0", "--substeps 10001", "--substeps -3", "--substeps 99999999999999999999",
+          "--iterations 0", "--iterations 1001", "--frames -1", "--frames 10000001",
+          "--frames abc", "--frames 1.5", "--seconds 0", "--seconds -1", "--seconds nan",
+          "--seconds 1e999", "--dt 0", "--dt -0.01", "--dt inf", "--dt nan", "--dt x",
+          "--seconds 1e300"}) {
+        const Result result = substep("run " + kHang + " " + options + " --csv out.csv");
+        EXPECT_EQ(result.exitCode, 2) << options;
+        EXPECT_FALSE(result.err.empty()) << options;
+    }
+    EXPECT_TRUE(workEntries().empty());
+}
+
+TEST_F(SubstepCommand, RangeEndsAreAccepted) {
+    EXPECT_EQ(substep("run " + kHang + " --frames 0 --substeps 1 --iterations 1").exitCode, 0);
+    EXPECT_EQ(substep("run " + kHang + " --frames 1 --substeps 10000 --iterations 1000").exitCode,
+              0);
+}
+
+TEST_F(SubstepCommand, UnwritableOutputExits2AndLeavesNothing) {
+    Result result = substep("run " + kHang + " --frames 5 --csv missing/out.csv --json s.json");
+    EXPECT_EQ(result.exitCode, 2);
+    EXPECT_NE(result.err.find("missing/out.csv"), std::string::npos) << result.err;
+    EXPECT_TRUE(workEntries().empty());
+
+    fs::create_directories(work() / "folder");
+    result = substep("run " + kHang + " --frames 5 --csv folder");
+    EXPECT_EQ(result.exitCode, 2);
+    EXPECT_EQ(workEntries(), std::vector<std::string>{"folder"});
+    EXPECT_TRUE(fs::is_empty(work() / "folder"));
+}
+
+TEST_F(SubstepCommand, NonFiniteStateStopsWithExit1) {
+    // A frame of 1e300 s under gravity overflows the velocity, then the position.
+    const Result result = substep("run " + kHang + " --frames 10 --dt 1e300 --csv out.csv --json s.json");
+    EXPECT_EQ(result.exitCode, 1) << result.err;
+    const nlohmann::json summary = nlohmann::json::parse(readFile(work() / "s.json"));
+    EXPECT_EQ(summary.at("finite"), false);
+    const std::vector<std::string> rows = lines(readFile(work() / "out.csv"));
+    ASSERT_GE(rows.size(), 3u);
+    EXPECT_LT(rows.size(), 1u + 11u) << "the run stops at the first non-finite row";
+    EXPECT_EQ(summary.at("frames").get<std::size_t>(), rows.size() - 2);
+    EXPECT_TRUE(rows.back().find("inf") != std::string::npos ||
+                rows.back().find("nan") != std::string::npos)
+        << rows.back();
+}
+
+TEST_F(SubstepCommand, ScenesListsEveryBuiltinScene) {
+    const Result result = substep("scenes");
+    ASSERT_EQ(result.exitCode, 0) << result.err;
+    const std::vector<std::string> listed = lines(result.out);
+    const auto scenes = builtinScenes();
+    ASSERT_EQ(listed.size(), scenes.size());
+    for (std::size_t i = 0; i < scenes.size(); ++i) {
+        EXPECT_TRUE(listed[i].starts_with(std::string(scenes[i].name) + " ")) << listed[i];
+        EXPECT_NE(listed[i].find(scenes[i].description), std::string::npos) << listed[i];
+    }
+}
+
+TEST_F(SubstepCommand, UsageErrorsExit2) {
+    EXPECT_EQ(substep("run").exitCode, 2);
+    EXPECT_EQ(substep("run " + kHang + " --no-such-option").exitCode, 2);
+    EXPECT_EQ(substep("run " + kHang + " --frames").exitCode, 2);
+    EXPECT_EQ(substep("frobnicate").exitCode, 2);
+    EXPECT_EQ(substep("--help").exitCode, 0);
+    EXPECT_EQ(substep("run --help").exitCode, 0);
+    EXPECT_TRUE(workEntries().empty());
+}
+
+TEST_F(SubstepCommand, ViewerAndUnbuiltCommandsSaySoWithExit2) {
+    Result result = substep("");
+    EXPECT_EQ(result.exitCode, 2);
+    EXPECT_NE(result.err.find("substep run"), std::string::npos) << result.err;
+    result = substep("view boxes3");
+    EXPECT_EQ(result.exitCode, 2);
+    for (const char* command : {"render boxes3 --frames 1 --out x", "capture script.json",
+                                "bench", "sweep boxes3 --budget 20"}) {
+        result = substep(command);
+        EXPECT_EQ(result.exitCode, 2) << command;
+        EXPECT_NE(result.err.find("not available in this build yet"), std::string::npos)
+            << command << ": " << result.err;
+    }
+    EXPECT_TRUE(workEntries().empty());
+}
+
+}  // namespace
+}  // namespace substep
