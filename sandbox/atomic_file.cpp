@@ -31,7 +31,11 @@ AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
 
     // A hidden name next to the target, unique per process; O_EXCL never reuses a stranger's.
     const fs::path directory = target.parent_path();
-    const std::string stem = "." + target.filename().string() + ".tmp-" + std::to_string(getpid());
+    // (Appended piece by piece: GCC 12's -Wrestrict misfires on "." + std::string.)
+    std::string stem = ".";
+    stem += target.filename().string();
+    stem += ".tmp-";
+    stem += std::to_string(getpid());
     int descriptor = -1;
     for (int attempt = 0; attempt < 100 && descriptor < 0; ++attempt) {
         temporaryPath_ = (directory / (stem + "-" + std::to_string(attempt))).string();

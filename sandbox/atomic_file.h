@@ -12,12 +12,12 @@ namespace substep {
 
 /// An output could not be created, written or moved into place; what() names the file.
 class OutputError : public std::runtime_error {
-public:
+  public:
     using std::runtime_error::runtime_error;
 };
 
 class AtomicFile {
-public:
+  public:
     /// Creates the temporary file in the target's directory (a rename never crosses file
     /// systems that way). Throws OutputError when the directory is missing or unwritable, or
     /// when the target is a directory.
@@ -38,7 +38,7 @@ public:
     const std::string& path() const { return path_; }
     const std::string& temporaryPath() const { return temporaryPath_; }
 
-private:
+  private:
     std::string path_;
     std::string temporaryPath_;
     std::FILE* file_ = nullptr;

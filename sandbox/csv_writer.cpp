@@ -51,7 +51,8 @@ void CsvWriter::endRow() {
 
 void CsvWriter::writeRow(std::int64_t key, std::span<const double> values) {
     integer(key);
-    for (const double value : values) number(value);
+    for (const double value : values)
+        number(value);
     endRow();
 }
 

@@ -19,7 +19,7 @@ void appendInteger(std::string& out, std::int64_t value);
 /// Writes a table row by row into an output file. A row is built cell by cell in a buffer that
 /// is reused, so a long run allocates nothing per frame once the first row has been formatted.
 class CsvWriter {
-public:
+  public:
     explicit CsvWriter(AtomicFile& file) : file_(file) {}
 
     /// The header line: column names joined by commas.
@@ -34,7 +34,7 @@ public:
     /// A whole row: an integer key (the frame) followed by numbers.
     void writeRow(std::int64_t key, std::span<const double> values);
 
-private:
+  private:
     void separate() {
         if (!line_.empty()) line_ += ',';
     }

@@ -62,7 +62,8 @@ int main(int argc, char** argv) {
     app.footer("Exit codes: 0 success, 1 a check failed (non-finite state), 2 bad input.");
 
     std::string viewScene;
-    CLI::App* viewCommand = app.add_subcommand("view", "Interactive window (not in this build yet)");
+    CLI::App* viewCommand =
+        app.add_subcommand("view", "Interactive window (not in this build yet)");
     viewCommand->add_option("SCENE", viewScene, "A built-in scene name or a .json scene file");
 
     CLI::App* scenesCommand = app.add_subcommand("scenes", "List the built-in scenes");

@@ -24,7 +24,7 @@ namespace {
 
 /// A bad option value; what() names the option.
 class UsageError : public std::runtime_error {
-public:
+  public:
     using std::runtime_error::runtime_error;
 };
 
@@ -42,7 +42,8 @@ long long parseInteger(const char* option, const std::string& text, long long lo
     long long value = 0;
     const char* end = text.data() + text.size();
     const auto [last, error] = std::from_chars(text.data(), end, value);
-    if (error == std::errc::result_out_of_range) value = text.front() == '-' ? lowest - 1 : highest + 1;
+    if (error == std::errc::result_out_of_range)
+        value = text.front() == '-' ? lowest - 1 : highest + 1;
     else if (error != std::errc() || last != end || text.empty()) {
         throw UsageError(std::string(option) + ": expected a whole number, got '" + text + "'");
     }
@@ -77,7 +78,8 @@ RunSettings checkOptions(const RunOptions& options) {
     if (!options.frames.empty()) {
         settings.frames = parseInteger("--frames", options.frames, 0, kMaxFrames);
     }
-    if (!options.seconds.empty()) settings.seconds = parsePositiveReal("--seconds", options.seconds);
+    if (!options.seconds.empty())
+        settings.seconds = parsePositiveReal("--seconds", options.seconds);
     if (!options.substeps.empty()) {
         settings.substeps =
             static_cast<int>(parseInteger("--substeps", options.substeps, 1, kMaxSubsteps));
@@ -107,11 +109,13 @@ bool allFinite(const std::vector<double>& values) {
 
 // Ctrl-C ends a long run cleanly: the loop notices, and the temporary outputs are removed.
 volatile std::sig_atomic_t gInterrupted = 0;
-extern "C" void onInterrupt(int signal) { gInterrupted = signal; }
+extern "C" void onInterrupt(int signal) {
+    gInterrupted = signal;
+}
 
 /// Installs onInterrupt for SIGINT and SIGTERM while alive; restores the previous handlers.
 class InterruptGuard {
-public:
+  public:
     InterruptGuard() {
         gInterrupted = 0;
         previousInt_ = std::signal(SIGINT, onInterrupt);
@@ -124,7 +128,7 @@ public:
     InterruptGuard(const InterruptGuard&) = delete;
     InterruptGuard& operator=(const InterruptGuard&) = delete;
 
-private:
+  private:
     void (*previousInt_)(int) = SIG_DFL;
     void (*previousTerm_)(int) = SIG_DFL;
 };
@@ -159,8 +163,10 @@ std::string summaryJson(const std::string& scene, const RunSummary& summary) {
 
 void printSummary(const SceneSource& source, const RunSummary& summary, double dt) {
     const SceneDescription& scene = source.description;
-    if (source.builtin) std::printf("scene      %s (built-in)\n", source.label.c_str());
-    else std::printf("scene      %s (%s)\n", scene.name.c_str(), source.label.c_str());
+    if (source.builtin)
+        std::printf("scene      %s (built-in)\n", source.label.c_str());
+    else
+        std::printf("scene      %s (%s)\n", scene.name.c_str(), source.label.c_str());
     std::printf("bodies     %zu\n", scene.bodies.size());
     std::printf("joints     %zu\n", scene.joints.size());
     std::printf("frames     %lld of %.6g s = %.6g s\n", summary.frames, dt,
@@ -263,8 +269,7 @@ CLI::App* addRunCommand(CLI::App& app, RunOptions& options) {
     CLI::App* command = app.add_subcommand("run", "Headless simulation; prints a summary");
     command->add_option("SCENE", options.scene, "A built-in scene name or a .json scene file")
         ->required();
-    command->add_option("--frames", options.frames,
-                        "Frames to simulate (default: --seconds 5)")
+    command->add_option("--frames", options.frames, "Frames to simulate (default: --seconds 5)")
         ->type_name("N");
     command->add_option("--seconds", options.seconds, "Simulated time; frames = round(T/dt)")
         ->type_name("T")

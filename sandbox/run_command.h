@@ -13,7 +13,7 @@ namespace substep {
 /// gets the same kind of message (and `010` is ten, not CLI11's octal eight).
 struct RunOptions {
     std::string scene;
-    std::string frames;      ///< empty when not given
+    std::string frames;  ///< empty when not given
     std::string seconds;
     std::string substeps;
     std::string iterations;

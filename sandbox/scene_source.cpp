@@ -18,8 +18,8 @@ SceneSource resolveScene(const std::string& argument) {
     const fs::file_status status = fs::status(argument, error);
     if (!fs::exists(status)) {
         // Something that looks like a path was meant as a file; anything else as a name.
-        const bool looksLikePath = argument.find('/') != std::string::npos ||
-                                   fs::path(argument).extension() == ".json";
+        const bool looksLikePath =
+            argument.find('/') != std::string::npos || fs::path(argument).extension() == ".json";
         if (looksLikePath) {
             throw UnknownSceneError(argument +
                                     ": no such scene file (`substep scenes` lists the built-in "

@@ -12,7 +12,7 @@ namespace substep {
 /// SCENE is neither a built-in name nor an existing file; what() says so and points to
 /// `substep scenes`.
 class UnknownSceneError : public std::runtime_error {
-public:
+  public:
     using std::runtime_error::runtime_error;
 };
 

@@ -9,8 +9,8 @@ namespace {
 
 constexpr std::array<std::string_view, 7> kWorldColumns = {
     "frame", "t", "kinetic", "potential", "elastic", "energy", "max_error"};
-constexpr std::array<std::string_view, 13> kBodyColumns = {
-    "x", "y", "z", "qw", "qx", "qy", "qz", "vx", "vy", "vz", "wx", "wy", "wz"};
+constexpr std::array<std::string_view, 13> kBodyColumns = {"x",  "y",  "z",  "qw", "qx", "qy", "qz",
+                                                           "vx", "vy", "vz", "wx", "wy", "wz"};
 constexpr std::array<std::string_view, 3> kJointColumns = {"force", "torque", "error"};
 
 std::size_t sampledColumnCount(const SceneInstance& scene) {
@@ -23,7 +23,8 @@ std::size_t sampledColumnCount(const SceneInstance& scene) {
 std::vector<std::string> stateColumnNames(const SceneInstance& scene) {
     std::vector<std::string> names;
     names.reserve(sampledColumnCount(scene) + 1);
-    for (const std::string_view column : kWorldColumns) names.emplace_back(column);
+    for (const std::string_view column : kWorldColumns)
+        names.emplace_back(column);
     for (const auto& [name, id] : scene.namedBodies) {
         for (const std::string_view column : kBodyColumns) {
             names.push_back(name + "." + std::string(column));
@@ -56,8 +57,8 @@ void sampleState(const SceneInstance& scene, double t, std::vector<double>& valu
         const Quat orientation = body.userOrientation();
         for (const double value :
              {position.x(), position.y(), position.z(), orientation.w(), orientation.x(),
-              orientation.y(), orientation.z(), body.v.x(), body.v.y(), body.v.z(),
-              body.omega.x(), body.omega.y(), body.omega.z()}) {
+              orientation.y(), orientation.z(), body.v.x(), body.v.y(), body.v.z(), body.omega.x(),
+              body.omega.y(), body.omega.z()}) {
             *out++ = value;
         }
     }

@@ -208,7 +208,8 @@ public:
     bool number_float(number_float_t value, const string_t& literal) {
         // strtod turns 1e-400 into 0 silently; a value the file did not say is an error.
         if (value == 0.0 && hasNonZeroMantissa(literal)) {
-            fail(valuePath(), "number " + literal + " is too small to represent (it underflows to 0)");
+            const std::string number = literal.size() > 40 ? literal.substr(0, 37) + "..." : literal;
+            fail(valuePath(), "number " + number + " is too small to represent (it underflows to 0)");
         }
         return add(Json(value));
     }
@@ -235,7 +236,9 @@ public:
         if (error.id == 406) {
             // Number overflow: point at the start of the number.
             const std::size_t start = position >= lastToken.size() ? position - lastToken.size() : 0;
-            fail(valuePath(), "number " + lastToken + " overflows a double (" + location(start) + ")");
+            const std::string number =
+                lastToken.size() > 40 ? lastToken.substr(0, 37) + "..." : lastToken;
+            fail(valuePath(), "number " + number + " overflows a double (" + location(start) + ")");
         }
         // Keep nlohmann's description, drop its prefix and location (ours counts the same way).
         std::string detail = error.what();
@@ -244,7 +247,8 @@ public:
         } else if (const auto bracket = detail.find("] "); bracket != std::string::npos) {
             detail = detail.substr(bracket + 2);
         }
-        fail(valuePath(), "syntax error at " + location(position > 0 ? position - 1 : 0) + ": " + detail);
+        fail(valuePath(), "syntax error at " + location(position > 0 ? position - 1 : 0) + ": " +
+                              shortenLastRead(detail));
     }
 
 private:
@@ -278,6 +282,31 @@ private:
         const std::size_t column =
             lineStart == std::string_view::npos || offset == 0 ? offset + 1 : offset - lineStart;
         return "line " + std::to_string(line) + ", column " + std::to_string(column);
+    }
+
+    /// nlohmann quotes the text it last read, which can be the rest of the file (an unclosed
+    /// string) and can hold invalid UTF-8: keep its last 40 bytes, non-ASCII ones as \xNN.
+    static std::string shortenLastRead(const std::string& detail) {
+        const std::string marker = "last read: '";
+        const std::size_t start = detail.find(marker);
+        if (start == std::string::npos) return detail;
+        const std::size_t tokenStart = start + marker.size();
+        std::size_t tokenEnd = detail.find("'; expected", tokenStart);
+        if (tokenEnd == std::string::npos) tokenEnd = detail.rfind('\'');
+        if (tokenEnd == std::string::npos || tokenEnd < tokenStart) return detail;
+        std::string token = detail.substr(tokenStart, tokenEnd - tokenStart);
+        if (token.size() > 40) token = "..." + token.substr(token.size() - 40);
+        std::string clean;
+        for (const char c : token) {
+            const auto byte = static_cast<unsigned char>(c);
+            if (byte < 0x80) {
+                clean += c;
+            } else {
+                static const char* hex = "0123456789ABCDEF";
+                clean += {'\\', 'x', hex[byte >> 4], hex[byte & 15]};
+            }
+        }
+        return detail.substr(0, tokenStart) + clean + detail.substr(tokenEnd);
     }
 
     static bool hasNonZeroMantissa(const std::string& literal) {

@@ -1,10 +1,11 @@
 // Tests sandbox/csv_writer.cpp: numbers read back exactly, and rows come out as the contract says.
 
-#include "atomic_file.h"
 #include "csv_writer.h"
+#include "atomic_file.h"
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -14,7 +15,6 @@
 #include <limits>
 #include <random>
 #include <sstream>
-#include <unistd.h>
 #include <vector>
 
 namespace substep {
@@ -38,11 +38,29 @@ void expectRoundTrip(double value) {
 
 TEST(CsvNumber, SpecialValuesRoundTrip) {
     using limits = std::numeric_limits<double>;
-    for (const double value :
-         {0.0, -0.0, 1.0, -1.0, 0.1, 1.0 / 3.0, 1.0 / 60.0, 2.0 / 60.0, 1e-300, 1e300, -9.81,
-          limits::min(), -limits::min(), limits::max(), limits::lowest(), limits::denorm_min(),
-          limits::epsilon(), 1.0 + limits::epsilon(), std::nextafter(1.0, 0.0), M_PI, 123456789.0,
-          9007199254740993.0, 0.30000000000000004}) {
+    for (const double value : {0.0,
+                               -0.0,
+                               1.0,
+                               -1.0,
+                               0.1,
+                               1.0 / 3.0,
+                               1.0 / 60.0,
+                               2.0 / 60.0,
+                               1e-300,
+                               1e300,
+                               -9.81,
+                               limits::min(),
+                               -limits::min(),
+                               limits::max(),
+                               limits::lowest(),
+                               limits::denorm_min(),
+                               limits::epsilon(),
+                               1.0 + limits::epsilon(),
+                               std::nextafter(1.0, 0.0),
+                               M_PI,
+                               123456789.0,
+                               9007199254740993.0,
+                               0.30000000000000004}) {
         expectRoundTrip(value);
     }
 }

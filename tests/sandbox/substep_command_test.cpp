@@ -7,14 +7,14 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <sys/wait.h>
+#include <unistd.h>
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
-#include <sys/wait.h>
-#include <unistd.h>
 #include <vector>
 
 namespace substep {
@@ -41,27 +41,30 @@ std::string readFile(const fs::path& path) {
 std::vector<std::string> lines(const std::string& text) {
     std::vector<std::string> result;
     std::istringstream in(text);
-    for (std::string line; std::getline(in, line);) result.push_back(line);
+    for (std::string line; std::getline(in, line);)
+        result.push_back(line);
     return result;
 }
 
 std::vector<std::string> split(const std::string& line) {
     std::vector<std::string> cells;
     std::istringstream in(line);
-    for (std::string cell; std::getline(in, cell, ',');) cells.push_back(cell);
+    for (std::string cell; std::getline(in, cell, ',');)
+        cells.push_back(cell);
     return cells;
 }
 
 std::string quoted(const std::string& text) {
     std::string result = "'";
-    for (const char c : text) result += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    for (const char c : text)
+        result += c == '\'' ? std::string("'\\''") : std::string(1, c);
     return result + "'";
 }
 
 /// Each test runs the program in its own empty working folder; stdout and stderr are captured
 /// outside it, so "nothing left behind" means the folder holds only what the test put there.
 class SubstepCommand : public ::testing::Test {
-protected:
+  protected:
     void SetUp() override {
         root_ = fs::temp_directory_path() /
                 ("substep_command_test_" + std::to_string(getpid()) + "_" +
@@ -231,11 +234,11 @@ TEST_F(SubstepCommand, FramesWithSecondsIsAUsageError) {
 
 TEST_F(SubstepCommand, OutOfRangeValuesExit2) {
     for (const char* options :
-         {"--substeps 0", "--substeps 10001", "--substeps -3", "--substeps 99999999999999999999",
-          "--iterations 0", "--iterations 1001", "--frames -1", "--frames 10000001",
-          "--frames abc", "--frames 1.5", "--seconds 0", "--seconds -1", "--seconds nan",
-          "--seconds 1e999", "--dt 0", "--dt -0.01", "--dt inf", "--dt nan", "--dt x",
-          "--seconds 1e300"}) {
+         {"--substeps 0",   "--substeps 10001",  "--substeps -3", "--substeps 99999999999999999999",
+          "--iterations 0", "--iterations 1001", "--frames -1",   "--frames 10000001",
+          "--frames abc",   "--frames 1.5",      "--seconds 0",   "--seconds -1",
+          "--seconds nan",  "--seconds 1e999",   "--dt 0",        "--dt -0.01",
+          "--dt inf",       "--dt nan",          "--dt x",        "--seconds 1e300"}) {
         const Result result = substep("run " + kHang + " " + options + " --csv out.csv");
         EXPECT_EQ(result.exitCode, 2) << options;
         EXPECT_FALSE(result.err.empty()) << options;
@@ -264,7 +267,8 @@ TEST_F(SubstepCommand, UnwritableOutputExits2AndLeavesNothing) {
 
 TEST_F(SubstepCommand, NonFiniteStateStopsWithExit1) {
     // A frame of 1e300 s under gravity overflows the velocity, then the position.
-    const Result result = substep("run " + kHang + " --frames 10 --dt 1e300 --csv out.csv --json s.json");
+    const Result result =
+        substep("run " + kHang + " --frames 10 --dt 1e300 --csv out.csv --json s.json");
     EXPECT_EQ(result.exitCode, 1) << result.err;
     const nlohmann::json summary = nlohmann::json::parse(readFile(work() / "s.json"));
     EXPECT_EQ(summary.at("finite"), false);
@@ -305,8 +309,8 @@ TEST_F(SubstepCommand, ViewerAndUnbuiltCommandsSaySoWithExit2) {
     EXPECT_NE(result.err.find("substep run"), std::string::npos) << result.err;
     result = substep("view boxes3");
     EXPECT_EQ(result.exitCode, 2);
-    for (const char* command : {"render boxes3 --frames 1 --out x", "capture script.json",
-                                "bench", "sweep boxes3 --budget 20"}) {
+    for (const char* command : {"render boxes3 --frames 1 --out x", "capture script.json", "bench",
+                                "sweep boxes3 --budget 20"}) {
         result = substep(command);
         EXPECT_EQ(result.exitCode, 2) << command;
         EXPECT_NE(result.err.find("not available in this build yet"), std::string::npos)

@@ -1,0 +1,197 @@
+// Tests engine/physics/correction.cpp: the two correction operations of paper 3.3 (Eqs. 2-16)
+// and the velocity correction of Eq. 33, against their closed forms on hand-made bodies.
+
+#include "physics/correction.h"
+
+#include "physics_test_support.h"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+
+namespace substep {
+namespace {
+
+/// Two free bodies: index 0 a sphere of mass m0, index 1 a box of mass m1.
+struct Pair {
+    std::array<Body, 2> bodies;
+    std::array<JacobiDelta, 2> deltas;
+    SolverContext ctx;
+
+    Pair(double m0, double m1, double h, SolverType solver = SolverType::GaussSeidel) {
+        bodies[0] = makeBody({.shape = sphereShape(0.2), .mass = m0, .position = Vec3(0, 0, 0)});
+        bodies[1] = makeBody(
+            {.shape = boxShape(Vec3(0.2, 0.4, 0.6)), .mass = m1, .position = Vec3(1, 0, 0)});
+        ctx = SolverContext{.bodies = bodies.data(),
+                            .h = h,
+                            .invH2 = 1.0 / (h * h),
+                            .solver = solver,
+                            .deltas = deltas.data()};
+    }
+};
+
+// Eqs. 2-7 at the centres of mass: w = 1/m, Δλ = c/(w0 + w1), body 0 moves c w0/(w0 + w1)
+// along the correction and body 1 the rest the other way; the centre of mass stays.
+TEST(PositionalCorrectionTest, SharesByInverseMassAndKeepsCentreOfMass) {
+    const double m0 = 1.0, m1 = 3.0;
+    Pair pair(m0, m1, 0.01);
+    const Vec3 com = (m0 * pair.bodies[0].x + m1 * pair.bodies[1].x) / (m0 + m1);
+    const Quat q0 = pair.bodies[0].q, q1 = pair.bodies[1].q;
+    const Vec3 delta(0.1, -0.05, 0.02);
+    double lambda = 0.0;
+    const Vec3 p = applyPositionalCorrection(pair.ctx, 0, 1, delta, Vec3::Zero(), Vec3::Zero(),
+                                             0.0, lambda);
+    const double w0 = 1.0 / m0, w1 = 1.0 / m1;
+    EXPECT_NEAR(lambda, delta.norm() / (w0 + w1), 1e-15);
+    EXPECT_LT((p - delta / (w0 + w1)).norm(), 1e-15);
+    EXPECT_LT((pair.bodies[0].x - delta * (w0 / (w0 + w1))).norm(), 1e-15);
+    EXPECT_LT((pair.bodies[1].x - (Vec3(1, 0, 0) - delta * (w1 / (w0 + w1)))).norm(), 1e-15);
+    // The relative offset closes completely with zero compliance.
+    EXPECT_LT(((pair.bodies[1].x - pair.bodies[0].x) - (Vec3(1, 0, 0) - delta)).norm(), 1e-15);
+    const Vec3 comAfter = (m0 * pair.bodies[0].x + m1 * pair.bodies[1].x) / (m0 + m1);
+    EXPECT_LT((comAfter - com).norm(), 1e-15);
+    // Centred corrections do not turn the bodies.
+    EXPECT_TRUE(pair.bodies[0].q.coeffs() == q0.coeffs());
+    EXPECT_TRUE(pair.bodies[1].q.coeffs() == q1.coeffs());
+}
+
+// Eq. 4 with compliance: Δλ = (c − α̃λ)/(w0 + w1 + α̃), α̃ = α/h², and λ accumulates (Eq. 5).
+TEST(PositionalCorrectionTest, CompliantMultiplierFollowsEq4) {
+    const double m0 = 2.0, m1 = 0.5, h = 1.0 / 600.0, alpha = 1e-4;
+    Pair pair(m0, m1, h);
+    const double w = 1.0 / m0 + 1.0 / m1, alphaTilde = alpha / (h * h);
+    const Vec3 delta(0.0, 0.03, 0.0);
+    double lambda = 0.0;
+    applyPositionalCorrection(pair.ctx, 0, 1, delta, Vec3::Zero(), Vec3::Zero(), alpha, lambda);
+    const double first = 0.03 / (w + alphaTilde);
+    EXPECT_NEAR(lambda, first, 1e-15);
+    applyPositionalCorrection(pair.ctx, 0, 1, delta, Vec3::Zero(), Vec3::Zero(), alpha, lambda);
+    EXPECT_NEAR(lambda, first + (0.03 - alphaTilde * first) / (w + alphaTilde), 1e-15);
+}
+
+// Eqs. 2 and 8 off the centre: w0 = 1/m0 + (r × n)ᵀ I⁻¹ (r × n), the body turns by
+// I⁻¹ (r × p), and to first order the anchor point moves c w0/(w0 + w1) along n.
+TEST(PositionalCorrectionTest, OffCentreCorrectionTurnsTheBody) {
+    const double h = 0.01;
+    Pair pair(1.0, 1.0, h);
+    Body& box = pair.bodies[1];
+    box.invMass = 0.0;  // a static partner takes no share
+    box.invInertia.setZero();
+    Body& sphere = pair.bodies[0];
+    const double inertia = 0.4 * 1.0 * 0.2 * 0.2;  // solid sphere 2/5 m r²
+    ASSERT_NEAR(sphere.inertia.x(), inertia, 1e-15);
+
+    const Vec3 r(0.0, 0.2, 0.0), n(1.0, 0.0, 0.0);
+    const Quat start = sphere.q;
+    const double c = 1e-6;  // small: the linearised rotation is exact to first order
+    double lambda = 0.0;
+    applyPositionalCorrection(pair.ctx, 0, 1, c * n, r, Vec3::Zero(), 0.0, lambda);
+    const double w0 = 1.0 + r.cross(n).squaredNorm() / inertia;  // Eq. 2: 1 + 0.04/0.016 = 3.5
+    EXPECT_NEAR(lambda, c / w0, 1e-15);
+    // Linear part: the centre moves p/m.
+    EXPECT_NEAR(sphere.x.x(), c / w0, 1e-15);
+    // Angular part: turns about r × n = −z by |r| Δλ / I.
+    const Vec3 turned = test::turnBetween(start, sphere.q);
+    EXPECT_NEAR(turned.z(), -0.2 * (c / w0) / inertia, 1e-15);
+    // The anchor point moves the full correction (the static partner takes none).
+    const Vec3 anchor = sphere.x + (sphere.q * start.conjugate()) * r;
+    EXPECT_NEAR(anchor.x(), c, 1e-12);
+}
+
+// Eqs. 11-16: a rotation θ about a principal axis is shared by inverse inertia.
+TEST(AngularCorrectionTest, SharesByInverseInertia) {
+    Pair pair(1.0, 4.0, 0.01);
+    const double i0 = pair.bodies[0].inertia.x();  // sphere: isotropic
+    const double i1 = 4.0 * (0.2 * 0.2 + 0.4 * 0.4) / 12.0;  // box about z: m (a² + b²)/12
+    const Vec3 rotation(0.0, 0.0, 1e-4);
+    const Quat start0 = pair.bodies[0].q, start1 = pair.bodies[1].q;
+    double lambda = 0.0;
+    const Vec3 p = applyAngularCorrection(pair.ctx, 0, 1, rotation, 0.0, lambda);
+    const double w0 = 1.0 / i0, w1 = 1.0 / i1;
+    EXPECT_NEAR(lambda, 1e-4 / (w0 + w1), 1e-15);
+    EXPECT_NEAR(p.z(), lambda, 1e-18);
+    const Vec3 turn0 = test::turnBetween(start0, pair.bodies[0].q);
+    const Vec3 turn1 = test::turnBetween(start1, pair.bodies[1].q);
+    EXPECT_NEAR(turn0.z(), 1e-4 * w0 / (w0 + w1), 1e-12);
+    EXPECT_NEAR(turn1.z(), -1e-4 * w1 / (w0 + w1), 1e-12);
+    // Positions are untouched.
+    EXPECT_EQ(pair.bodies[0].x, Vec3::Zero());
+    EXPECT_EQ(pair.bodies[1].x, Vec3(1, 0, 0));
+    // Angular momentum: I0 Δθ0 + I1 Δθ1 = 0.
+    EXPECT_NEAR(i0 * turn0.z() + i1 * turn1.z(), 0.0, 1e-15);
+}
+
+// Zero-length (and NaN-free tiny) corrections do nothing and leave λ alone.
+TEST(CorrectionDegenerateTest, ZeroLengthCorrectionsAreNoOps) {
+    Pair pair(1.0, 1.0, 0.01);
+    const Body before0 = pair.bodies[0], before1 = pair.bodies[1];
+    double lambda = 0.25;
+    for (const Vec3& zero : {Vec3(Vec3::Zero()), Vec3(1e-300, 0.0, 0.0), Vec3(0.0, -0.0, 0.0)}) {
+        EXPECT_EQ(applyPositionalCorrection(pair.ctx, 0, 1, zero, Vec3(0, 0.1, 0), Vec3::Zero(),
+                                            0.01, lambda),
+                  Vec3::Zero());
+        EXPECT_EQ(applyAngularCorrection(pair.ctx, 0, 1, zero, 0.0, lambda), Vec3::Zero());
+    }
+    EXPECT_EQ(lambda, 0.25);
+    EXPECT_EQ(pair.bodies[0].x, before0.x);
+    EXPECT_EQ(pair.bodies[1].x, before1.x);
+    EXPECT_TRUE(pair.bodies[0].q.coeffs() == before0.q.coeffs());
+    // Two static bodies: no mass to move, no NaN.
+    pair.bodies[0].invMass = pair.bodies[1].invMass = 0.0;
+    pair.bodies[0].invInertia.setZero();
+    pair.bodies[1].invInertia.setZero();
+    EXPECT_EQ(applyPositionalCorrection(pair.ctx, 0, 1, Vec3(1, 0, 0), Vec3::Zero(), Vec3::Zero(),
+                                        0.0, lambda),
+              Vec3::Zero());
+    EXPECT_EQ(applyAngularCorrection(pair.ctx, 0, 1, Vec3(0, 1, 0), 0.0, lambda), Vec3::Zero());
+    EXPECT_TRUE(pair.bodies[0].x.allFinite() && pair.bodies[0].q.coeffs().allFinite());
+    EXPECT_EQ(lambda, 0.25);
+}
+
+// Jacobi: corrections are gathered, not applied, until applyJacobiDeltas; a body corrected
+// twice in one iteration moves by the average.
+TEST(CorrectionJacobiTest, GathersThenAppliesTheAverage) {
+    Pair pair(1.0, 1.0, 0.01, SolverType::Jacobi);
+    pair.bodies[1].invMass = 0.0;  // static partner
+    pair.bodies[1].invInertia.setZero();
+    double l1 = 0.0, l2 = 0.0;
+    applyPositionalCorrection(pair.ctx, 0, 1, Vec3(0.2, 0, 0), Vec3::Zero(), Vec3::Zero(), 0.0, l1);
+    applyPositionalCorrection(pair.ctx, 0, 1, Vec3(0, 0.4, 0), Vec3::Zero(), Vec3::Zero(), 0.0, l2);
+    EXPECT_EQ(pair.bodies[0].x, Vec3::Zero());  // nothing moved yet
+    EXPECT_EQ(pair.deltas[0].count, 2u);
+    applyJacobiDeltas(pair.bodies.data(), pair.deltas.data(), 2);
+    EXPECT_LT((pair.bodies[0].x - Vec3(0.1, 0.2, 0)).norm(), 1e-15);
+    EXPECT_EQ(pair.deltas[0].count, 0u);  // cleared for the next iteration
+    EXPECT_EQ(pair.bodies[1].x, Vec3(1, 0, 0));
+}
+
+// Eq. 33: the relative velocity of the two points changes by exactly Δv, momentum is kept.
+TEST(VelocityCorrectionTest, ChangesRelativeVelocityByDelta) {
+    Pair pair(1.0, 3.0, 0.01);
+    Body& b0 = pair.bodies[0];
+    Body& b1 = pair.bodies[1];
+    b0.v = Vec3(1, 0, 0);
+    b1.v = Vec3(-1, 0.5, 0);
+    const Vec3 momentum = 1.0 * b0.v + 3.0 * b1.v;
+    const Vec3 dv(-0.6, 0.3, 0.1);
+    const Vec3 relative = b0.v - b1.v;
+    applyVelocityCorrection(b0, b1, dv, Vec3::Zero(), Vec3::Zero());
+    EXPECT_LT(((b0.v - b1.v) - (relative + dv)).norm(), 1e-14);
+    EXPECT_LT((1.0 * b0.v + 3.0 * b1.v - momentum).norm(), 1e-14);
+
+    // Off-centre on body 0 against a static body 1: the point velocity v + ω × r changes by Δv
+    // along Δv's direction.
+    b1.invMass = 0.0;
+    b1.invInertia.setZero();
+    b1.v.setZero();
+    b0.v.setZero();
+    b0.omega.setZero();
+    const Vec3 r(0.0, 0.2, 0.0), n(0.7, 0.0, 0.0);
+    applyVelocityCorrection(b0, b1, n, r, Vec3::Zero());
+    EXPECT_NEAR((b0.v + b0.omega.cross(r)).x(), 0.7, 1e-14);
+    EXPECT_GT(b0.omega.norm(), 0.0);
+}
+
+}  // namespace
+}  // namespace substep

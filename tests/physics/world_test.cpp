@@ -1,0 +1,226 @@
+// Tests engine/physics/world.cpp: handles, the integration of Algorithm 2 (free fall against
+// its closed form, torque-free tumbling against conservation laws), and robustness.
+
+#include "physics/world.h"
+
+#include "physics_test_support.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace substep {
+namespace {
+
+using test::kDt;
+using test::report;
+
+BodyDef boxDef(const Vec3& size, double mass, const Vec3& position) {
+    return {.shape = boxShape(size), .mass = mass, .position = position};
+}
+
+// --- Handles --------------------------------------------------------------------------------
+
+TEST(WorldHandlesTest, NullIdsAreInvalid) {
+    World world;
+    EXPECT_FALSE(world.isValid(BodyId{}));
+    EXPECT_FALSE(world.isValid(JointId{}));
+    // The world's own anchor body (index 0) is not a user body.
+    EXPECT_FALSE(world.isValid(BodyId{0, 0}));
+    EXPECT_FALSE(world.isValid(BodyId{7, 1}));  // out of range
+}
+
+TEST(WorldHandlesTest, DestroyedBodyInvalidatesItsIdAndItsJoints) {
+    World world;
+    const BodyId a = world.createBody(boxDef(Vec3(0.1, 0.1, 0.1), 1.0, Vec3(0, 1, 0)));
+    const BodyId b = world.createBody(boxDef(Vec3(0.1, 0.1, 0.1), 1.0, Vec3(0, 0.5, 0)));
+    const BodyId c = world.createBody(boxDef(Vec3(0.1, 0.1, 0.1), 1.0, Vec3(1, 0.5, 0)));
+    const JointId ab = world.createJoint({.type = JointType::Distance, .body0 = a, .body1 = b});
+    const JointId worldA = world.createJoint(
+        {.type = JointType::Distance, .body1 = a, .anchor0 = Vec3(0, 1.5, 0)});
+    const JointId bc = world.createJoint({.type = JointType::Hinge, .body0 = b, .body1 = c});
+    ASSERT_TRUE(world.isValid(a) && world.isValid(b) && world.isValid(c));
+    ASSERT_TRUE(world.isValid(ab) && world.isValid(worldA) && world.isValid(bc));
+
+    world.destroyBody(a);
+    EXPECT_FALSE(world.isValid(a));
+    EXPECT_FALSE(world.isValid(ab));      // a was body 0
+    EXPECT_FALSE(world.isValid(worldA));  // a was body 1
+    EXPECT_TRUE(world.isValid(b));
+    EXPECT_TRUE(world.isValid(c));
+    EXPECT_TRUE(world.isValid(bc));  // joints not touching a survive
+
+    // A dead body is no longer simulated, and destroying it again is harmless.
+    world.destroyBody(a);
+    world.step(kDt);
+    EXPECT_TRUE(world.isFinite());
+    EXPECT_EQ(world.jointReadout(ab).force, 0.0);
+}
+
+TEST(WorldHandlesTest, ReusedSlotGetsANewGeneration) {
+    World world;
+    const BodyId first = world.createBody(boxDef(Vec3(0.1, 0.1, 0.1), 1.0, Vec3::Zero()));
+    world.destroyBody(first);
+    const BodyId second = world.createBody(boxDef(Vec3(0.2, 0.2, 0.2), 2.0, Vec3::Zero()));
+    EXPECT_EQ(second.index, first.index);  // the slot is reused ...
+    EXPECT_NE(second.generation, first.generation);  // ... under a new generation
+    EXPECT_FALSE(world.isValid(first));
+    EXPECT_TRUE(world.isValid(second));
+    EXPECT_DOUBLE_EQ(world.body(second).mass, 2.0);
+    // Destroying through the stale id must not touch the new occupant.
+    world.destroyBody(first);
+    EXPECT_TRUE(world.isValid(second));
+
+    const JointId joint = world.createJoint({.type = JointType::Distance, .body1 = second});
+    world.destroyJoint(joint);
+    EXPECT_FALSE(world.isValid(joint));
+    const JointId reused = world.createJoint({.type = JointType::Fixed, .body1 = second});
+    EXPECT_EQ(reused.index, joint.index);
+    EXPECT_NE(reused.generation, joint.generation);
+    EXPECT_FALSE(world.isValid(joint));
+    EXPECT_TRUE(world.isValid(reused));
+    world.destroyJoint(joint);  // stale: must not destroy the reused joint
+    EXPECT_TRUE(world.isValid(reused));
+}
+
+// --- Free fall ------------------------------------------------------------------------------
+
+// Algorithm 2 without constraints is symplectic Euler: v_n = v0 + g t exactly and
+// x_n = x0 + v0 t + ½ g t² + ½ g h t, so the energy drifts by exactly −½ m |g|² h t (O(h)).
+TEST(WorldIntegrationTest, FreeFallMatchesSymplecticEulerClosedForm) {
+    const double g = 9.81, mass = 2.5;
+    const Vec3 x0(0.3, 10.0, -0.2), v0(1.0, 4.0, -0.5);
+    for (const int substeps : {1, 20}) {
+        World world(WorldSettings{.gravity = Vec3(0, -g, 0), .substeps = substeps});
+        const BodyId id = world.createBody(
+            {.shape = sphereShape(0.1), .mass = mass, .position = x0, .velocity = v0});
+        const double h = kDt / substeps;
+        const Body& body = world.body(id);
+        const double e0 = 0.5 * mass * v0.squaredNorm() + mass * g * x0.y();
+        double worstPosition = 0.0, worstEnergy = 0.0;
+        test::runFor(world, 2.0, [&](double t) {
+            const Vec3 expected = x0 + v0 * t + Vec3(0, -g, 0) * (0.5 * t * t + 0.5 * h * t);
+            worstPosition = std::max(worstPosition, (body.x - expected).norm());
+            EXPECT_NEAR(body.v.y(), v0.y() - g * t, 1e-9);
+            const double energy = 0.5 * mass * body.v.squaredNorm() + mass * g * body.x.y();
+            worstEnergy = std::max(worstEnergy, std::abs(energy - e0 + 0.5 * mass * g * g * h * t));
+            // The engine's energy readout agrees with the closed form.
+            EXPECT_NEAR(world.energies().total(), energy, 1e-9 * std::abs(energy));
+        });
+        EXPECT_LT(worstPosition, 1e-9);
+        EXPECT_LT(worstEnergy, 1e-8);
+        // The drift itself is O(h): 20 substeps shrink it 20-fold.
+        const double drift = 0.5 * mass * g * g * h * 2.0;
+        report("free_fall_energy_drift_J_" + std::to_string(substeps) + "_substeps", drift);
+        EXPECT_LT(drift / e0, substeps == 1 ? 0.02 : 1e-3);
+    }
+}
+
+// --- Torque-free tumbling -------------------------------------------------------------------
+
+// A box spun about its intermediate principal axis with a small perturbation flips (the
+// Dzhanibekov effect): the intermediate component of ω changes sign. The growth rate is
+// λ = ω sqrt((I1 − I2)(I2 − I3)/(I1 I3)), so with ε/ω = 1/200 the first flip comes after about
+// ln(200)/λ ≈ 1.1 s. Angular momentum (world) and kinetic energy are conserved in the exact
+// motion; the explicit gyroscopic term and linearised quaternion update of Algorithm 2 let them
+// drift.
+TEST(WorldIntegrationTest, IntermediateAxisFlipsAndConservesMomentumAndEnergy) {
+    const Vec3 size(0.1, 0.2, 0.3);
+    const double mass = 1.5;
+    const Vec3 moments = test::boxMoments(size, mass);  // y is the intermediate axis
+    ASSERT_GT(moments.x(), moments.y());
+    ASSERT_GT(moments.y(), moments.z());
+    const double spin = 10.0;
+    const Vec3 omega0(0.05, spin, 0.05);
+
+    World world(WorldSettings{.gravity = Vec3::Zero(), .substeps = 20});
+    const Quat start(Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized()));
+    const BodyId id = world.createBody({.shape = boxShape(size),
+                                        .mass = mass,
+                                        .position = Vec3(0, 1, 0),
+                                        .orientation = start,
+                                        .angularVelocity = start * omega0});
+    const Body& body = world.body(id);
+    const Vec3 l0 = test::angularMomentum(body, moments);
+    const double e0 = test::kineticEnergy(body, mass, moments);
+    ASSERT_NEAR(e0, 0.5 * omega0.dot(moments.cwiseProduct(omega0)), 1e-12);
+
+    double firstFlip = -1.0, worstL = 0.0, worstE = 0.0;
+    test::runFor(world, 5.0, [&](double t) {
+        const Vec3 bodyOmega = body.userOrientation().conjugate() * body.omega;
+        if (firstFlip < 0.0 && bodyOmega.y() < 0.0) firstFlip = t;
+        worstL = std::max(worstL, (test::angularMomentum(body, moments) - l0).norm() / l0.norm());
+        worstE = std::max(worstE, std::abs(test::kineticEnergy(body, mass, moments) - e0) / e0);
+    });
+    report("tumble_first_flip_s", firstFlip);
+    report("tumble_max_relative_L_drift", worstL);
+    report("tumble_max_relative_energy_drift", worstE);
+    EXPECT_GT(firstFlip, 0.3);
+    EXPECT_LT(firstFlip, 5.0);
+    EXPECT_LT(worstL, 0.03);
+    EXPECT_LT(worstE, 0.03);
+    // No gravity, no joints: the centre of mass does not move.
+    EXPECT_LT((body.userPosition() - Vec3(0, 1, 0)).norm(), 1e-12);
+}
+
+// A spin about the largest principal axis is stable: nothing flips, ω stays put.
+TEST(WorldIntegrationTest, MajorAxisSpinIsStable) {
+    const Vec3 size(0.1, 0.2, 0.3);
+    World world(WorldSettings{.gravity = Vec3::Zero(), .substeps = 20});
+    const BodyId id = world.createBody(
+        {.shape = boxShape(size), .mass = 1.0, .angularVelocity = Vec3(10.0, 0.05, 0.05)});
+    const Body& body = world.body(id);
+    test::runFor(world, 5.0, [&](double) {
+        const Vec3 bodyOmega = body.userOrientation().conjugate() * body.omega;
+        ASSERT_GT(bodyOmega.x(), 9.9);
+        ASSERT_LT(std::abs(bodyOmega.y()), 0.2);
+    });
+}
+
+// --- Robustness -----------------------------------------------------------------------------
+
+// Bodies thrown at 1e4 m/s and 1e4 rad/s on every joint type stay finite.
+TEST(WorldRobustnessTest, HugeVelocitiesStayFinite) {
+    World world(WorldSettings{.gravity = Vec3(0, -10, 0), .substeps = 20});
+    const Vec3 size(0.2, 0.1, 0.3);
+    const Vec3 fast(1e4, -3e3, 7e3), spin(-2e3, 1e4, 5e3);
+    const JointType types[] = {JointType::Distance, JointType::Fixed, JointType::Hinge,
+                               JointType::Spherical, JointType::Prismatic};
+    for (int i = 0; i < 5; ++i) {
+        const Vec3 pivot(2.0 * i, 2.0, 0.0);
+        const BodyId body = world.createBody({.shape = boxShape(size),
+                                              .mass = 1.0,
+                                              .position = pivot - Vec3(0, 0.5, 0),
+                                              .velocity = fast,
+                                              .angularVelocity = spin});
+        JointDef def{.type = types[i], .body1 = body, .anchor0 = pivot,
+                     .anchor1 = Vec3(0.1, 0.5, 0.0), .axis0 = Vec3::UnitZ(), .axis1 = Vec3::UnitZ()};
+        if (types[i] == JointType::Hinge) def.limits = Range{-0.3, 0.3};
+        if (types[i] == JointType::Prismatic) def.limits = Range{-0.1, 0.1};
+        if (types[i] == JointType::Spherical) {
+            def.swingLimit = 0.4;
+            def.twistLimits = Range{-0.2, 0.2};
+        }
+        world.createJoint(def);
+        // And a free one.
+        world.createBody({.shape = sphereShape(0.1), .mass = 1.0, .velocity = fast,
+                          .angularVelocity = spin});
+    }
+    for (int frame = 0; frame < 10; ++frame) {
+        world.step(kDt);
+        ASSERT_TRUE(world.isFinite()) << "frame " << frame;
+    }
+    EXPECT_TRUE(std::isfinite(world.energies().total()));
+    EXPECT_TRUE(std::isfinite(world.maxJointError()));
+}
+
+TEST(WorldRobustnessTest, InvalidFrameLengthDoesNothing) {
+    World world;
+    const BodyId id = world.createBody({.shape = sphereShape(0.1), .mass = 1.0});
+    for (const double dt : {0.0, -kDt, std::nan(""), HUGE_VAL}) world.step(dt);
+    EXPECT_TRUE(world.isFinite());
+    EXPECT_EQ(world.body(id).x, Vec3::Zero());
+}
+
+}  // namespace
+}  // namespace substep
