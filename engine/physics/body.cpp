@@ -48,6 +48,7 @@ Body makeBody(const BodyDef& def) {
             body.inertia[i] = def.type == BodyType::Particle ? 0.0 : moment;
             body.invInertia[i] = body.inertia[i] > 0.0 ? 1.0 / body.inertia[i] : 0.0;
         }
+        body.isotropic = body.inertia.x() == body.inertia.y() && body.inertia.y() == body.inertia.z();
         // User frame -> principal frame: p_principal = Rᵀ (p_user − com).
         body.userRotation = principal.rotation.conjugate();
         body.userOrigin = -(body.userRotation * props.centerOfMass);

@@ -48,6 +48,7 @@ struct Body {
     double mass = 0.0;
     Vec3 inertia = Vec3::Zero();
     BodyType type = BodyType::Static;
+    bool isotropic = false;  ///< equal principal moments: no gyroscopic term
     bool alive = false;
     uint32_t generation = 0;
 

@@ -158,10 +158,12 @@ void World::integrate(double h) {
         if (!b.rotates()) continue;
         b.qPrev = b.q;
         // Algorithm 2: ω ← ω + h I⁻¹(τ − ω × Iω), evaluated in the principal frame where I is
-        // diagonal.
-        Vec3 w = b.q.conjugate() * b.omega;
-        w += h * b.invInertia.cwiseProduct(-w.cross(b.inertia.cwiseProduct(w)));
-        b.omega = b.q * w;
+        // diagonal. With equal moments ω × Iω vanishes, so cubes and spheres skip it.
+        if (!b.isotropic) {
+            Vec3 w = b.q.conjugate() * b.omega;
+            w += h * b.invInertia.cwiseProduct(-w.cross(b.inertia.cwiseProduct(w)));
+            b.omega = b.q * w;
+        }
         addRotation(b.q, h * b.omega);
     }
 }

@@ -35,6 +35,11 @@
 ///                          both the world and not the same body; a key the joint type does not
 ///                          use is an error; target_angle and target_velocity exclude each other
 ///   mesh, heightfield, spline shapes: part of the format, rejected until this build supports them
+///
+/// Extensions to DESIGN.md: optional top-level `name` and `description` strings (for readers; the
+/// scene's name stays the file stem), and spherical `twist_compliance` (defaults to
+/// `limit_compliance`). Defaults not stated there: plane normal [0, 1, 0], offset 0; a missing
+/// friction or damping member keeps its default.
 
 #include "scene/scene_loader.h"
 
@@ -66,8 +71,7 @@ std::string composeMessage(const std::string& file, const std::string& path,
 
 }  // namespace
 
-SceneError::SceneError(const std::string& file, const std::string& path,
-                       const std::string& problem)
+SceneError::SceneError(const std::string& file, const std::string& path, const std::string& problem)
     : std::runtime_error(composeMessage(file, path, problem)),
       file_(file),
       path_(path),
@@ -81,21 +85,22 @@ using Json = nlohmann::ordered_json;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kPi = M_PI;
 
-constexpr double kMaxGravity = 1e4;       // m/s² per component
-constexpr double kMaxCoordinate = 1e6;    // m
-constexpr double kMaxSize = 1e4;          // m
-constexpr double kMaxMass = 1e9;          // kg
-constexpr double kMaxDensity = 1e6;       // kg/m³
-constexpr double kMaxSpeed = 1e5;         // m/s, rad/s
-constexpr double kMaxCompliance = 1e9;    // m/N, rad/(N m)
-constexpr double kMaxDamping = 1e6;       // 1/s
+constexpr double kMaxGravity = 1e4;     // m/s² per component
+constexpr double kMaxCoordinate = 1e6;  // m
+constexpr double kMaxSize = 1e4;        // m
+constexpr double kMaxMass = 1e9;        // kg
+constexpr double kMaxDensity = 1e6;     // kg/m³
+constexpr double kMaxSpeed = 1e5;       // m/s, rad/s
+constexpr double kMaxCompliance = 1e9;  // m/N, rad/(N m)
+constexpr double kMaxDamping = 1e6;     // 1/s
 constexpr double kMaxFriction = 1e3;
 constexpr double kAngleTolerance = 1e-4;  // rad beyond ±pi accepted as rounding, then clamped
 constexpr double kParallelSine = 1e-6;
 constexpr int kMaxSubsteps = 10000;
 constexpr int kMaxIterations = 1000;
-constexpr std::size_t kMaxDepth = 64;                     // JSON nesting
-constexpr std::uintmax_t kMaxFileBytes = 256u << 20;      // 256 MiB
+constexpr std::size_t kMaxKeys = 1000;                // per JSON object
+constexpr std::size_t kMaxDepth = 64;                 // JSON nesting
+constexpr std::uintmax_t kMaxFileBytes = 256u << 20;  // 256 MiB
 
 // ---------------------------------------------------------------------------------------------
 // Text helpers
@@ -132,25 +137,34 @@ std::string elementPath(const std::string& parent, std::size_t index) {
 /// What a value is, for "must be X, got Y".
 std::string describe(const Json& value) {
     switch (value.type()) {
-        case Json::value_t::null: return "null";
-        case Json::value_t::boolean: return value.get<bool>() ? "true" : "false";
-        case Json::value_t::number_integer: return std::to_string(value.get<int64_t>());
-        case Json::value_t::number_unsigned: return std::to_string(value.get<uint64_t>());
-        case Json::value_t::number_float: return formatNumber(value.get<double>());
+        case Json::value_t::null:
+            return "null";
+        case Json::value_t::boolean:
+            return value.get<bool>() ? "true" : "false";
+        case Json::value_t::number_integer:
+            return std::to_string(value.get<int64_t>());
+        case Json::value_t::number_unsigned:
+            return std::to_string(value.get<uint64_t>());
+        case Json::value_t::number_float:
+            return formatNumber(value.get<double>());
         case Json::value_t::string: {
             std::string text = value.get<std::string>();
             if (text.size() > 40) text = text.substr(0, 37) + "...";
             return "the string " + jsonQuoted(text);
         }
-        case Json::value_t::array: return "an array";
-        case Json::value_t::object: return "an object";
-        default: return "an unsupported value";
+        case Json::value_t::array:
+            return "an array";
+        case Json::value_t::object:
+            return "an object";
+        default:
+            return "an unsupported value";
     }
 }
 
 std::size_t editDistance(std::string_view a, std::string_view b) {
     std::vector<std::size_t> row(b.size() + 1);
-    for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+    for (std::size_t j = 0; j <= b.size(); ++j)
+        row[j] = j;
     for (std::size_t i = 1; i <= a.size(); ++i) {
         std::size_t diagonal = row[0];
         row[0] = i;
@@ -191,7 +205,7 @@ std::string joinList(const std::vector<std::string>& items, const char* lastSepa
 // so syntax errors, overflowing numbers and duplicate keys are reported where they occur.
 
 class DocumentBuilder {
-public:
+  public:
     using number_integer_t = Json::number_integer_t;
     using number_unsigned_t = Json::number_unsigned_t;
     using number_float_t = Json::number_float_t;
@@ -208,8 +222,10 @@ public:
     bool number_float(number_float_t value, const string_t& literal) {
         // strtod turns 1e-400 into 0 silently; a value the file did not say is an error.
         if (value == 0.0 && hasNonZeroMantissa(literal)) {
-            const std::string number = literal.size() > 40 ? literal.substr(0, 37) + "..." : literal;
-            fail(valuePath(), "number " + number + " is too small to represent (it underflows to 0)");
+            const std::string number =
+                literal.size() > 40 ? literal.substr(0, 37) + "..." : literal;
+            fail(valuePath(),
+                 "number " + number + " is too small to represent (it underflows to 0)");
         }
         return add(Json(value));
     }
@@ -223,8 +239,13 @@ public:
 
     bool key(string_t& key) {
         Frame& frame = stack_.back();
+        // Key lookups in an ordered object are linear; no valid object comes near this many.
+        if (frame.container->size() >= kMaxKeys) {
+            fail(frame.path, "has more than " + std::to_string(kMaxKeys) + " keys");
+        }
         if (frame.container->contains(key)) {
-            fail(memberPath(frame.path, key), "duplicate key (it is already given earlier in this object)");
+            fail(memberPath(frame.path, key),
+                 "duplicate key (it is already given earlier in this object)");
         }
         frame.key = key;
         frame.keyPending = true;
@@ -235,7 +256,8 @@ public:
                      const nlohmann::detail::exception& error) {
         if (error.id == 406) {
             // Number overflow: point at the start of the number.
-            const std::size_t start = position >= lastToken.size() ? position - lastToken.size() : 0;
+            const std::size_t start =
+                position >= lastToken.size() ? position - lastToken.size() : 0;
             const std::string number =
                 lastToken.size() > 40 ? lastToken.substr(0, 37) + "..." : lastToken;
             fail(valuePath(), "number " + number + " overflows a double (" + location(start) + ")");
@@ -251,13 +273,13 @@ public:
                               shortenLastRead(detail));
     }
 
-private:
+  private:
     struct Frame {
         Json* container;
         std::string path;
-        std::string key;        // objects: the last key read
+        std::string key;          // objects: the last key read
         bool keyPending = false;  // objects: its value has not been read yet
-        std::size_t index = 0;  // arrays: the index of the next element
+        std::size_t index = 0;    // arrays: the index of the next element
     };
 
     [[noreturn]] void fail(const std::string& path, const std::string& problem) const {
@@ -336,7 +358,8 @@ private:
 
     bool open(Json&& container) {
         if (stack_.size() >= kMaxDepth) {
-            fail(valuePath(), "nested too deeply (more than " + std::to_string(kMaxDepth) + " levels)");
+            fail(valuePath(),
+                 "nested too deeply (more than " + std::to_string(kMaxDepth) + " levels)");
         }
         std::string path = valuePath();
         Json* slot = add(std::move(container));
@@ -371,8 +394,12 @@ struct Interval {
     const char* hiText = nullptr;
 };
 
-Interval positiveUpTo(double max) { return {.lo = 0, .hi = max, .loOpen = true, .hiSanity = true}; }
-Interval nonNegativeUpTo(double max) { return {.lo = 0, .hi = max, .hiSanity = true}; }
+Interval positiveUpTo(double max) {
+    return {.lo = 0, .hi = max, .loOpen = true, .hiSanity = true};
+}
+Interval nonNegativeUpTo(double max) {
+    return {.lo = 0, .hi = max, .hiSanity = true};
+}
 Interval within(double max) {
     return {.lo = -max, .hi = max, .loSanity = true, .hiSanity = true};
 }
@@ -381,10 +408,13 @@ Interval closed(double lo, double hi, const char* loText = nullptr, const char* 
 }
 /// Angles in [lo, hi] with a little slack at ±pi for rounded literals; values are clamped after.
 Interval angles(double lo, double hi, const char* loText, const char* hiText) {
-    return {.lo = lo - kAngleTolerance, .hi = hi + kAngleTolerance, .loText = loText, .hiText = hiText};
+    return {
+        .lo = lo - kAngleTolerance, .hi = hi + kAngleTolerance, .loText = loText, .hiText = hiText};
 }
 
-std::string boundText(double value, const char* text) { return text ? text : formatNumber(value); }
+std::string boundText(double value, const char* text) {
+    return text ? text : formatNumber(value);
+}
 
 /// Empty when `value` lies in `interval`, else what is wrong.
 std::string checkInterval(double value, const Interval& interval) {
@@ -414,7 +444,7 @@ struct Node {
 };
 
 class Validator {
-public:
+  public:
     explicit Validator(const std::string& file) : file_(file) {}
 
     [[noreturn]] void fail(const std::string& path, const std::string& problem) const {
@@ -422,7 +452,8 @@ public:
     }
 
     double number(const Node& node, const Interval& interval = {}) const {
-        if (!node.value.is_number()) fail(node.path, "must be a number, got " + describe(node.value));
+        if (!node.value.is_number())
+            fail(node.path, "must be a number, got " + describe(node.value));
         const double value = node.value.get<double>();
         if (!std::isfinite(value)) fail(node.path, "must be a finite number");
         if (std::string problem = checkInterval(value, interval); !problem.empty()) {
@@ -432,7 +463,8 @@ public:
     }
 
     /// An angle in [lo, hi] (given with a little slack at ±pi and clamped).
-    double angle(const Node& node, double lo, double hi, const char* loText, const char* hiText) const {
+    double angle(const Node& node, double lo, double hi, const char* loText,
+                 const char* hiText) const {
         return std::clamp(number(node, angles(lo, hi, loText, hiText)), lo, hi);
     }
 
@@ -466,7 +498,8 @@ public:
     }
 
     std::string string(const Node& node) const {
-        if (!node.value.is_string()) fail(node.path, "must be a string, got " + describe(node.value));
+        if (!node.value.is_string())
+            fail(node.path, "must be a string, got " + describe(node.value));
         return node.value.get<std::string>();
     }
 
@@ -507,8 +540,8 @@ public:
         Eigen::Vector4d c(v[0], v[1], v[2], v[3]);
         const double length = c.stableNorm();
         if (!(length > kDirectionEpsilon)) {
-            fail(node.path, "must be a non-zero quaternion [w, x, y, z], got length " +
-                                formatNumber(length));
+            fail(node.path,
+                 "must be a non-zero quaternion [w, x, y, z], got length " + formatNumber(length));
         }
         c = (c / length).normalized();
         return Quat(c[0], c[1], c[2], c[3]);
@@ -538,20 +571,22 @@ public:
         if (text.empty()) fail(node.path, "must not be empty (leave the key out for no name)");
         for (char c : text) {
             if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f || c == ',' || c == '"') {
-                fail(node.path, "must not contain control characters, ',' or '\"' (names become "
-                                "CSV column headers), got " + jsonQuoted(text));
+                fail(node.path,
+                     "must not contain control characters, ',' or '\"' (names become "
+                     "CSV column headers), got " +
+                         jsonQuoted(text));
             }
         }
         return text;
     }
 
-private:
+  private:
     const std::string& file_;
 };
 
 /// An object whose keys are checked against what its context allows.
 class ObjectReader {
-public:
+  public:
     ObjectReader(const Validator& validator, const Node& node, const char* what = "an object")
         : validator_(validator), value_(node.value), path_(node.path) {
         if (!value_.is_object()) {
@@ -585,7 +620,8 @@ public:
         }
     }
 
-    [[noreturn]] void failUnknown(const std::string& key, const std::vector<std::string>& allowed) const {
+    [[noreturn]] void failUnknown(const std::string& key,
+                                  const std::vector<std::string>& allowed) const {
         std::string hint = suggestion(key, allowed);
         if (hint.empty()) hint = " (expected " + joinList(allowed, " or ") + ")";
         validator_.fail(pathOf(key), "unknown key" + hint);
@@ -593,7 +629,7 @@ public:
 
     const Json& value() const { return value_; }
 
-private:
+  private:
     const Validator& validator_;
     const Json& value_;
     std::string path_;
@@ -604,12 +640,15 @@ private:
 
 double shapeVolume(const Shape& shape) {
     switch (shape.type) {
-        case ShapeType::Sphere: return 4.0 / 3.0 * kPi * std::pow(shape.radius, 3);
-        case ShapeType::Box: return shape.size.prod();
+        case ShapeType::Sphere:
+            return 4.0 / 3.0 * kPi * std::pow(shape.radius, 3);
+        case ShapeType::Box:
+            return shape.size.prod();
         case ShapeType::Capsule:
             return kPi * shape.radius * shape.radius * shape.length +
                    4.0 / 3.0 * kPi * std::pow(shape.radius, 3);
-        default: return 0.0;
+        default:
+            return 0.0;
     }
 }
 
@@ -619,8 +658,9 @@ Shape parseShape(const Validator& v, const Node& node, bool isStatic) {
     const std::string type = v.string(typeNode);
 
     if (type == "mesh" || type == "heightfield" || type == "spline") {
-        v.fail(typeNode.path, jsonQuoted(type) + " shapes are part of the scene format but not supported "
-                                             "by this build yet");
+        v.fail(typeNode.path, jsonQuoted(type) +
+                                  " shapes are part of the scene format but not supported "
+                                  "by this build yet");
     }
     if (type == "sphere") {
         obj.allowOnly({"type", "radius"});
@@ -628,7 +668,8 @@ Shape parseShape(const Validator& v, const Node& node, bool isStatic) {
     }
     if (type == "box") {
         obj.allowOnly({"type", "size"});
-        return boxShape(v.vec3(obj.require("size", " (full extents [x, y, z])"), positiveUpTo(kMaxSize)));
+        return boxShape(
+            v.vec3(obj.require("size", " (full extents [x, y, z])"), positiveUpTo(kMaxSize)));
     }
     if (type == "capsule") {
         obj.allowOnly({"type", "radius", "length"});
@@ -648,15 +689,16 @@ Shape parseShape(const Validator& v, const Node& node, bool isStatic) {
         if (auto o = obj.get("offset")) offset = v.number(*o, within(kMaxCoordinate));
         return planeShape(normal, offset);
     }
-    v.fail(typeNode.path, "unknown shape type " + jsonQuoted(type) +
-                              " (expected sphere, box, capsule, plane, mesh, heightfield or spline)");
+    v.fail(typeNode.path,
+           "unknown shape type " + jsonQuoted(type) +
+               " (expected sphere, box, capsule, plane, mesh, heightfield or spline)");
 }
 
 SceneBody parseBody(const Validator& v, const Node& node,
                     const std::vector<std::pair<std::string, std::string>>& namesSoFar) {
     const ObjectReader obj(v, node, "a body object");
-    obj.allowOnly({"name", "shape", "static", "mass", "density", "position", "orientation", "velocity",
-                   "angular_velocity", "friction", "restitution", "collide"});
+    obj.allowOnly({"name", "shape", "static", "mass", "density", "position", "orientation",
+                   "velocity", "angular_velocity", "friction", "restitution", "collide"});
     SceneBody body;
     BodyDef& def = body.def;
 
@@ -667,8 +709,8 @@ SceneBody parseBody(const Validator& v, const Node& node,
         }
         for (const auto& [other, otherPath] : namesSoFar) {
             if (other == body.name) {
-                v.fail(n->path, "duplicate body name " + jsonQuoted(body.name) + " (already used at " +
-                                    otherPath + ")");
+                v.fail(n->path, "duplicate body name " + jsonQuoted(body.name) +
+                                    " (already used at " + otherPath + ")");
             }
         }
     }
@@ -676,15 +718,18 @@ SceneBody parseBody(const Validator& v, const Node& node,
     bool isStatic = false;
     if (auto s = obj.get("static")) isStatic = v.boolean(*s);
     def.type = isStatic ? BodyType::Static : BodyType::Dynamic;
-    def.shape = parseShape(v, obj.require("shape", " (e.g. {\"type\": \"sphere\", \"radius\": 0.5})"),
-                           isStatic);
+    def.shape = parseShape(
+        v, obj.require("shape", " (e.g. {\"type\": \"sphere\", \"radius\": 0.5})"), isStatic);
 
     // Mass: static bodies have none; dynamic ones take a mass or a density, not both.
     const auto mass = obj.get("mass");
     const auto density = obj.get("density");
     if (isStatic) {
-        if (mass) v.fail(mass->path, "a static body has no mass (remove it, or \"static\")");
-        if (density) v.fail(density->path, "a static body has no density (remove it, or \"static\")");
+        if (mass)
+            v.fail(mass->path, "a static body has no mass (remove it, or make the body dynamic)");
+        if (density)
+            v.fail(density->path,
+                   "a static body has no density (remove it, or make the body dynamic)");
     }
     if (mass && density) v.fail(density->path, "give mass or density, not both");
     if (mass) def.mass = v.number(*mass, positiveUpTo(kMaxMass));
@@ -702,15 +747,17 @@ SceneBody parseBody(const Validator& v, const Node& node,
     if (auto p = obj.get("position")) {
         def.position = v.vec3(*p, within(kMaxCoordinate));
         if (isPlane && !def.position.isZero(0.0)) {
-            v.fail(p->path, "a plane is placed by its normal and offset (world coordinates), not by "
-                            "a position");
+            v.fail(p->path,
+                   "a plane is placed by its normal and offset (world coordinates), not by "
+                   "a position");
         }
     }
     if (auto q = obj.get("orientation")) {
         def.orientation = v.quaternion(*q);
         if (isPlane && def.orientation.vec().norm() > kDirectionEpsilon) {
-            v.fail(q->path, "a plane is placed by its normal and offset (world coordinates), not by "
-                            "an orientation");
+            v.fail(q->path,
+                   "a plane is placed by its normal and offset (world coordinates), not by "
+                   "an orientation");
         }
     }
     if (auto vel = obj.get("velocity")) {
@@ -719,14 +766,17 @@ SceneBody parseBody(const Validator& v, const Node& node,
     }
     if (auto w = obj.get("angular_velocity")) {
         def.angularVelocity = v.vec3(*w, within(kMaxSpeed));
-        if (isStatic && !def.angularVelocity.isZero(0.0)) v.fail(w->path, "a static body does not move");
+        if (isStatic && !def.angularVelocity.isZero(0.0))
+            v.fail(w->path, "a static body does not move");
     }
 
     if (auto f = obj.get("friction")) {
         const ObjectReader friction(v, *f, "an object {\"static\": μs, \"dynamic\": μd}");
         friction.allowOnly({"static", "dynamic"});
-        if (auto s = friction.get("static")) def.staticFriction = v.number(*s, nonNegativeUpTo(kMaxFriction));
-        if (auto d = friction.get("dynamic")) def.dynamicFriction = v.number(*d, nonNegativeUpTo(kMaxFriction));
+        if (auto s = friction.get("static"))
+            def.staticFriction = v.number(*s, nonNegativeUpTo(kMaxFriction));
+        if (auto d = friction.get("dynamic"))
+            def.dynamicFriction = v.number(*d, nonNegativeUpTo(kMaxFriction));
     }
     if (auto e = obj.get("restitution")) def.restitution = v.number(*e, closed(0.0, 1.0));
     if (auto c = obj.get("collide")) def.collide = v.boolean(*c);
@@ -734,7 +784,9 @@ SceneBody parseBody(const Validator& v, const Node& node,
 }
 
 /// Bit per joint type, for the table of which keys each type uses.
-constexpr unsigned bit(JointType type) { return 1u << static_cast<unsigned>(type); }
+constexpr unsigned bit(JointType type) {
+    return 1u << static_cast<unsigned>(type);
+}
 constexpr unsigned kDistance = bit(JointType::Distance);
 constexpr unsigned kFixed = bit(JointType::Fixed);
 constexpr unsigned kHinge = bit(JointType::Hinge);
@@ -751,19 +803,28 @@ struct JointKey {
 // A distance joint links two points: it has no axes. Fixed joints use their frames (axis and
 // normal) as the locked relative orientation.
 constexpr JointKey kJointKeys[] = {
-    {"name", kAllJoints},        {"type", kAllJoints},
-    {"body0", kAllJoints},       {"body1", kAllJoints},
-    {"anchor0", kAllJoints},     {"anchor1", kAllJoints},
-    {"compliance", kAllJoints},  {"damping", kAllJoints},
-    {"collide", kAllJoints},     {"axis0", kFramed},
-    {"axis1", kFramed},          {"normal0", kFramed},
-    {"normal1", kFramed},        {"max_distance", kDistance},
+    {"name", kAllJoints},
+    {"type", kAllJoints},
+    {"body0", kAllJoints},
+    {"body1", kAllJoints},
+    {"anchor0", kAllJoints},
+    {"anchor1", kAllJoints},
+    {"compliance", kAllJoints},
+    {"damping", kAllJoints},
+    {"collide", kAllJoints},
+    {"axis0", kFramed},
+    {"axis1", kFramed},
+    {"normal0", kFramed},
+    {"normal1", kFramed},
+    {"max_distance", kDistance},
     {"limits", kHinge | kPrismatic},
     {"limit_compliance", kHinge | kPrismatic | kSpherical},
-    {"target_angle", kHinge},    {"target_velocity", kHinge},
+    {"target_angle", kHinge},
+    {"target_velocity", kHinge},
     {"target_offset", kPrismatic},
     {"drive_compliance", kHinge | kPrismatic},
-    {"swing_limit", kSpherical}, {"twist_limits", kSpherical},
+    {"swing_limit", kSpherical},
+    {"twist_limits", kSpherical},
     {"twist_compliance", kSpherical},
 };
 
@@ -772,8 +833,8 @@ struct JointTypeName {
     JointType type;
 };
 constexpr JointTypeName kJointTypes[] = {
-    {"distance", JointType::Distance}, {"fixed", JointType::Fixed},
-    {"hinge", JointType::Hinge},       {"spherical", JointType::Spherical},
+    {"distance", JointType::Distance},   {"fixed", JointType::Fixed},
+    {"hinge", JointType::Hinge},         {"spherical", JointType::Spherical},
     {"prismatic", JointType::Prismatic},
 };
 
@@ -786,11 +847,13 @@ std::string jointTypesText(unsigned types) {
 }
 
 std::string articled(const char* typeName) {
-    return std::string(typeName[0] == 'a' || typeName[0] == 'e' || typeName[0] == 'i' ? "an " : "a ") +
+    return std::string(typeName[0] == 'a' || typeName[0] == 'e' || typeName[0] == 'i' ? "an "
+                                                                                      : "a ") +
            typeName;
 }
 
-SceneJoint parseJoint(const Validator& v, const Node& node, const std::vector<std::string>& bodyNames,
+SceneJoint parseJoint(const Validator& v, const Node& node,
+                      const std::vector<std::string>& bodyNames,
                       const std::vector<std::pair<std::string, std::string>>& jointNamesSoFar) {
     const ObjectReader obj(v, node, "a joint object");
 
@@ -830,8 +893,8 @@ SceneJoint parseJoint(const Validator& v, const Node& node, const std::vector<st
         joint.name = v.name(*n);
         for (const auto& [other, otherPath] : jointNamesSoFar) {
             if (other == joint.name) {
-                v.fail(n->path, "duplicate joint name " + jsonQuoted(joint.name) + " (already used at " +
-                                    otherPath + ")");
+                v.fail(n->path, "duplicate joint name " + jsonQuoted(joint.name) +
+                                    " (already used at " + otherPath + ")");
             }
         }
     }
@@ -841,7 +904,9 @@ SceneJoint parseJoint(const Validator& v, const Node& node, const std::vector<st
         const auto b = obj.get(key);
         if (!b) return "";
         std::string name = v.string(*b);
-        if (name.empty()) v.fail(b->path, "must name a body (leave the key out, or say \"world\", for the world)");
+        if (name.empty())
+            v.fail(b->path,
+                   "must name a body (leave the key out, or say \"world\", for the world)");
         if (name == "world") return name;
         if (std::find(bodyNames.begin(), bodyNames.end(), name) == bodyNames.end()) {
             v.fail(b->path, "no body named " + jsonQuoted(name) + suggestion(name, bodyNames));
@@ -853,7 +918,7 @@ SceneJoint parseJoint(const Validator& v, const Node& node, const std::vector<st
     const bool world0 = joint.body0.empty() || joint.body0 == "world";
     const bool world1 = joint.body1.empty() || joint.body1 == "world";
     if (world0 && world1) {
-        const std::string path = obj.has("body1") ? obj.pathOf("body1")
+        const std::string path = obj.has("body1")   ? obj.pathOf("body1")
                                  : obj.has("body0") ? obj.pathOf("body0")
                                                     : obj.path();
         v.fail(path, "both ends of the joint are the world: body0 or body1 must name a body");
@@ -879,13 +944,17 @@ SceneJoint parseJoint(const Validator& v, const Node& node, const std::vector<st
     };
     def.normal0 = readNormal("normal0", def.axis0);
     def.normal1 = readNormal("normal1", def.axis1);
-    if (auto c = obj.get("compliance")) def.compliance = v.number(*c, nonNegativeUpTo(kMaxCompliance));
+    if (auto c = obj.get("compliance"))
+        def.compliance = v.number(*c, nonNegativeUpTo(kMaxCompliance));
 
-    if (auto d = obj.get("max_distance")) def.maxDistance = v.number(*d, nonNegativeUpTo(kMaxCoordinate));
+    if (auto d = obj.get("max_distance"))
+        def.maxDistance = v.number(*d, nonNegativeUpTo(kMaxCoordinate));
     if (auto l = obj.get("limits")) {
-        def.limits = type == JointType::Hinge ? v.angleRange(*l) : v.range(*l, within(kMaxCoordinate));
+        def.limits =
+            type == JointType::Hinge ? v.angleRange(*l) : v.range(*l, within(kMaxCoordinate));
     }
-    if (auto c = obj.get("limit_compliance")) def.limitCompliance = v.number(*c, nonNegativeUpTo(kMaxCompliance));
+    if (auto c = obj.get("limit_compliance"))
+        def.limitCompliance = v.number(*c, nonNegativeUpTo(kMaxCompliance));
     if (auto t = obj.get("target_angle")) def.targetAngle = v.angle(*t, -kPi, kPi, "-pi", "pi");
     if (auto t = obj.get("target_velocity")) {
         if (def.targetAngle) {
@@ -894,16 +963,20 @@ SceneJoint parseJoint(const Validator& v, const Node& node, const std::vector<st
         def.targetVelocity = v.number(*t, within(kMaxSpeed));
     }
     if (auto t = obj.get("target_offset")) def.targetOffset = v.number(*t, within(kMaxCoordinate));
-    if (auto c = obj.get("drive_compliance")) def.driveCompliance = v.number(*c, nonNegativeUpTo(kMaxCompliance));
+    if (auto c = obj.get("drive_compliance"))
+        def.driveCompliance = v.number(*c, nonNegativeUpTo(kMaxCompliance));
     if (auto s = obj.get("swing_limit")) def.swingLimit = v.angle(*s, 0.0, kPi, "0", "pi");
     if (auto t = obj.get("twist_limits")) def.twistLimits = v.angleRange(*t);
-    if (auto c = obj.get("twist_compliance")) def.twistCompliance = v.number(*c, nonNegativeUpTo(kMaxCompliance));
+    if (auto c = obj.get("twist_compliance"))
+        def.twistCompliance = v.number(*c, nonNegativeUpTo(kMaxCompliance));
 
     if (auto d = obj.get("damping")) {
         const ObjectReader damping(v, *d, "an object {\"linear\": ..., \"angular\": ...}");
         damping.allowOnly({"linear", "angular"});
-        if (auto l = damping.get("linear")) def.linearDamping = v.number(*l, nonNegativeUpTo(kMaxDamping));
-        if (auto a = damping.get("angular")) def.angularDamping = v.number(*a, nonNegativeUpTo(kMaxDamping));
+        if (auto l = damping.get("linear"))
+            def.linearDamping = v.number(*l, nonNegativeUpTo(kMaxDamping));
+        if (auto a = damping.get("angular"))
+            def.angularDamping = v.number(*a, nonNegativeUpTo(kMaxDamping));
     }
     if (auto c = obj.get("collide")) def.collide = v.boolean(*c);
     return joint;
@@ -916,7 +989,8 @@ SceneCamera parseCamera(const Validator& v, const Node& node) {
     if (auto p = obj.get("position")) camera.position = v.vec3(*p, within(kMaxCoordinate));
     if (auto t = obj.get("target")) camera.target = v.vec3(*t, within(kMaxCoordinate));
     if (auto f = obj.get("fov")) {
-        camera.fov = v.number(*f, {.lo = 0, .hi = kPi, .loOpen = true, .hiOpen = true, .hiText = "pi"});
+        camera.fov =
+            v.number(*f, {.lo = 0, .hi = kPi, .loOpen = true, .hiOpen = true, .hiText = "pi"});
     }
     if ((camera.target - camera.position).norm() <= kDirectionEpsilon) {
         v.fail(obj.has("target") ? obj.pathOf("target") : obj.pathOf("position"),
@@ -967,7 +1041,8 @@ SceneDescription parseDocument(const Validator& v, const Json& root) {
     }
 
     std::vector<std::string> names;
-    for (const auto& [name, path] : bodyNames) names.push_back(name);
+    for (const auto& [name, path] : bodyNames)
+        names.push_back(name);
     std::vector<std::pair<std::string, std::string>> jointNames;
     if (auto joints = top.get("joints")) {
         if (!joints->value.is_array()) {
@@ -989,8 +1064,10 @@ SceneDescription parseDocument(const Validator& v, const Json& root) {
 }  // namespace
 
 SceneDescription parseSceneText(std::string_view text, const std::string& fileLabel) {
-    if (std::all_of(text.begin(), text.end(), [](char c) { return std::isspace(static_cast<unsigned char>(c)); })) {
-        throw SceneError(fileLabel, "", "the file is empty (a scene starts with {\"substep_scene\": 1})");
+    if (std::all_of(text.begin(), text.end(),
+                    [](char c) { return std::isspace(static_cast<unsigned char>(c)); })) {
+        throw SceneError(fileLabel, "",
+                         "the file is empty (a scene starts with {\"substep_scene\": 1})");
     }
     Json root;
     DocumentBuilder builder(root, text, fileLabel);
@@ -1015,8 +1092,9 @@ SceneDescription loadSceneFile(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     if (!in) {
         const int code = errno;
-        throw SceneError(path, "", std::string("cannot read: ") +
-                                       (code != 0 ? std::strerror(code) : "failed to open"));
+        throw SceneError(
+            path, "",
+            std::string("cannot read: ") + (code != 0 ? std::strerror(code) : "failed to open"));
     }
     std::ostringstream text;
     text << in.rdbuf();

@@ -16,7 +16,7 @@ namespace substep {
 /// `scenes/a.json: bodies[3].shape.radius: must be > 0, got -1`), or `FILE: what is wrong` for
 /// problems with the file as a whole (unreadable).
 class SceneError : public std::runtime_error {
-public:
+  public:
     /// `path` may be empty when the problem is the file itself.
     SceneError(const std::string& file, const std::string& path, const std::string& problem);
 
@@ -27,7 +27,7 @@ public:
     /// The description without file and path (`must be > 0, got -1`).
     const std::string& problem() const { return problem_; }
 
-private:
+  private:
     std::string file_;
     std::string path_;
     std::string problem_;

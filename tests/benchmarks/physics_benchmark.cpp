@@ -1,4 +1,4 @@
-// Benchmarks of the physics core on the shared scenes of PEERS.md: time per frame (dt = 1/60 s)
+// Benchmarks of the physics core on the shared scenes of PEERS.md: time per frame (dt = 1/60 s; the Time column is per frame)
 // at the scene's own substeps, after a warm-up second. Results go to docs/PERFORMANCE.md.
 
 #include "scenes/scene_registry.h"
@@ -19,9 +19,6 @@ void stepScene(benchmark::State& state, const char* name) {
         instance.world.step(description.dt);
         benchmark::ClobberMemory();
     }
-    state.counters["ms_per_frame"] = benchmark::Counter(
-        static_cast<double>(state.iterations()) * 1e-3,
-        benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
     state.counters["max_error"] = instance.world.maxJointError();
 }
 
