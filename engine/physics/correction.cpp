@@ -1,5 +1,8 @@
 #include "physics/correction.h"
 
+#include <Eigen/LU>
+#include <cmath>
+
 namespace substep {
 namespace {
 
@@ -27,13 +30,10 @@ inline BodyResponse angularResponse(const Body& body, const Vec3& n) {
     return {nb.dot(invInertiaN), body.q * invInertiaN};
 }
 
-/// Moves body `index` by its share of a correction with multiplier step `deltaLambda` along n
-/// (sign +1 for body 0, −1 for body 1): Eqs. 6-9 and 15-16, or gathered for Jacobi.
-inline void applyCorrection(SolverContext& ctx, uint32_t index, const BodyResponse& response,
-                            const Vec3& dx, double deltaLambda) {
+/// Moves body `index` by dx and turns it by dtheta: Eqs. 6-9 and 15-16, or gathered for Jacobi.
+inline void moveBody(SolverContext& ctx, uint32_t index, const Vec3& dx, const Vec3& dtheta) {
     Body& body = ctx.bodies[index];
     if (body.invMass == 0.0) return;
-    const Vec3 dtheta = response.rotationPerUnit * deltaLambda;
     if (ctx.solver == SolverType::Jacobi) {
         JacobiDelta& d = ctx.deltas[index];
         d.position += dx;
@@ -43,6 +43,19 @@ inline void applyCorrection(SolverContext& ctx, uint32_t index, const BodyRespon
     }
     body.x += dx;
     if (body.rotates()) addRotation(body.q, dtheta);
+}
+
+/// World inverse inertia R diag(I⁻¹) Rᵀ (zero for bodies that do not rotate).
+inline Mat3 worldInverseInertia(const Body& body) {
+    if (!body.rotates() || body.invMass == 0.0) return Mat3::Zero();
+    const Mat3 r = body.q.toRotationMatrix();
+    return r * body.invInertia.asDiagonal() * r.transpose();
+}
+
+inline Mat3 crossMatrix(const Vec3& v) {
+    Mat3 m;
+    m << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
+    return m;
 }
 
 }  // namespace
@@ -64,9 +77,43 @@ Vec3 applyPositionalCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, con
     const double deltaLambda = (c - alphaTilde * lambda) / denominator;
     lambda += deltaLambda;  // Eq. 5
     const Vec3 p = deltaLambda * n;
-    applyCorrection(ctx, i0, s0, p * b0.invMass, deltaLambda);
-    applyCorrection(ctx, i1, s1, -p * b1.invMass, -deltaLambda);
+    moveBody(ctx, i0, p * b0.invMass, s0.rotationPerUnit * deltaLambda);
+    moveBody(ctx, i1, -p * b1.invMass, -s1.rotationPerUnit * deltaLambda);
     return p;
+}
+
+void applyWeldCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, const Vec3& delta,
+                         const Vec3& r0, const Vec3& r1, const Vec3& rotation, double compliance,
+                         Vec3& lambdaPoint, Vec3& lambdaAngle, Vec3& impulse, Vec3& angularImpulse) {
+    const Body& b0 = ctx.bodies[i0];
+    const Body& b1 = ctx.bodies[i1];
+    const Mat3 invInertia0 = worldInverseInertia(b0);
+    const Mat3 invInertia1 = worldInverseInertia(b1);
+    const Mat3 cross0 = crossMatrix(r0);
+    const Mat3 cross1 = crossMatrix(r1);
+    // K for an impulse P at the anchors and an angular impulse L: the gap closes by
+    // (w0 + w1) P − Σ [r]× I⁻¹ ([r]× P + L), the rotation by Σ I⁻¹ ([r]× P + L).
+    const double alphaTilde = compliance * ctx.invH2;
+    Eigen::Matrix<double, 6, 6> k;
+    k.topLeftCorner<3, 3>() = -(cross0 * invInertia0 * cross0 + cross1 * invInertia1 * cross1);
+    k.topLeftCorner<3, 3>().diagonal().array() += b0.invMass + b1.invMass + alphaTilde;
+    k.topRightCorner<3, 3>() = -(cross0 * invInertia0 + cross1 * invInertia1);
+    k.bottomLeftCorner<3, 3>() = invInertia0 * cross0 + invInertia1 * cross1;
+    k.bottomRightCorner<3, 3>() = invInertia0 + invInertia1;
+    Eigen::Matrix<double, 6, 1> rhs;
+    rhs << delta - alphaTilde * lambdaPoint, rotation;
+    const Eigen::FullPivLU<Eigen::Matrix<double, 6, 6>> lu(k);
+    if (lu.rank() < 6) return;  // two static bodies
+    const Eigen::Matrix<double, 6, 1> step = lu.solve(rhs);
+    if (!step.allFinite()) return;
+    const Vec3 p = step.head<3>();
+    const Vec3 l = step.tail<3>();
+    lambdaPoint += p;
+    lambdaAngle += l;
+    impulse += p;
+    angularImpulse += l;
+    moveBody(ctx, i0, p * b0.invMass, invInertia0 * (r0.cross(p) + l));
+    moveBody(ctx, i1, -p * b1.invMass, -(invInertia1 * (r1.cross(p) + l)));
 }
 
 Vec3 applyAngularCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, const Vec3& rotation,
@@ -81,9 +128,35 @@ Vec3 applyAngularCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, const 
     if (!(denominator > 0.0)) return Vec3::Zero();
     const double deltaLambda = (theta - alphaTilde * lambda) / denominator;  // Eq. 13
     lambda += deltaLambda;                                                  // Eq. 14
-    applyCorrection(ctx, i0, s0, Vec3::Zero(), deltaLambda);
-    applyCorrection(ctx, i1, s1, Vec3::Zero(), -deltaLambda);
+    moveBody(ctx, i0, Vec3::Zero(), s0.rotationPerUnit * deltaLambda);
+    moveBody(ctx, i1, Vec3::Zero(), -s1.rotationPerUnit * deltaLambda);
     return deltaLambda * n;
+}
+
+Vec3 applyPointCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, const Vec3& delta,
+                          const Vec3& r0, const Vec3& r1, double compliance, Vec3& lambda) {
+    const Body& b0 = ctx.bodies[i0];
+    const Body& b1 = ctx.bodies[i1];
+    const Mat3 invInertia0 = worldInverseInertia(b0);
+    const Mat3 invInertia1 = worldInverseInertia(b1);
+    const Mat3 cross0 = crossMatrix(r0);
+    const Mat3 cross1 = crossMatrix(r1);
+    // K = Σ (1/m) 1 − [r]× I⁻¹ [r]×: the generalised inverse mass of Eqs. 2-3 for every
+    // direction at once.
+    const double alphaTilde = compliance * ctx.invH2;
+    Mat3 k = cross0 * invInertia0 * cross0 + cross1 * invInertia1 * cross1;
+    k = -k;
+    k.diagonal().array() += b0.invMass + b1.invMass + alphaTilde;
+    bool invertible = false;
+    double determinant = 0.0;
+    Mat3 kInverse;
+    k.computeInverseAndDetWithCheck(kInverse, determinant, invertible, 1e-300);
+    if (!invertible || !std::isfinite(determinant)) return Vec3::Zero();  // two static bodies
+    const Vec3 deltaLambda = kInverse * (delta - alphaTilde * lambda);  // Eq. 4, vector form
+    lambda += deltaLambda;
+    moveBody(ctx, i0, deltaLambda * b0.invMass, invInertia0 * r0.cross(deltaLambda));
+    moveBody(ctx, i1, -deltaLambda * b1.invMass, -(invInertia1 * r1.cross(deltaLambda)));
+    return deltaLambda;
 }
 
 Vec3 applyVelocityCorrection(Body& b0, Body& b1, const Vec3& deltaVelocity, const Vec3& r0,

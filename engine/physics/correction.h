@@ -38,6 +38,27 @@ struct SolverContext {
 Vec3 applyPositionalCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, const Vec3& delta,
                                const Vec3& r0, const Vec3& r1, double compliance, double& lambda);
 
+/// The attachment form of Eqs. 2-9: makes the point at r0 on body i0 coincide with the point at
+/// r1 on body i1 (delta = p1 − p0) with a vector multiplier and the 3 x 3 generalised inverse
+/// mass K = Σ (1/m) 1 − [r]× I⁻¹ [r]×, instead of one scalar correction along delta/|delta|.
+/// The scalar form weighs the whole gap by the inverse mass along the gap's direction; under
+/// gravity that direction is the sag's, and a sideways part of the gap is then corrected with
+/// the wrong inverse mass and overshoots by m r²/I: a box hung from its top face (m r²/I = 1.5)
+/// grows a sideways nudge 1.7-fold every substep into a lasting flutter. With compliance α this
+/// is XPBD's Δλ = (K + α̃ 1)⁻¹ (Δr − α̃ λ). Returns the impulse given to body 0.
+Vec3 applyPointCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, const Vec3& delta,
+                          const Vec3& r0, const Vec3& r1, double compliance, Vec3& lambda);
+
+/// A weld: the attachment of applyPointCorrection and a hard orientation lock (`rotation`, the
+/// rotation body 0 must make relative to body 1) solved together with the 6 x 6 generalised
+/// inverse mass. Solved one after the other, the two parts fight over the body's rotation (the
+/// attachment turns the body about its centre, the lock turns it back and reopens the gap), and
+/// a cantilever with one iteration sags four times more and reports twice its torque.
+/// Adds the impulses given to body 0 to `impulse` and `angularImpulse`.
+void applyWeldCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, const Vec3& delta,
+                         const Vec3& r0, const Vec3& r1, const Vec3& rotation, double compliance,
+                         Vec3& lambdaPoint, Vec3& lambdaAngle, Vec3& impulse, Vec3& angularImpulse);
+
 /// Eqs. 11-16: turns body i0 by the world rotation vector `rotation` relative to body i1 (its
 /// length is the angle θ), shared by inverse inertia about the axis. Returns the angular
 /// impulse given to body 0 (body 1 receives the opposite).

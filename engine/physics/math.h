@@ -24,6 +24,47 @@ inline void addRotation(Quat& q, const Vec3& rotation) {
     q.normalize();
 }
 
+/// Turns q by the world rotation vector `rotation` exactly (the exponential map). Algorithm 2's
+/// linearised update turns by 2 atan(|θ|/2) instead of |θ|, and the velocity derivation then
+/// returns ω / sqrt(1 + (hω/2)²): a torque-free spin loses (hω)²/8 of its rate every substep
+/// (a 100 rad/s wheel drops to 57 rad/s in 1 s at 20 substeps). Scaling the quaternion
+/// increment by tan(|θ|/2)/(|θ|/2) makes the normalised result the exact rotation; a short
+/// series serves small angles without a tan call.
+inline void integrateRotation(Quat& q, const Vec3& rotation) {
+    const double half2 = 0.25 * rotation.squaredNorm();  // (|θ|/2)²
+    double scale;                                         // tan(|θ|/2) / (|θ|/2)
+    if (half2 < 0.01) {
+        scale = 1.0 + half2 * (1.0 / 3.0 + half2 * (2.0 / 15.0 + half2 * (17.0 / 315.0)));
+    } else if (half2 < (0.49 * M_PI) * (0.49 * M_PI)) {
+        const double half = std::sqrt(half2);
+        scale = std::tan(half) / half;
+    } else {
+        // Beyond about π per substep the rotation is ambiguous anyway: turn by the exact
+        // axis-angle (a rare, guarded path).
+        const double angle = std::sqrt(4.0 * half2);
+        q = (Quat(Eigen::AngleAxisd(angle, rotation / angle)) * q).normalized();
+        return;
+    }
+    addRotation(q, rotation * scale);
+}
+
+/// Angular velocity that turns qPrev into q within h: the exact logarithm of Δq = q qPrev⁻¹,
+/// the counterpart of integrateRotation (Algorithm 2 linearises it as 2 Δq_xyz / h, with the
+/// sign taken so that the shorter rotation is meant).
+inline Vec3 angularVelocityBetween(const Quat& qPrev, const Quat& q, double invH) {
+    const Quat dq = q * qPrev.conjugate();
+    const Vec3 v = dq.w() < 0.0 ? Vec3(-dq.vec()) : Vec3(dq.vec());
+    const double s2 = v.squaredNorm();  // sin²(|θ|/2)
+    double scale;                       // (|θ|/2) / sin(|θ|/2)
+    if (s2 < 0.01) {
+        scale = 1.0 + s2 * (1.0 / 6.0 + s2 * (3.0 / 40.0 + s2 * (5.0 / 112.0)));
+    } else {
+        const double s = std::sqrt(s2);
+        scale = std::asin(std::min(s, 1.0)) / s;
+    }
+    return (2.0 * invH * scale) * v;
+}
+
 /// Rotation vector (axis times angle, angle in [0, pi]) of the unit quaternion q.
 inline Vec3 rotationVector(const Quat& q) {
     const double sign = q.w() < 0.0 ? -1.0 : 1.0;  // the shorter way round

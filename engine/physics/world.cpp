@@ -164,7 +164,7 @@ void World::integrate(double h) {
             w += h * b.invInertia.cwiseProduct(-w.cross(b.inertia.cwiseProduct(w)));
             b.omega = b.q * w;
         }
-        addRotation(b.q, h * b.omega);
+        integrateRotation(b.q, h * b.omega);
     }
 }
 
@@ -188,10 +188,8 @@ void World::deriveVelocities(double h) {
         b.v = (b.x - b.xPrev) * invH;
         if (!b.rotates()) continue;
         b.omegaPrev = b.omega;
-        // Algorithm 2: ω = 2 Δq_xyz / h, flipped when Δq_w < 0 (the shorter rotation).
-        const Quat dq = b.q * b.qPrev.conjugate();
-        b.omega = (2.0 * invH) * dq.vec();
-        if (dq.w() < 0.0) b.omega = -b.omega;
+        // Algorithm 2's ω = ±2 Δq_xyz / h, made exact (see angularVelocityBetween).
+        b.omega = angularVelocityBetween(b.qPrev, b.q, invH);
     }
 }
 

@@ -3,6 +3,8 @@
 //   Δr = p1 − p0, the offset of body 1's anchor from body 0's.
 //   Attachment / spring (d_max = 0):  Δx = Δr, compliance α makes it a spring of stiffness 1/α.
 //   Rope (d_max > 0): only when |Δr| > d_max,  Δx = Δr/|Δr| (|Δr| − d_max)   (Eq. 25)
+//   The attachment is projected with its full 3 x 3 inverse mass (applyPointCorrection); the
+//   taut rope is a true scalar constraint along Δr and uses the scalar correction.
 //   The correction moves body 0's anchor along Δx (ERRATA item 1), so a stretched joint has
 //   λ > 0 and pulls with f = λ/h² (Eq. 10). Coincident anchors give Δr = 0: nothing to correct.
 
@@ -23,6 +25,7 @@ Vec3 distanceCorrection(const Joint& joint, const JointAnchors& anchors) {
 }  // namespace
 
 void solveDistanceJoint(Joint& joint, SolverContext& ctx) {
+    if (joint.maxDistance <= 0.0) return solveAttachment(joint, ctx);
     const JointAnchors anchors = jointAnchors(joint, ctx.bodies);
     solvePositionPart(joint, ctx, anchors, distanceCorrection(joint, anchors), joint.compliance,
                       joint.lambdaAttach);

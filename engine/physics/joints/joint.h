@@ -89,6 +89,8 @@ struct Joint {
     uint32_t generation = 0;
 
     // Runtime: one λ per part, zeroed each substep.
+    Vec3 lambdaPoint = Vec3::Zero();  ///< attachment (vector multiplier, applyPointCorrection)
+    Vec3 lambdaWeldAngle = Vec3::Zero();  ///< fixed joint's orientation lock (applyWeldCorrection)
     double lambdaAttach = 0.0;
     double lambdaAlign = 0.0;
     double lambdaLimit = 0.0;
@@ -100,6 +102,8 @@ struct Joint {
     Vec3 angularImpulse = Vec3::Zero();
 
     void resetMultipliers() {
+        lambdaPoint.setZero();
+        lambdaWeldAngle.setZero();
         lambdaAttach = lambdaAlign = lambdaLimit = lambdaTwist = lambdaDrive = 0.0;
         linearImpulse.setZero();
         angularImpulse.setZero();

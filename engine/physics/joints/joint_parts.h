@@ -41,11 +41,13 @@ inline void solvePositionPart(Joint& joint, SolverContext& ctx, const JointAncho
                                                      anchors.r0, anchors.r1, compliance, lambda);
 }
 
-/// Attachment, 3.4.2: Δx = Δr = p1 − p0 (a zero-rest-length spring when compliant).
+/// Attachment, 3.4.2: Δx = Δr = p1 − p0 (a zero-rest-length spring when compliant), projected
+/// with the full 3 x 3 inverse mass (applyPointCorrection explains why).
 inline void solveAttachment(Joint& joint, SolverContext& ctx) {
     const JointAnchors anchors = jointAnchors(joint, ctx.bodies);
-    solvePositionPart(joint, ctx, anchors, anchors.p1 - anchors.p0, joint.compliance,
-                      joint.lambdaAttach);
+    joint.linearImpulse +=
+        applyPointCorrection(ctx, joint.body0, joint.body1, anchors.p1 - anchors.p0, anchors.r0,
+                             anchors.r1, joint.compliance, joint.lambdaPoint);
 }
 
 /// Angular part, 3.3.2: turns body 0 by `rotation` relative to body 1.
