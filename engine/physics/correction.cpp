@@ -133,29 +133,93 @@ Vec3 applyAngularCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, const 
     return deltaLambda * n;
 }
 
+namespace {
+
+/// A symmetric 3 x 3 matrix by its six entries (the point correction's K).
+struct Symmetric3 {
+    double xx = 0, yy = 0, zz = 0, xy = 0, xz = 0, yz = 0;
+};
+
+/// One body's side of a point correction at world offset r. With the body's principal axes e_k
+/// (world) and inverse moments d_k, I⁻¹ = Σ d_k e_k e_kᵀ, so −[r]× I⁻¹ [r]× = Σ d_k c_k c_kᵀ
+/// with c_k = e_k × r, and the turn for an impulse p is I⁻¹ (r × p) = Σ d_k (c_k · p) e_k:
+/// three cross products and rank-one updates instead of 3 x 3 matrix products.
+struct PointResponse {
+    Vec3 axes[3];
+    Vec3 arms[3];  ///< c_k = e_k × r
+    Vec3 inverseMoments = Vec3::Zero();
+    bool rotates = false;
+
+    PointResponse(const Body& body, const Vec3& r) {
+        rotates = body.rotates() && body.invMass > 0.0;
+        if (!rotates) return;
+        const Mat3 rotation = body.q.toRotationMatrix();
+        for (int k = 0; k < 3; ++k) {
+            axes[k] = rotation.col(k);
+            arms[k] = axes[k].cross(r);
+        }
+        inverseMoments = body.invInertia;
+    }
+    void addTo(Symmetric3& m) const {
+        if (!rotates) return;
+        for (int k = 0; k < 3; ++k) {
+            const Vec3& c = arms[k];
+            const double d = inverseMoments[k];
+            const Vec3 dc = d * c;
+            m.xx += dc.x() * c.x();
+            m.yy += dc.y() * c.y();
+            m.zz += dc.z() * c.z();
+            m.xy += dc.x() * c.y();
+            m.xz += dc.x() * c.z();
+            m.yz += dc.y() * c.z();
+        }
+    }
+    Vec3 turn(const Vec3& p) const {
+        if (!rotates) return Vec3::Zero();
+        return axes[0] * (inverseMoments[0] * arms[0].dot(p)) +
+               axes[1] * (inverseMoments[1] * arms[1].dot(p)) +
+               axes[2] * (inverseMoments[2] * arms[2].dot(p));
+    }
+};
+
+/// Solves m x = b by cofactors; false when m is singular (both bodies static).
+inline bool solveSymmetric(const Symmetric3& m, const Vec3& b, Vec3& x) {
+    const double c00 = m.yy * m.zz - m.yz * m.yz;
+    const double c01 = m.xz * m.yz - m.xy * m.zz;
+    const double c02 = m.xy * m.yz - m.xz * m.yy;
+    const double determinant = m.xx * c00 + m.xy * c01 + m.xz * c02;
+    if (!(std::abs(determinant) > 1e-300) || !std::isfinite(determinant)) return false;
+    const double c11 = m.xx * m.zz - m.xz * m.xz;
+    const double c12 = m.xy * m.xz - m.xx * m.yz;
+    const double c22 = m.xx * m.yy - m.xy * m.xy;
+    const double inv = 1.0 / determinant;
+    x = Vec3(c00 * b.x() + c01 * b.y() + c02 * b.z(), c01 * b.x() + c11 * b.y() + c12 * b.z(),
+             c02 * b.x() + c12 * b.y() + c22 * b.z()) *
+        inv;
+    return true;
+}
+
+}  // namespace
+
 Vec3 applyPointCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, const Vec3& delta,
                           const Vec3& r0, const Vec3& r1, double compliance, Vec3& lambda) {
     const Body& b0 = ctx.bodies[i0];
     const Body& b1 = ctx.bodies[i1];
-    const Mat3 invInertia0 = worldInverseInertia(b0);
-    const Mat3 invInertia1 = worldInverseInertia(b1);
-    const Mat3 cross0 = crossMatrix(r0);
-    const Mat3 cross1 = crossMatrix(r1);
+    const PointResponse s0(b0, r0);
+    const PointResponse s1(b1, r1);
     // K = Σ (1/m) 1 − [r]× I⁻¹ [r]×: the generalised inverse mass of Eqs. 2-3 for every
     // direction at once.
     const double alphaTilde = compliance * ctx.invH2;
-    Mat3 k = cross0 * invInertia0 * cross0 + cross1 * invInertia1 * cross1;
-    k = -k;
-    k.diagonal().array() += b0.invMass + b1.invMass + alphaTilde;
-    bool invertible = false;
-    double determinant = 0.0;
-    Mat3 kInverse;
-    k.computeInverseAndDetWithCheck(kInverse, determinant, invertible, 1e-300);
-    if (!invertible || !std::isfinite(determinant)) return Vec3::Zero();  // two static bodies
-    const Vec3 deltaLambda = kInverse * (delta - alphaTilde * lambda);  // Eq. 4, vector form
+    const double diagonal = b0.invMass + b1.invMass + alphaTilde;
+    Symmetric3 k{.xx = diagonal, .yy = diagonal, .zz = diagonal};
+    s0.addTo(k);
+    s1.addTo(k);
+    Vec3 deltaLambda;
+    if (!solveSymmetric(k, delta - alphaTilde * lambda, deltaLambda))  // Eq. 4, vector form
+        return Vec3::Zero();                                           // two static bodies
     lambda += deltaLambda;
-    moveBody(ctx, i0, deltaLambda * b0.invMass, invInertia0 * r0.cross(deltaLambda));
-    moveBody(ctx, i1, -deltaLambda * b1.invMass, -(invInertia1 * r1.cross(deltaLambda)));
+    moveBody(ctx, i0, deltaLambda * b0.invMass, s0.turn(deltaLambda));
+    moveBody(ctx, i1, -deltaLambda * b1.invMass, -s1.turn(deltaLambda));
     return deltaLambda;
 }
 

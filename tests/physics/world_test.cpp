@@ -120,49 +120,57 @@ TEST(WorldIntegrationTest, FreeFallMatchesSymplecticEulerClosedForm) {
 
 // A box spun about its intermediate principal axis with a small perturbation flips (the
 // Dzhanibekov effect): the intermediate component of ω changes sign. The growth rate is
-// λ = ω sqrt((I1 − I2)(I2 − I3)/(I1 I3)) ≈ 0.48 ω, so with ε/ω = 1/200 the first flip comes
-// after about ln(200)/λ ≈ 2.2 s at ω = 5 rad/s. Angular momentum (world) and kinetic energy are
-// conserved in the exact motion; Algorithm 2's explicit gyroscopic term and linearised
-// quaternion update let them drift.
-// Measured (20 substeps, 5 s): first flip at 2.40 s, |ΔL|/|L| ≤ 1.2 %, |ΔE|/E ≤ 2.3 %. At
-// ω = 10 rad/s the drift is 4.3 % and 8.4 %: see SpinRateIsKeptByTheRotationUpdate below.
+// λ = ω sqrt((I1 − I2)(I2 − I3)/(I1 I3)) = 0.480 ω here, so with ε/ω = 1/200 the first flip
+// comes after about ln(200)/λ: 2.2 s at ω = 5 rad/s, 1.1 s at 10 rad/s. Angular momentum (world)
+// and kinetic energy are conserved in the exact motion; the explicit gyroscopic term of
+// Algorithm 2 lets them drift a little.
+// Measured (20 substeps, 5 s), ω = 5: first flip at 2.40 s, |ΔL|/|L| ≤ 0.21 %, |ΔE|/E ≤ 0.40 %;
+// ω = 10: first flip at 1.20 s, 0.84 % and 1.6 %. (With the paper's linearised quaternion
+// update and velocity derivation it was 1.2 % and 2.3 % at 5 rad/s, 4.3 % and 8.4 % at
+// 10 rad/s: the spin loss that SpinRateIsKeptByTheRotationUpdate guards against.)
 TEST(WorldIntegrationTest, IntermediateAxisFlipsAndConservesMomentumAndEnergy) {
     const Vec3 size(0.1, 0.2, 0.3);
     const double mass = 1.5;
     const Vec3 moments = test::boxMoments(size, mass);  // y is the intermediate axis
     ASSERT_GT(moments.x(), moments.y());
     ASSERT_GT(moments.y(), moments.z());
-    const double spin = 5.0;
-    const Vec3 omega0(spin / 200.0, spin, spin / 200.0);
+    const double growth = std::sqrt((moments.x() - moments.y()) * (moments.y() - moments.z()) /
+                                    (moments.x() * moments.z()));
+    for (const double spin : {5.0, 10.0}) {
+        SCOPED_TRACE(::testing::Message() << "spin " << spin);
+        const Vec3 omega0(spin / 200.0, spin, spin / 200.0);
+        World world(WorldSettings{.gravity = Vec3::Zero(), .substeps = 20});
+        const Quat start(Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized()));
+        const BodyId id = world.createBody({.shape = boxShape(size),
+                                            .mass = mass,
+                                            .position = Vec3(0, 1, 0),
+                                            .orientation = start,
+                                            .angularVelocity = start * omega0});
+        const Body& body = world.body(id);
+        const Vec3 l0 = test::angularMomentum(body, moments);
+        const double e0 = test::kineticEnergy(body, mass, moments);
+        ASSERT_NEAR(e0, 0.5 * omega0.dot(moments.cwiseProduct(omega0)), 1e-12);
 
-    World world(WorldSettings{.gravity = Vec3::Zero(), .substeps = 20});
-    const Quat start(Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized()));
-    const BodyId id = world.createBody({.shape = boxShape(size),
-                                        .mass = mass,
-                                        .position = Vec3(0, 1, 0),
-                                        .orientation = start,
-                                        .angularVelocity = start * omega0});
-    const Body& body = world.body(id);
-    const Vec3 l0 = test::angularMomentum(body, moments);
-    const double e0 = test::kineticEnergy(body, mass, moments);
-    ASSERT_NEAR(e0, 0.5 * omega0.dot(moments.cwiseProduct(omega0)), 1e-12);
-
-    double firstFlip = -1.0, worstL = 0.0, worstE = 0.0;
-    test::runFor(world, 5.0, [&](double t) {
-        const Vec3 bodyOmega = body.userOrientation().conjugate() * body.omega;
-        if (firstFlip < 0.0 && bodyOmega.y() < 0.0) firstFlip = t;
-        worstL = std::max(worstL, (test::angularMomentum(body, moments) - l0).norm() / l0.norm());
-        worstE = std::max(worstE, std::abs(test::kineticEnergy(body, mass, moments) - e0) / e0);
-    });
-    report("tumble_first_flip_s", firstFlip);
-    report("tumble_max_relative_L_drift", worstL);
-    report("tumble_max_relative_energy_drift", worstE);
-    EXPECT_GT(firstFlip, 1.0);
-    EXPECT_LT(firstFlip, 5.0);
-    EXPECT_LT(worstL, 0.03);
-    EXPECT_LT(worstE, 0.03);
-    // No gravity, no joints: the centre of mass does not move.
-    EXPECT_LT((body.userPosition() - Vec3(0, 1, 0)).norm(), 1e-12);
+        double firstFlip = -1.0, worstL = 0.0, worstE = 0.0;
+        test::runFor(world, 5.0, [&](double t) {
+            const Vec3 bodyOmega = body.userOrientation().conjugate() * body.omega;
+            if (firstFlip < 0.0 && bodyOmega.y() < 0.0) firstFlip = t;
+            worstL =
+                std::max(worstL, (test::angularMomentum(body, moments) - l0).norm() / l0.norm());
+            worstE = std::max(worstE, std::abs(test::kineticEnergy(body, mass, moments) - e0) / e0);
+        });
+        const std::string tag = "_at_" + std::to_string(static_cast<int>(spin));
+        report("tumble_first_flip_s" + tag, firstFlip);
+        report("tumble_max_relative_L_drift" + tag, worstL);
+        report("tumble_max_relative_energy_drift" + tag, worstE);
+        const double predicted = std::log(200.0) / (growth * spin);
+        EXPECT_GT(firstFlip, 0.5 * predicted);
+        EXPECT_LT(firstFlip, std::min(2.0 * predicted, 5.0));
+        EXPECT_LT(worstL, 0.03);
+        EXPECT_LT(worstE, 0.03);
+        // No gravity, no joints: the centre of mass does not move.
+        EXPECT_LT((body.userPosition() - Vec3(0, 1, 0)).norm(), 1e-12);
+    }
 }
 
 // A spin about the largest principal axis is stable: nothing flips, the other components stay
@@ -179,18 +187,18 @@ TEST(WorldIntegrationTest, MajorAxisSpinIsStable) {
         smallest = std::min(smallest, bodyOmega.x());
         largestOther = std::max(largestOther, bodyOmega.tail<2>().norm());
     });
-    EXPECT_GT(smallest, 9.0);
+    EXPECT_GT(smallest, 9.99);
     EXPECT_LT(largestOther, 0.2);
 }
 
-// ENGINE BUG (world.cpp, integrate + deriveVelocities): a torque-free spin about a principal
-// axis must keep its rate exactly (the gyroscopic term vanishes). The linearised update
+// Regression (world.cpp, integrate + deriveVelocities): a torque-free spin about a principal
+// axis must keep its rate exactly (the gyroscopic term vanishes). The paper's linearised update
 // q <- normalise(q + ½ h [ω, 0] q) followed by ω = 2 Δq_xyz / h returns
 // ω / sqrt(1 + (hω/2)²), a loss of (hω)²/8 per substep, i.e. dω/dt = −h ω³/8: 10 rad/s becomes
 // 9.517 after 5 s at 20 substeps (measured 9.5165, the closed form 1/ω² = 1/ω0² + h t/4 gives
 // 9.5166), and a 100 rad/s wheel (the rc car) slows to 1/sqrt(1e-4 + h/4) = 56.95 rad/s within
-// 1 s (measured 56.95). Fix: rotate by the exact exponential map in integrate
-// (q <- AngleAxis(h|ω|, ω/|ω|) q) and derive ω = rotationVector(Δq)/h.
+// 1 s (measured 56.95). Fixed by rotating with the exact exponential map in integrate and
+// deriving ω with the exact logarithm; both rates now stay exact to rounding.
 TEST(WorldIntegrationTest, SpinRateIsKeptByTheRotationUpdate) {
     for (const double rate : {10.0, 100.0}) {
         World world(WorldSettings{.gravity = Vec3::Zero(), .substeps = 20});
@@ -199,7 +207,7 @@ TEST(WorldIntegrationTest, SpinRateIsKeptByTheRotationUpdate) {
                                             .angularVelocity = Vec3(0.0, 0.0, rate)});
         test::runFor(world, 1.0);
         report("spin_rate_after_1s_from_" + std::to_string(int(rate)), world.body(id).omega.z());
-        EXPECT_NEAR(world.body(id).omega.z(), rate, 1e-3 * rate);
+        EXPECT_NEAR(world.body(id).omega.z(), rate, 1e-9 * rate);
     }
 }
 

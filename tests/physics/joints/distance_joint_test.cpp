@@ -63,10 +63,10 @@ INSTANTIATE_TEST_SUITE_P(
                       std::tuple{10, 4, SolverType::GaussSeidel},
                       // The Jacobi option reaches the same elongation α f.
                       std::tuple{20, 1, SolverType::Jacobi}, std::tuple{1, 20, SolverType::Jacobi}),
-    [](const auto& info) {
-        return std::to_string(std::get<0>(info.param)) + "x" +
-               std::to_string(std::get<1>(info.param)) +
-               (std::get<2>(info.param) == SolverType::Jacobi ? "Jacobi" : "GaussSeidel");
+    [](const auto& testCase) {
+        const auto& [substeps, iterations, solver] = testCase.param;
+        return std::to_string(substeps) + "x" + std::to_string(iterations) +
+               (solver == SolverType::Jacobi ? "Jacobi" : "GaussSeidel");
     });
 
 // Released at the spring's rest length, the box oscillates about the equilibrium stretch α m g

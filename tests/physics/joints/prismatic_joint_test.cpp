@@ -138,5 +138,45 @@ TEST(PrismaticJointTest, CompliantDriveIsASpringAboutTheTarget) {
     EXPECT_LT(rig.turned(), 5e-4);
 }
 
+// ENGINE BUG (prismatic_joint.cpp, solvePrismaticJoint -> joint_parts.h solveOrientationLock):
+// a 1.5 kg, 0.4 x 0.1 x 0.1 m bar held by its end on a horizontal slide (hard drive at offset 0)
+// must rest, the lock carrying the static torque m g r = 2.943 N·m (r = 0.2 m) and the
+// off-axis attachment the weight m g. Instead it flutters substep to substep (ghost
+// |ω| = 0.78 rad/s at every frame end) and reads 5.529 N·m (x 1.88): the fixed joint's old
+// failure, which its 6 x 6 weld fixed but the prismatic lock still has. The lock is one scalar
+// angular correction along the rotation vector θ = θ n with w = nᵀ I⁻¹ n, so the body turns by
+// I⁻¹ n θ / w, which for an anisotropic inertia is not θ n: the error along n goes but one
+// perpendicular to it appears, and the next correction swings back. (A cube, or the
+// 0.2 x 0.1 x 0.3 box above, happens not to excite it.) Fix: solve the lock as the 3-DOF
+// constraint it is, K = I0⁻¹ + I1⁻¹ (world), p = K⁻¹ θ, body 0 turns by I0⁻¹ p and body 1 by
+// −I1⁻¹ p. Checked with that lock patched into a copy of the engine: torque 2.9430 N·m,
+// |ω| 1e-17 rad/s, and every other test here still passes.
+TEST(PrismaticJointTest, DISABLED_CantileveredBarRestsAndReportsTheStaticTorque) {
+    const double g = 9.81, mass = 1.5;
+    const Vec3 size(0.4, 0.1, 0.1), end(0.2, 0.0, 0.0), centre(0.0, 2.0, 0.0);
+    World world(WorldSettings{.gravity = Vec3(0, -g, 0), .substeps = 20});
+    const BodyId bar = world.createBody(
+        {.shape = boxShape(size), .mass = mass, .position = centre});
+    const JointId joint = world.createJoint({.type = JointType::Prismatic,
+                                            .body1 = bar,
+                                            .anchor0 = centre + end,
+                                            .anchor1 = end,
+                                            .axis0 = Vec3::UnitZ(),
+                                            .axis1 = Vec3::UnitZ(),
+                                            .targetOffset = 0.0});
+    double worstTurn = 0.0;
+    test::runFor(world, 2.0, [&](double) {
+        worstTurn = std::max(
+            worstTurn, test::turnBetween(Quat::Identity(), world.body(bar).userOrientation()).norm());
+    });
+    const JointReadout r = world.jointReadout(joint);
+    report("prismatic_cantilever_torque_Nm", r.torque);
+    report("prismatic_cantilever_rest_omega", world.body(bar).omega.norm());
+    EXPECT_LT(world.body(bar).omega.norm(), 1e-6);
+    EXPECT_NEAR(r.torque, mass * g * end.x(), 1e-3 * mass * g * end.x());
+    EXPECT_NEAR(r.force, mass * g, 1e-3 * mass * g);
+    EXPECT_LT(worstTurn, 5e-4);
+}
+
 }  // namespace
 }  // namespace substep
