@@ -138,6 +138,10 @@ namespace {
 /// A symmetric 3 x 3 matrix by its six entries (the point correction's K).
 struct Symmetric3 {
     double xx = 0, yy = 0, zz = 0, xy = 0, xz = 0, yz = 0;
+    Vec3 times(const Vec3& v) const {
+        return {xx * v.x() + xy * v.y() + xz * v.z(), xy * v.x() + yy * v.y() + yz * v.z(),
+                xz * v.x() + yz * v.y() + zz * v.z()};
+    }
 };
 
 /// One body's side of a point correction at world offset r. With the body's principal axes e_k
@@ -150,13 +154,15 @@ struct PointResponse {
     Vec3 inverseMoments = Vec3::Zero();
     bool rotates = false;
 
-    PointResponse(const Body& body, const Vec3& r) {
+    /// For `angular` the response is to an angular impulse: arms are the axes themselves
+    /// (I⁻¹ = Σ d_k e_k e_kᵀ) and r is unused.
+    PointResponse(const Body& body, const Vec3& r, bool angular = false) {
         rotates = body.rotates() && body.invMass > 0.0;
         if (!rotates) return;
         const Mat3 rotation = body.q.toRotationMatrix();
         for (int k = 0; k < 3; ++k) {
             axes[k] = rotation.col(k);
-            arms[k] = axes[k].cross(r);
+            arms[k] = angular ? axes[k] : axes[k].cross(r);
         }
         inverseMoments = body.invInertia;
     }
@@ -223,6 +229,40 @@ Vec3 applyPointCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, const Ve
     return deltaLambda;
 }
 
+Vec3 applyRotationCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, const Vec3& rotation,
+                             double compliance, Vec3& lambda, const Vec3* freeAxis) {
+    const Body& b0 = ctx.bodies[i0];
+    const Body& b1 = ctx.bodies[i1];
+    // K = I0⁻¹ + I1⁻¹ in world coordinates, each Σ d_k e_k e_kᵀ over the principal axes.
+    const PointResponse s0(b0, Vec3::Zero(), /*angular=*/true);
+    const PointResponse s1(b1, Vec3::Zero(), /*angular=*/true);
+    const double alphaTilde = compliance * ctx.invH2;
+    Symmetric3 k{.xx = alphaTilde, .yy = alphaTilde, .zz = alphaTilde};
+    s0.addTo(k);
+    s1.addTo(k);
+    const Vec3 rhs = rotation - alphaTilde * lambda;
+    Vec3 deltaLambda;
+    if (freeAxis) {
+        // Only the two directions normal to the free axis are constrained: solve K restricted
+        // to that plane, so the correction leaves the rotation about the axis alone.
+        const Vec3 u = anyPerpendicular(*freeAxis);
+        const Vec3 v = freeAxis->cross(u);
+        const Vec3 ku = k.times(u);
+        const Vec3 kv = k.times(v);
+        const double a = u.dot(ku), b = u.dot(kv), d = v.dot(kv);
+        const double determinant = a * d - b * b;
+        if (!(determinant > 1e-300) || !std::isfinite(determinant)) return Vec3::Zero();
+        const double ru = u.dot(rhs), rv = v.dot(rhs);
+        deltaLambda = u * ((d * ru - b * rv) / determinant) + v * ((a * rv - b * ru) / determinant);
+    } else if (!solveSymmetric(k, rhs, deltaLambda)) {
+        return Vec3::Zero();  // two static bodies
+    }
+    lambda += deltaLambda;
+    moveBody(ctx, i0, Vec3::Zero(), s0.turn(deltaLambda));
+    moveBody(ctx, i1, Vec3::Zero(), -s1.turn(deltaLambda));
+    return deltaLambda;
+}
+
 Vec3 applyVelocityCorrection(Body& b0, Body& b1, const Vec3& deltaVelocity, const Vec3& r0,
                              const Vec3& r1) {
     const double magnitude = deltaVelocity.norm();
@@ -258,12 +298,11 @@ void applyJacobiDeltas(Body* bodies, JacobiDelta* deltas, size_t count) {
     for (size_t i = 0; i < count; ++i) {
         JacobiDelta& d = deltas[i];
         if (d.count == 0) continue;
-        // Averaging over the body's corrections keeps Jacobi from overshooting where several
-        // constraints push the same body the same way.
-        const double share = 1.0 / static_cast<double>(d.count);
-        bodies[i].x += d.position * share;
-        if (bodies[i].rotates()) addRotation(bodies[i].q, d.rotation * share);
-        d = JacobiDelta{};
+        bodies[i].x += d.position;
+        if (bodies[i].rotates()) addRotation(bodies[i].q, d.rotation);
+        d.position.setZero();
+        d.rotation.setZero();
+        d.count = 0;
     }
 }
 

@@ -12,7 +12,7 @@ namespace substep {
 
 enum class SolverType : uint8_t {
     GaussSeidel,  ///< non-linear Gauss-Seidel: each correction moves the bodies at once (default)
-    Jacobi,       ///< corrections of one iteration are gathered and applied together, averaged
+    Jacobi,       ///< corrections of one iteration are gathered and applied together, summed
 };
 
 /// Corrections gathered for one body during a Jacobi iteration.
@@ -59,6 +59,16 @@ void applyWeldCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, const Vec
                          const Vec3& r0, const Vec3& r1, const Vec3& rotation, double compliance,
                          Vec3& lambdaPoint, Vec3& lambdaAngle, Vec3& impulse, Vec3& angularImpulse);
 
+/// The block form of Eqs. 11-16: turns body i0 by the world rotation vector `rotation` relative
+/// to body i1 with a vector multiplier and K = I0⁻¹ + I1⁻¹ (world). The scalar form turns a body
+/// with uneven inertia by I⁻¹ n θ / (nᵀ I⁻¹ n), which is not θ n: the error along n goes, one
+/// across it appears, and the next correction swings back (a bar held by a prismatic lock read
+/// 1.9 times its static torque and never came to rest). With `freeAxis` only the two directions
+/// normal to it are constrained (a hinge's axis alignment). Returns the angular impulse given
+/// to body 0.
+Vec3 applyRotationCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, const Vec3& rotation,
+                             double compliance, Vec3& lambda, const Vec3* freeAxis = nullptr);
+
 /// Eqs. 11-16: turns body i0 by the world rotation vector `rotation` relative to body i1 (its
 /// length is the angle θ), shared by inverse inertia about the axis. Returns the angular
 /// impulse given to body 0 (body 1 receives the opposite).
@@ -73,7 +83,7 @@ Vec3 applyVelocityCorrection(Body& b0, Body& b1, const Vec3& deltaVelocity, cons
 /// Angular counterpart of Eq. 33: changes ω0 − ω1 by `deltaOmega`.
 Vec3 applyAngularVelocityCorrection(Body& b0, Body& b1, const Vec3& deltaOmega);
 
-/// Applies the Jacobi deltas gathered in one iteration, each averaged over its corrections.
+/// Applies the Jacobi deltas gathered in one iteration (their plain sum: see SolverType).
 void applyJacobiDeltas(Body* bodies, JacobiDelta* deltas, size_t count);
 
 }  // namespace substep

@@ -174,10 +174,17 @@ void World::solvePositions(double h) {
                       .invH2 = 1.0 / (h * h),
                       .solver = settings_.solver,
                       .deltas = jacobiDeltas_.data()};
+    if (settings_.solver == SolverType::GaussSeidel) {
+        for (Joint& joint : joints_)
+            if (joint.alive) solveJointPositions(joint, ctx);
+        return;
+    }
+    // Jacobi: every joint sees the iteration's starting state; the gathered corrections are
+    // summed. Averaging them, or splitting a body's mass among its joints, shifts the fixed
+    // point: the joints' λ then no longer balance the weights they carry.
     for (Joint& joint : joints_)
         if (joint.alive) solveJointPositions(joint, ctx);
-    if (settings_.solver == SolverType::Jacobi)
-        applyJacobiDeltas(bodies_.data(), jacobiDeltas_.data(), bodies_.size());
+    applyJacobiDeltas(bodies_.data(), jacobiDeltas_.data(), bodies_.size());
 }
 
 void World::deriveVelocities(double h) {

@@ -1,5 +1,6 @@
-// Tests engine/physics/correction.cpp: the two correction operations of paper 3.3 (Eqs. 2-16)
-// and the velocity correction of Eq. 33, against their closed forms on hand-made bodies.
+// Tests engine/physics/correction.cpp: the two correction operations of paper 3.3 (Eqs. 2-16),
+// their vector forms (the point attachment and the weld), and the velocity correction of
+// Eq. 33, against their closed forms and invariants on hand-made bodies.
 
 #include "physics/correction.h"
 
@@ -40,8 +41,8 @@ TEST(PositionalCorrectionTest, SharesByInverseMassAndKeepsCentreOfMass) {
     const Quat q0 = pair.bodies[0].q, q1 = pair.bodies[1].q;
     const Vec3 delta(0.1, -0.05, 0.02);
     double lambda = 0.0;
-    const Vec3 p = applyPositionalCorrection(pair.ctx, 0, 1, delta, Vec3::Zero(), Vec3::Zero(),
-                                             0.0, lambda);
+    const Vec3 p =
+        applyPositionalCorrection(pair.ctx, 0, 1, delta, Vec3::Zero(), Vec3::Zero(), 0.0, lambda);
     const double w0 = 1.0 / m0, w1 = 1.0 / m1;
     EXPECT_NEAR(lambda, delta.norm() / (w0 + w1), 1e-15);
     EXPECT_LT((p - delta / (w0 + w1)).norm(), 1e-15);
@@ -99,10 +100,126 @@ TEST(PositionalCorrectionTest, OffCentreCorrectionTurnsTheBody) {
     EXPECT_NEAR(anchor.x(), c, 1e-12);
 }
 
+// --- Point attachment (vector form of Eqs. 2-9) -------------------------------------------------
+
+/// World inertia tensor of a body from its principal moments.
+Mat3 inertiaOf(const Body& b) {
+    const Mat3 r = b.q.toRotationMatrix();
+    return r * b.inertia.asDiagonal() * r.transpose();
+}
+
+/// The two bodies of `pair`, moved off their centres and turned, anchored at a common point.
+struct Anchored {
+    Pair pair;
+    Vec3 point{0.4, 0.3, -0.2};  ///< the common anchor (world)
+    Vec3 r0, r1;                 ///< offsets from the centres of mass
+    Body before0, before1;
+
+    explicit Anchored(double m0 = 1.0, double m1 = 3.0, double h = 0.01) : pair(m0, m1, h) {
+        const Quat turn(Eigen::AngleAxisd(0.8, Vec3(1, -2, 0.5).normalized()));
+        pair.bodies[1].q = (turn * pair.bodies[1].q).normalized();
+        r0 = point - pair.bodies[0].x;
+        r1 = point - pair.bodies[1].x;
+        before0 = pair.bodies[0];
+        before1 = pair.bodies[1];
+    }
+    /// How far body 0's anchor moved relative to body 1's (first order in the turns).
+    Vec3 relativeAnchorMotion() const {
+        const Body& b0 = pair.bodies[0];
+        const Body& b1 = pair.bodies[1];
+        const Vec3 p0 = b0.x + (b0.q * before0.q.conjugate()) * r0;
+        const Vec3 p1 = b1.x + (b1.q * before1.q.conjugate()) * r1;
+        return (p0 - point) - (p1 - point);
+    }
+    /// Σ I Δθ + x × m Δx over both bodies: the angular impulse about the origin, 0 when the
+    /// correction's impulses act at one point.
+    Vec3 angularImpulse() const {
+        Vec3 sum = Vec3::Zero();
+        for (int i = 0; i < 2; ++i) {
+            const Body& b = pair.bodies[i];
+            const Body& a = i == 0 ? before0 : before1;
+            sum += inertiaOf(a) * test::turnBetween(a.q, b.q) + a.x.cross(b.mass * (b.x - a.x));
+        }
+        return sum;
+    }
+};
+
+// A hard point correction makes body 0's anchor move by exactly delta relative to body 1's, in
+// every direction (to first order in the small turns), whatever the bodies' shapes and offsets;
+// it keeps linear momentum and, the impulses acting at one point, angular momentum.
+TEST(PointCorrectionTest, ClosesTheGapInEveryDirection) {
+    for (const Vec3& direction : {Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1), Vec3(1, -2, 3)}) {
+        Anchored rig;
+        const Vec3 delta = 1e-6 * direction.normalized();
+        Vec3 lambda = Vec3::Zero();
+        const Vec3 p = applyPointCorrection(rig.pair.ctx, 0, 1, delta, rig.r0, rig.r1, 0.0, lambda);
+        EXPECT_LT((rig.relativeAnchorMotion() - delta).norm(), 1e-6 * delta.norm());
+        EXPECT_LT((lambda - p).norm(), 1e-20);
+        const Body& b0 = rig.pair.bodies[0];
+        const Body& b1 = rig.pair.bodies[1];
+        EXPECT_LT((b0.mass * (b0.x - rig.before0.x) + b1.mass * (b1.x - rig.before1.x)).norm(),
+                  1e-14);  // rounding of positions near 1 m
+        EXPECT_LT(rig.angularImpulse().norm(), 1e-6 * delta.norm());
+    }
+}
+
+// With the anchors at the centres there is no turning: Δλ = Δr/(w0 + w1 + α̃) as a vector
+// (Eq. 4 per direction), and λ accumulates.
+TEST(PointCorrectionTest, CompliantMultiplierAtTheCentres) {
+    const double m0 = 2.0, m1 = 0.5, h = 1.0 / 600.0, alpha = 1e-4;
+    Pair pair(m0, m1, h);
+    const double w = 1.0 / m0 + 1.0 / m1, alphaTilde = alpha / (h * h);
+    const Vec3 delta(0.01, -0.02, 0.03);
+    Vec3 lambda = Vec3::Zero();
+    applyPointCorrection(pair.ctx, 0, 1, delta, Vec3::Zero(), Vec3::Zero(), alpha, lambda);
+    const Vec3 first = delta / (w + alphaTilde);
+    EXPECT_LT((lambda - first).norm(), 1e-15);
+    applyPointCorrection(pair.ctx, 0, 1, delta, Vec3::Zero(), Vec3::Zero(), alpha, lambda);
+    EXPECT_LT((lambda - (first + (delta - alphaTilde * first) / (w + alphaTilde))).norm(), 1e-15);
+}
+
+// Against a static body, a sphere (isotropic I) anchored at r takes the impulse
+// p = K⁻¹ Δ with K = 1/m + (|r|² 1 − r rᵀ)/I.
+TEST(PointCorrectionTest, MatchesTheClosedFormInverseMass) {
+    Pair pair(1.5, 1.0, 0.01);
+    pair.bodies[1].invMass = 0.0;
+    pair.bodies[1].invInertia.setZero();
+    const double inertia = 0.4 * 1.5 * 0.2 * 0.2;
+    const Vec3 r(0.1, 0.2, -0.05), delta(1e-3, 2e-3, -1e-3);
+    const Mat3 k =
+        Mat3::Identity() / 1.5 + (r.squaredNorm() * Mat3::Identity() - r * r.transpose()) / inertia;
+    Vec3 lambda = Vec3::Zero();
+    const Vec3 p = applyPointCorrection(pair.ctx, 0, 1, delta, r, Vec3::Zero(), 0.0, lambda);
+    EXPECT_LT((p - k.inverse() * delta).norm(), 1e-12 * p.norm());
+}
+
+// --- Weld (attachment and orientation lock together) -------------------------------------------
+
+// A hard weld correction moves body 0's anchor by delta and turns body 0 by `rotation`, both
+// relative to body 1, in one projection (to first order), keeping linear and angular momentum.
+TEST(WeldCorrectionTest, ClosesGapAndTurnTogether) {
+    Anchored rig;
+    const Vec3 delta(1e-6, -2e-6, 0.5e-6), rotation(-1e-6, 0.5e-6, 2e-6);
+    Vec3 lambdaPoint = Vec3::Zero(), lambdaAngle = Vec3::Zero(), impulse = Vec3::Zero(),
+         angularImpulse = Vec3::Zero();
+    applyWeldCorrection(rig.pair.ctx, 0, 1, delta, rig.r0, rig.r1, rotation, 0.0, lambdaPoint,
+                        lambdaAngle, impulse, angularImpulse);
+    const Body& b0 = rig.pair.bodies[0];
+    const Body& b1 = rig.pair.bodies[1];
+    const Vec3 relativeTurn =
+        test::turnBetween(rig.before0.q, b0.q) - test::turnBetween(rig.before1.q, b1.q);
+    EXPECT_LT((rig.relativeAnchorMotion() - delta).norm(), 1e-5 * delta.norm());
+    EXPECT_LT((relativeTurn - rotation).norm(), 1e-5 * rotation.norm());
+    EXPECT_LT((b0.mass * (b0.x - rig.before0.x) + b1.mass * (b1.x - rig.before1.x)).norm(),
+              1e-14);  // rounding of positions near 1 m
+    EXPECT_LT(rig.angularImpulse().norm(), 1e-5 * (impulse.norm() + angularImpulse.norm()));
+    EXPECT_LT((impulse - lambdaPoint).norm(), 1e-20);
+}
+
 // Eqs. 11-16: a rotation θ about a principal axis is shared by inverse inertia.
 TEST(AngularCorrectionTest, SharesByInverseInertia) {
     Pair pair(1.0, 4.0, 0.01);
-    const double i0 = pair.bodies[0].inertia.x();  // sphere: isotropic
+    const double i0 = pair.bodies[0].inertia.x();            // sphere: isotropic
     const double i1 = 4.0 * (0.2 * 0.2 + 0.4 * 0.4) / 12.0;  // box about z: m (a² + b²)/12
     const Vec3 rotation(0.0, 0.0, 1e-4);
     const Quat start0 = pair.bodies[0].q, start1 = pair.bodies[1].q;
@@ -150,8 +267,8 @@ TEST(CorrectionDegenerateTest, ZeroLengthCorrectionsAreNoOps) {
 }
 
 // Jacobi: corrections are gathered, not applied, until applyJacobiDeltas; a body corrected
-// twice in one iteration moves by the average.
-TEST(CorrectionJacobiTest, GathersThenAppliesTheAverage) {
+// twice in one iteration moves by the sum of both corrections.
+TEST(CorrectionJacobiTest, GathersThenAppliesTheSum) {
     Pair pair(1.0, 1.0, 0.01, SolverType::Jacobi);
     pair.bodies[1].invMass = 0.0;  // static partner
     pair.bodies[1].invInertia.setZero();
@@ -161,7 +278,7 @@ TEST(CorrectionJacobiTest, GathersThenAppliesTheAverage) {
     EXPECT_EQ(pair.bodies[0].x, Vec3::Zero());  // nothing moved yet
     EXPECT_EQ(pair.deltas[0].count, 2u);
     applyJacobiDeltas(pair.bodies.data(), pair.deltas.data(), 2);
-    EXPECT_LT((pair.bodies[0].x - Vec3(0.1, 0.2, 0)).norm(), 1e-15);
+    EXPECT_LT((pair.bodies[0].x - Vec3(0.2, 0.4, 0)).norm(), 1e-15);
     EXPECT_EQ(pair.deltas[0].count, 0u);  // cleared for the next iteration
     EXPECT_EQ(pair.bodies[1].x, Vec3(1, 0, 0));
 }

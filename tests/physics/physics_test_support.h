@@ -47,7 +47,9 @@ inline Vec3 angularMomentum(const Body& body, const Vec3& userMoments) {
 }
 
 /// A body-frame vector of the body's user frame, in world coordinates.
-inline Vec3 userAxis(const Body& body, const Vec3& local) { return body.userOrientation() * local; }
+inline Vec3 userAxis(const Body& body, const Vec3& local) {
+    return body.userOrientation() * local;
+}
 
 /// World point of a user-frame point.
 inline Vec3 userPoint(const Body& body, const Vec3& local) {
@@ -77,7 +79,8 @@ void runFor(World& world, double seconds, AfterFrame&& afterFrame, double dt = k
 }
 
 inline void runFor(World& world, double seconds, double dt = kDt) {
-    runFor(world, seconds, [](double) {}, dt);
+    runFor(
+        world, seconds, [](double) {}, dt);
 }
 
 /// A sampled signal s(t).

@@ -36,8 +36,8 @@ TEST(WorldHandlesTest, DestroyedBodyInvalidatesItsIdAndItsJoints) {
     const BodyId b = world.createBody(boxDef(Vec3(0.1, 0.1, 0.1), 1.0, Vec3(0, 0.5, 0)));
     const BodyId c = world.createBody(boxDef(Vec3(0.1, 0.1, 0.1), 1.0, Vec3(1, 0.5, 0)));
     const JointId ab = world.createJoint({.type = JointType::Distance, .body0 = a, .body1 = b});
-    const JointId worldA = world.createJoint(
-        {.type = JointType::Distance, .body1 = a, .anchor0 = Vec3(0, 1.5, 0)});
+    const JointId worldA =
+        world.createJoint({.type = JointType::Distance, .body1 = a, .anchor0 = Vec3(0, 1.5, 0)});
     const JointId bc = world.createJoint({.type = JointType::Hinge, .body0 = b, .body1 = c});
     ASSERT_TRUE(world.isValid(a) && world.isValid(b) && world.isValid(c));
     ASSERT_TRUE(world.isValid(ab) && world.isValid(worldA) && world.isValid(bc));
@@ -62,7 +62,7 @@ TEST(WorldHandlesTest, ReusedSlotGetsANewGeneration) {
     const BodyId first = world.createBody(boxDef(Vec3(0.1, 0.1, 0.1), 1.0, Vec3::Zero()));
     world.destroyBody(first);
     const BodyId second = world.createBody(boxDef(Vec3(0.2, 0.2, 0.2), 2.0, Vec3::Zero()));
-    EXPECT_EQ(second.index, first.index);  // the slot is reused ...
+    EXPECT_EQ(second.index, first.index);            // the slot is reused ...
     EXPECT_NE(second.generation, first.generation);  // ... under a new generation
     EXPECT_FALSE(world.isValid(first));
     EXPECT_TRUE(world.isValid(second));
@@ -227,8 +227,12 @@ TEST(WorldRobustnessTest, HugeVelocitiesStayFinite) {
                                               .position = pivot - Vec3(0, 0.5, 0),
                                               .velocity = fast,
                                               .angularVelocity = spin});
-        JointDef def{.type = types[i], .body1 = body, .anchor0 = pivot,
-                     .anchor1 = Vec3(0.1, 0.5, 0.0), .axis0 = Vec3::UnitZ(), .axis1 = Vec3::UnitZ()};
+        JointDef def{.type = types[i],
+                     .body1 = body,
+                     .anchor0 = pivot,
+                     .anchor1 = Vec3(0.1, 0.5, 0.0),
+                     .axis0 = Vec3::UnitZ(),
+                     .axis1 = Vec3::UnitZ()};
         if (types[i] == JointType::Hinge) def.limits = Range{-0.3, 0.3};
         if (types[i] == JointType::Prismatic) def.limits = Range{-0.1, 0.1};
         if (types[i] == JointType::Spherical) {
@@ -237,8 +241,8 @@ TEST(WorldRobustnessTest, HugeVelocitiesStayFinite) {
         }
         world.createJoint(def);
         // And a free one.
-        world.createBody({.shape = sphereShape(0.1), .mass = 1.0, .velocity = fast,
-                          .angularVelocity = spin});
+        world.createBody(
+            {.shape = sphereShape(0.1), .mass = 1.0, .velocity = fast, .angularVelocity = spin});
     }
     for (int frame = 0; frame < 10; ++frame) {
         world.step(kDt);
@@ -251,7 +255,8 @@ TEST(WorldRobustnessTest, HugeVelocitiesStayFinite) {
 TEST(WorldRobustnessTest, InvalidFrameLengthDoesNothing) {
     World world;
     const BodyId id = world.createBody({.shape = sphereShape(0.1), .mass = 1.0});
-    for (const double dt : {0.0, -kDt, std::nan(""), HUGE_VAL}) world.step(dt);
+    for (const double dt : {0.0, -kDt, std::nan(""), HUGE_VAL})
+        world.step(dt);
     EXPECT_TRUE(world.isFinite());
     EXPECT_EQ(world.body(id).x, Vec3::Zero());
 }

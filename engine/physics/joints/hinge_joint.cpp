@@ -1,6 +1,7 @@
 // Hinge joint (paper 3.4.1): one rotational degree of freedom about the joint axis a.
 //
-//   Axis alignment (Eq. 20): body 0 turns by the rotation taking a0 onto a1 (hard). The exact
+//   Axis alignment (Eq. 20): body 0 turns by the rotation taking a0 onto a1 (hard), solved over
+//   the two directions normal to the axis at once (block form). The exact
 //   angle is used instead of |a0 × a1| = sin θ, and anti-parallel axes (a0 + a1 = 0, no unique
 //   axis) turn about any perpendicular instead of producing a zero or NaN correction.
 //   Angle φ: the angle from b0 to b1 about a0, positive when body 1 turns counter-clockwise
@@ -44,7 +45,12 @@ void solveHingeJoint(Joint& joint, SolverContext& ctx) {
     {
         const Vec3 a0 = worldFrame0(joint, ctx.bodies) * Vec3::UnitX();
         const Vec3 a1 = worldFrame1(joint, ctx.bodies) * Vec3::UnitX();
-        solveRotationPart(joint, ctx, rotationBetween(a0, a1), 0.0, joint.lambdaAlign);
+        const Vec3 rotation = rotationBetween(a0, a1);
+        // Block form over the two directions normal to the hinge axis, so the alignment never
+        // turns the hinge itself (applyRotationCorrection).
+        const Vec3 free = (a0 + a1).norm() > 1e-9 ? Vec3((a0 + a1).normalized()) : a0;
+        joint.angularImpulse += applyRotationCorrection(ctx, joint.body0, joint.body1, rotation,
+                                                        0.0, joint.lambdaRotation, &free);
     }
     Vec3 b1;
     if (joint.drive != Joint::Drive::None) {

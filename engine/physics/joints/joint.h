@@ -91,6 +91,7 @@ struct Joint {
     // Runtime: one λ per part, zeroed each substep.
     Vec3 lambdaPoint = Vec3::Zero();  ///< attachment (vector multiplier, applyPointCorrection)
     Vec3 lambdaWeldAngle = Vec3::Zero();  ///< fixed joint's orientation lock (applyWeldCorrection)
+    Vec3 lambdaRotation = Vec3::Zero();  ///< orientation lock or hinge axis alignment (block form)
     double lambdaAttach = 0.0;
     double lambdaAlign = 0.0;
     double lambdaLimit = 0.0;
@@ -104,6 +105,7 @@ struct Joint {
     void resetMultipliers() {
         lambdaPoint.setZero();
         lambdaWeldAngle.setZero();
+        lambdaRotation.setZero();
         lambdaAttach = lambdaAlign = lambdaLimit = lambdaTwist = lambdaDrive = 0.0;
         linearImpulse.setZero();
         angularImpulse.setZero();

@@ -58,10 +58,12 @@ inline void solveRotationPart(Joint& joint, SolverContext& ctx, const Vec3& rota
 }
 
 /// Hard orientation lock (Eqs. 18-19, with the exact rotation vector): turns body 0's joint
-/// frame onto body 1's.
+/// frame onto body 1's, in block form (applyRotationCorrection says why).
 inline void solveOrientationLock(Joint& joint, SolverContext& ctx) {
     const Quat difference = worldFrame1(joint, ctx.bodies) * worldFrame0(joint, ctx.bodies).conjugate();
-    solveRotationPart(joint, ctx, rotationVector(difference), 0.0, joint.lambdaAlign);
+    joint.angularImpulse += applyRotationCorrection(ctx, joint.body0, joint.body1,
+                                                    rotationVector(difference), 0.0,
+                                                    joint.lambdaRotation);
 }
 
 /// Algorithm 3 (with ERRATA items 3-4): keeps the angle from n0 to n1 about n inside

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 #include <tuple>
 
 namespace substep {
@@ -30,8 +31,10 @@ TEST_P(SpringEquilibriumTest, StaysAtHookeStretchAndReadsTheWeight) {
     const double g = 9.81, mass = 2.5, alpha = 0.004;
     const double force = mass * g, stretch = alpha * force;
     const Vec3 ceiling(0.0, 2.0, 0.0), topAnchor(0.0, 0.1, 0.0);
-    World world(WorldSettings{
-        .gravity = Vec3(0, -g, 0), .substeps = substeps, .iterations = iterations, .solver = solver});
+    World world(WorldSettings{.gravity = Vec3(0, -g, 0),
+                              .substeps = substeps,
+                              .iterations = iterations,
+                              .solver = solver});
     const BodyId box = world.createBody({.shape = boxShape(Vec3(0.2, 0.2, 0.2)),
                                          .mass = mass,
                                          .position = ceiling - topAnchor - Vec3(0, stretch, 0)});
@@ -55,19 +58,22 @@ TEST_P(SpringEquilibriumTest, StaysAtHookeStretchAndReadsTheWeight) {
     });
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    SubstepsByIterations, SpringEquilibriumTest,
-    ::testing::Values(std::tuple{5, 1, SolverType::GaussSeidel},
-                      std::tuple{20, 1, SolverType::GaussSeidel},
-                      std::tuple{1, 20, SolverType::GaussSeidel},
-                      std::tuple{10, 4, SolverType::GaussSeidel},
-                      // The Jacobi option reaches the same elongation α f.
-                      std::tuple{20, 1, SolverType::Jacobi}, std::tuple{1, 20, SolverType::Jacobi}),
-    [](const auto& testCase) {
-        const auto& [substeps, iterations, solver] = testCase.param;
-        return std::to_string(substeps) + "x" + std::to_string(iterations) +
-               (solver == SolverType::Jacobi ? "Jacobi" : "GaussSeidel");
-    });
+/// "20x1GaussSeidel": substeps x iterations and the solver.
+std::string splitName(const ::testing::TestParamInfo<SpringEquilibriumTest::ParamType>& split) {
+    const auto& [substeps, iterations, solver] = split.param;
+    return std::to_string(substeps) + "x" + std::to_string(iterations) +
+           (solver == SolverType::Jacobi ? "Jacobi" : "GaussSeidel");
+}
+
+INSTANTIATE_TEST_SUITE_P(SubstepsByIterations, SpringEquilibriumTest,
+                         ::testing::Values(std::tuple{5, 1, SolverType::GaussSeidel},
+                                           std::tuple{20, 1, SolverType::GaussSeidel},
+                                           std::tuple{1, 20, SolverType::GaussSeidel},
+                                           std::tuple{10, 4, SolverType::GaussSeidel},
+                                           // The Jacobi option reaches the same elongation α f.
+                                           std::tuple{20, 1, SolverType::Jacobi},
+                                           std::tuple{1, 20, SolverType::Jacobi}),
+                         splitName);
 
 // Released at the spring's rest length, the box oscillates about the equilibrium stretch α m g
 // with amplitude α m g and period 2π sqrt(α m) (stiffness 1/α). Measured at 20 substeps:
@@ -76,10 +82,10 @@ TEST(SpringDynamicsTest, HangingSpringOscillatesAtTheClosedFormPeriod) {
     const double g = 9.81, mass = 2.5, alpha = 0.004;
     const Vec3 ceiling(0.0, 2.0, 0.0);
     World world(WorldSettings{.gravity = Vec3(0, -g, 0), .substeps = 20});
-    const BodyId box = world.createBody(
-        {.shape = sphereShape(0.05), .mass = mass, .position = ceiling});
-    world.createJoint({.type = JointType::Distance, .body1 = box, .anchor0 = ceiling,
-                       .compliance = alpha});
+    const BodyId box =
+        world.createBody({.shape = sphereShape(0.05), .mass = mass, .position = ceiling});
+    world.createJoint(
+        {.type = JointType::Distance, .body1 = box, .anchor0 = ceiling, .compliance = alpha});
     const double equilibrium = ceiling.y() - alpha * mass * g;
     test::Signal y;
     double lowest = ceiling.y();
@@ -101,8 +107,8 @@ TEST(SpringDynamicsTest, HangingSpringOscillatesAtTheClosedFormPeriod) {
 TEST(SpringDynamicsTest, TwoBodySpringUsesTheReducedMass) {
     const double m0 = 1.0, m1 = 3.0, alpha = 0.01;
     World world(WorldSettings{.gravity = Vec3::Zero(), .substeps = 20});
-    const BodyId a = world.createBody(
-        {.shape = sphereShape(0.05), .mass = m0, .position = Vec3(-0.15, 1, 0)});
+    const BodyId a =
+        world.createBody({.shape = sphereShape(0.05), .mass = m0, .position = Vec3(-0.15, 1, 0)});
     const BodyId b = world.createBody(
         {.shape = boxShape(Vec3(0.1, 0.1, 0.1)), .mass = m1, .position = Vec3(0.05, 1, 0)});
     world.createJoint({.type = JointType::Distance, .body0 = a, .body1 = b, .compliance = alpha});
@@ -165,9 +171,8 @@ TEST(RopeTest, TautRopeHoldsTheWeight) {
     const double g = 9.81, mass = 1.3, length = 0.8;
     const Vec3 anchor(0.5, 2.0, -0.3);
     World world(WorldSettings{.gravity = Vec3(0, -g, 0), .substeps = 20});
-    const BodyId ball = world.createBody({.shape = sphereShape(0.05),
-                                          .mass = mass,
-                                          .position = anchor - Vec3(0, length, 0)});
+    const BodyId ball = world.createBody(
+        {.shape = sphereShape(0.05), .mass = mass, .position = anchor - Vec3(0, length, 0)});
     const JointId rope = world.createJoint(
         {.type = JointType::Distance, .body1 = ball, .anchor0 = anchor, .maxDistance = length});
     test::runFor(world, 1.0, [&](double) {

@@ -92,8 +92,8 @@ TEST(FixedJointTest, WeldedPairFallsAsOneBody) {
     World world(WorldSettings{.gravity = Vec3(0, -g, 0), .substeps = 20});
     const BodyId a = world.createBody(
         {.shape = boxShape(Vec3(0.2, 0.2, 0.2)), .mass = 1.0, .position = Vec3(0, 5, 0)});
-    const BodyId b = world.createBody(
-        {.shape = sphereShape(0.1), .mass = 3.0, .position = Vec3(0.2, 5, 0)});
+    const BodyId b =
+        world.createBody({.shape = sphereShape(0.1), .mass = 3.0, .position = Vec3(0.2, 5, 0)});
     const JointId joint = world.createJoint({.type = JointType::Fixed,
                                              .body0 = a,
                                              .body1 = b,

@@ -71,7 +71,8 @@ TEST(HingeDriveTest, HardTargetAngleHoldsBarLevelWithStaticTorque) {
 TEST(HingeDriveTest, CompliantDriveSagsToHookeAngle) {
     const double g = 9.81, mass = 2.0, length = 0.5, alpha = 0.02;
     double theta = 0.0;  // fixed point of θ = −α m g (L/2) cos θ
-    for (int i = 0; i < 100; ++i) theta = -alpha * mass * g * length / 2 * std::cos(theta);
+    for (int i = 0; i < 100; ++i)
+        theta = -alpha * mass * g * length / 2 * std::cos(theta);
     const double torque = mass * g * length / 2 * std::cos(theta);
 
     World world(WorldSettings{.gravity = Vec3(0, -g, 0), .substeps = 20});
@@ -211,7 +212,8 @@ MotorRig motorRig(const Vec3& axis, double speed, bool wheelIsBody0) {
 // whichever way the axis points.
 TEST(HingeMotorTest, MotorReachesItsSpeedByTheRightHandRule) {
     const double speed = 3.0;
-    for (const Vec3& axis : {Vec3(Vec3::UnitZ()), Vec3(-Vec3::UnitZ()), Vec3(1, 1, 0).normalized()}) {
+    for (const Vec3& axis :
+         {Vec3(Vec3::UnitZ()), Vec3(-Vec3::UnitZ()), Vec3(1, 1, 0).normalized()}) {
         for (const bool wheelIsBody0 : {false, true}) {
             SCOPED_TRACE(::testing::Message() << "axis " << axis.transpose() << ", wheel is body "
                                               << (wheelIsBody0 ? 0 : 1));
@@ -232,10 +234,10 @@ TEST(HingeMotorTest, MotorBetweenFreeWheelsSharesByInertia) {
     World world(WorldSettings{.gravity = Vec3::Zero(), .substeps = 20});
     const Vec3 size0(0.4, 0.4, 0.1), size1(0.2, 0.2, 0.1);
     const double m0 = 2.0, m1 = 1.0;
-    const BodyId w0 = world.createBody(
-        {.shape = boxShape(size0), .mass = m0, .position = Vec3(0, 1, 0)});
-    const BodyId w1 = world.createBody(
-        {.shape = boxShape(size1), .mass = m1, .position = Vec3(0, 1, 0.2)});
+    const BodyId w0 =
+        world.createBody({.shape = boxShape(size0), .mass = m0, .position = Vec3(0, 1, 0)});
+    const BodyId w1 =
+        world.createBody({.shape = boxShape(size1), .mass = m1, .position = Vec3(0, 1, 0.2)});
     world.createJoint({.type = JointType::Hinge,
                        .body0 = w0,
                        .body1 = w1,
@@ -262,7 +264,8 @@ TEST(HingeMotorTest, MotorBetweenFreeWheelsSharesByInertia) {
 // drive, and gravity.
 TEST(HingeDegenerateTest, AntiParallelAxesRecoverWithoutNaN) {
     for (const bool extras : {false, true}) {
-        World world(WorldSettings{.gravity = extras ? Vec3(0, -10, 0) : Vec3::Zero(), .substeps = 20});
+        World world(
+            WorldSettings{.gravity = extras ? Vec3(0, -10, 0) : Vec3::Zero(), .substeps = 20});
         const Quat flipped(Eigen::AngleAxisd(kPi, Vec3::UnitX()));
         const BodyId body = world.createBody({.shape = boxShape(Vec3(0.3, 0.1, 0.2)),
                                               .mass = 1.0,

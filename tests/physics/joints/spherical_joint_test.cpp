@@ -83,9 +83,8 @@ TEST(SphericalJointTest, SwingLimitHoldsAgainstGravity) {
     Hanging rig(Vec3(0.1, 0.6, 0.1), 1.0, tilt,
                 {.axis0 = a0, .axis1 = -Vec3::UnitY(), .swingLimit = limit});
     double worst = 0.0;
-    test::runFor(rig.world, 3.0, [&](double) {
-        worst = std::max(worst, test::angleBetween(a0, rig.down()));
-    });
+    test::runFor(rig.world, 3.0,
+                 [&](double) { worst = std::max(worst, test::angleBetween(a0, rig.down())); });
     report("swing_limit_max_angle_rad", worst);
     EXPECT_LT(worst, limit + 2e-3);
     EXPECT_NEAR(test::angleBetween(a0, rig.down()), limit, 2e-3);
@@ -103,9 +102,9 @@ TEST(SphericalJointTest, TwistLimitsStopASpin) {
     const double lower = -0.2, upper = 0.4;
     for (const double spin : {3.0, -3.0}) {
         SCOPED_TRACE(::testing::Message() << "spin about y " << spin);
-        Hanging rig(Vec3(0.2, 0.6, 0.2), 1.0, Quat::Identity(),
-                    {.axis0 = -Vec3::UnitY(), .axis1 = -Vec3::UnitY(),
-                     .twistLimits = Range{lower, upper}});
+        Hanging rig(
+            Vec3(0.2, 0.6, 0.2), 1.0, Quat::Identity(),
+            {.axis0 = -Vec3::UnitY(), .axis1 = -Vec3::UnitY(), .twistLimits = Range{lower, upper}});
         rig.world.body(rig.rod).omega = Vec3(0.0, spin, 0.0);
         const Vec3 n = -Vec3::UnitY();
         const auto twist = [&] {
@@ -136,7 +135,9 @@ TEST(SphericalJointTest, SwingsFreelyInsideItsLimits) {
     const Vec3 size(0.1, 0.8, 0.1);
     Hanging free(size, 1.0, tilt, {});
     Hanging limited(size, 1.0, tilt,
-                    {.axis0 = -Vec3::UnitY(), .axis1 = -Vec3::UnitY(), .swingLimit = 1.2,
+                    {.axis0 = -Vec3::UnitY(),
+                     .axis1 = -Vec3::UnitY(),
+                     .swingLimit = 1.2,
                      .twistLimits = Range{-0.5, 0.5}});
     test::Signal freeX, limitedX;
     double freeMin = 0.0, limitedMin = 0.0, worstDifference = 0.0;
@@ -187,7 +188,9 @@ TEST(SphericalJointDegenerateTest, AntiParallelAxesWithLimitsStayFinite) {
     for (const double g : {0.0, 9.81}) {
         SCOPED_TRACE(::testing::Message() << "g = " << g);
         Hanging rig(Vec3(0.2, 0.6, 0.3), 1.0, Quat::Identity(),
-                    {.axis0 = Vec3::UnitY(), .axis1 = -Vec3::UnitY(), .swingLimit = 0.5,
+                    {.axis0 = Vec3::UnitY(),
+                     .axis1 = -Vec3::UnitY(),
+                     .swingLimit = 0.5,
                      .twistLimits = Range{-0.3, 0.3}},
                     g);
         test::runFor(rig.world, 2.0, [&](double t) { ASSERT_TRUE(rig.world.isFinite()) << t; });
