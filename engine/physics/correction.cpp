@@ -156,10 +156,12 @@ struct PointResponse {
 
     /// For `angular` the response is to an angular impulse: arms are the axes themselves
     /// (I⁻¹ = Σ d_k e_k e_kᵀ) and r is unused.
-    PointResponse(const Body& body, const Vec3& r, bool angular = false) {
+    PointResponse(const Body& body, const Vec3& r, bool angular = false)
+        : PointResponse(body, body.q.toRotationMatrix(), r, angular) {}
+    /// With the body's rotation matrix already at hand.
+    PointResponse(const Body& body, const Mat3& rotation, const Vec3& r, bool angular = false) {
         rotates = body.rotates() && body.invMass > 0.0;
         if (!rotates) return;
-        const Mat3 rotation = body.q.toRotationMatrix();
         for (int k = 0; k < 3; ++k) {
             axes[k] = rotation.col(k);
             arms[k] = angular ? axes[k] : axes[k].cross(r);
@@ -207,12 +209,13 @@ inline bool solveSymmetric(const Symmetric3& m, const Vec3& b, Vec3& x) {
 
 }  // namespace
 
-Vec3 applyPointCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, const Vec3& delta,
-                          const Vec3& r0, const Vec3& r1, double compliance, Vec3& lambda) {
+namespace {
+
+/// The point correction once both sides' responses are known (applyPointCorrection).
+Vec3 solvePoint(SolverContext& ctx, uint32_t i0, uint32_t i1, const Vec3& delta,
+                const PointResponse& s0, const PointResponse& s1, double compliance, Vec3& lambda) {
     const Body& b0 = ctx.bodies[i0];
     const Body& b1 = ctx.bodies[i1];
-    const PointResponse s0(b0, r0);
-    const PointResponse s1(b1, r1);
     // K = Σ (1/m) 1 − [r]× I⁻¹ [r]×: the generalised inverse mass of Eqs. 2-3 for every
     // direction at once.
     const double alphaTilde = compliance * ctx.invH2;
@@ -227,6 +230,28 @@ Vec3 applyPointCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, const Ve
     moveBody(ctx, i0, deltaLambda * b0.invMass, s0.turn(deltaLambda));
     moveBody(ctx, i1, -deltaLambda * b1.invMass, -s1.turn(deltaLambda));
     return deltaLambda;
+}
+
+}  // namespace
+
+Vec3 applyPointCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, const Vec3& delta,
+                          const Vec3& r0, const Vec3& r1, double compliance, Vec3& lambda) {
+    return solvePoint(ctx, i0, i1, delta, PointResponse(ctx.bodies[i0], r0),
+                      PointResponse(ctx.bodies[i1], r1), compliance, lambda);
+}
+
+Vec3 applyAttachmentCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1,
+                               const Vec3& anchor0, const Vec3& anchor1, double compliance,
+                               Vec3& lambda) {
+    // One rotation matrix per body serves both the anchors and the inverse mass.
+    const Body& b0 = ctx.bodies[i0];
+    const Body& b1 = ctx.bodies[i1];
+    const Mat3 rotation0 = b0.q.toRotationMatrix();
+    const Mat3 rotation1 = b1.q.toRotationMatrix();
+    const Vec3 r0 = rotation0 * anchor0;
+    const Vec3 r1 = rotation1 * anchor1;
+    return solvePoint(ctx, i0, i1, (b1.x + r1) - (b0.x + r0), PointResponse(b0, rotation0, r0),
+                      PointResponse(b1, rotation1, r1), compliance, lambda);
 }
 
 Vec3 applyRotationCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, const Vec3& rotation,

@@ -59,6 +59,12 @@ void applyWeldCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, const Vec
                          const Vec3& r0, const Vec3& r1, const Vec3& rotation, double compliance,
                          Vec3& lambdaPoint, Vec3& lambdaAngle, Vec3& impulse, Vec3& angularImpulse);
 
+/// applyPointCorrection for a joint's attachment: anchors in the bodies' principal frames,
+/// delta = p1 − p0 computed here.
+Vec3 applyAttachmentCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1,
+                               const Vec3& anchor0, const Vec3& anchor1, double compliance,
+                               Vec3& lambda);
+
 /// The block form of Eqs. 11-16: turns body i0 by the world rotation vector `rotation` relative
 /// to body i1 with a vector multiplier and K = I0⁻¹ + I1⁻¹ (world). The scalar form turns a body
 /// with uneven inertia by I⁻¹ n θ / (nᵀ I⁻¹ n), which is not θ n: the error along n goes, one

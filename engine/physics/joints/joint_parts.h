@@ -44,10 +44,9 @@ inline void solvePositionPart(Joint& joint, SolverContext& ctx, const JointAncho
 /// Attachment, 3.4.2: Δx = Δr = p1 − p0 (a zero-rest-length spring when compliant), projected
 /// with the full 3 x 3 inverse mass (applyPointCorrection explains why).
 inline void solveAttachment(Joint& joint, SolverContext& ctx) {
-    const JointAnchors anchors = jointAnchors(joint, ctx.bodies);
     joint.linearImpulse +=
-        applyPointCorrection(ctx, joint.body0, joint.body1, anchors.p1 - anchors.p0, anchors.r0,
-                             anchors.r1, joint.compliance, joint.lambdaPoint);
+        applyAttachmentCorrection(ctx, joint.body0, joint.body1, joint.anchor0, joint.anchor1,
+                                  joint.compliance, joint.lambdaPoint);
 }
 
 /// Angular part, 3.3.2: turns body 0 by `rotation` relative to body 1.
