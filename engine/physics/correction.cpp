@@ -1,6 +1,7 @@
 #include "physics/correction.h"
 
 #include <Eigen/LU>
+#include <algorithm>
 #include <cmath>
 
 namespace substep {
@@ -28,6 +29,15 @@ inline BodyResponse angularResponse(const Body& body, const Vec3& n) {
     const Vec3 nb = body.q.conjugate() * n;
     const Vec3 invInertiaN = body.invInertia.cwiseProduct(nb);
     return {nb.dot(invInertiaN), body.q * invInertiaN};
+}
+
+/// In the repair pass, whether a correction of this size and compliance is left alone: the pass
+/// only moves hard parts that are far from satisfied. Counts the ones it makes.
+inline bool skippedByRepair(SolverContext& ctx, double size, double threshold, double compliance) {
+    if (threshold == 0.0) return false;  // not repairing
+    if (compliance > 0.0 || size < threshold) return true;
+    ++ctx.repairs;
+    return false;
 }
 
 /// Moves body `index` by dx and turns it by dtheta: Eqs. 6-9 and 15-16, or gathered for Jacobi.
@@ -65,6 +75,7 @@ Vec3 applyPositionalCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, con
     const double c = delta.norm();
     // A zero correction has no direction; there is nothing to do (and no NaN to make).
     if (!(c > kDirectionEpsilon)) return Vec3::Zero();
+    if (skippedByRepair(ctx, c, ctx.repairDistance, compliance)) return Vec3::Zero();
     const Vec3 n = delta / c;
     const Body& b0 = ctx.bodies[i0];
     const Body& b1 = ctx.bodies[i1];
@@ -85,6 +96,10 @@ Vec3 applyPositionalCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, con
 void applyWeldCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, const Vec3& delta,
                          const Vec3& r0, const Vec3& r1, const Vec3& rotation, double compliance,
                          Vec3& lambdaPoint, Vec3& lambdaAngle, Vec3& impulse, Vec3& angularImpulse) {
+    if (ctx.repairDistance > 0.0 &&
+        skippedByRepair(ctx, std::max(delta.norm() / ctx.repairDistance, rotation.norm() / ctx.repairAngle),
+                        1.0, compliance))
+        return;
     const Body& b0 = ctx.bodies[i0];
     const Body& b1 = ctx.bodies[i1];
     const Mat3 invInertia0 = worldInverseInertia(b0);
@@ -120,6 +135,7 @@ Vec3 applyAngularCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, const 
                             double compliance, double& lambda) {
     const double theta = rotation.norm();
     if (!(theta > kDirectionEpsilon)) return Vec3::Zero();
+    if (skippedByRepair(ctx, theta, ctx.repairAngle, compliance)) return Vec3::Zero();
     const Vec3 n = rotation / theta;
     const BodyResponse s0 = angularResponse(ctx.bodies[i0], n);  // Eq. 11
     const BodyResponse s1 = angularResponse(ctx.bodies[i1], n);  // Eq. 12
@@ -214,6 +230,7 @@ namespace {
 /// The point correction once both sides' responses are known (applyPointCorrection).
 Vec3 solvePoint(SolverContext& ctx, uint32_t i0, uint32_t i1, const Vec3& delta,
                 const PointResponse& s0, const PointResponse& s1, double compliance, Vec3& lambda) {
+    if (skippedByRepair(ctx, delta.norm(), ctx.repairDistance, compliance)) return Vec3::Zero();
     const Body& b0 = ctx.bodies[i0];
     const Body& b1 = ctx.bodies[i1];
     // K = Σ (1/m) 1 − [r]× I⁻¹ [r]×: the generalised inverse mass of Eqs. 2-3 for every
@@ -256,6 +273,7 @@ Vec3 applyAttachmentCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1,
 
 Vec3 applyRotationCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, const Vec3& rotation,
                              double compliance, Vec3& lambda, const Vec3* freeAxis) {
+    if (skippedByRepair(ctx, rotation.norm(), ctx.repairAngle, compliance)) return Vec3::Zero();
     const Body& b0 = ctx.bodies[i0];
     const Body& b1 = ctx.bodies[i1];
     // K = I0⁻¹ + I1⁻¹ in world coordinates, each Σ d_k e_k e_kᵀ over the principal axes.

@@ -29,6 +29,11 @@ struct SolverContext {
     double invH2 = 0.0;   ///< 1/h², turns compliance α into α̃ = α/h²
     SolverType solver = SolverType::GaussSeidel;
     JacobiDelta* deltas = nullptr;  ///< one per body, Jacobi only
+    /// Repair pass (World::repairLargeViolations): only hard corrections at least this large
+    /// act (distance in m, angle in rad); 0 outside the pass, where every correction acts.
+    double repairDistance = 0.0;
+    double repairAngle = 0.0;
+    int repairs = 0;  ///< corrections the repair pass made
 };
 
 /// Eqs. 2-9: moves the point at world offset r0 of body i0 by `delta` relative to the point at

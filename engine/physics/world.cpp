@@ -98,6 +98,7 @@ JointId World::createJoint(const JointDef& def) {
     joint.alive = true;
     joint.generation = nextGeneration_++;
     anyDamping_ = anyDamping_ || def.linearDamping > 0.0 || def.angularDamping > 0.0;
+    repairPending_ = true;
 
     uint32_t index;
     if (!freeJoints_.empty()) {
@@ -134,6 +135,11 @@ void World::step(double dt) {
     lastSubstep_ = h;
     if (settings_.solver == SolverType::Jacobi) jacobiDeltas_.assign(bodies_.size(), JacobiDelta{});
 
+    if (repairPending_) {
+        repairPending_ = false;
+        if (settings_.repairDistance > 0.0 && settings_.repairAngle > 0.0) repairLargeViolations(h);
+    }
+
     for (int s = 0; s < substeps; ++s) {
         // λ is zeroed before each substep's solve (paper 3.3.1); motors advance their target.
         for (Joint& joint : joints_) {
@@ -146,6 +152,30 @@ void World::step(double dt) {
         deriveVelocities(h);
         if (anyDamping_) solveVelocities(h);
     }
+}
+
+void World::repairLargeViolations(double h) {
+    // One sweep looks for hard parts that are far off (it costs one evaluation of every joint
+    // per frame when there are none). If it finds any, Gauss-Seidel sweeps over every hard part
+    // then bring the violations down to a thousandth of the thresholds, so that what is left
+    // for the substeps is small. Velocities are not derived from these moves, so the repair
+    // adds no kinetic energy.
+    constexpr int kMaxSweeps = 16;
+    constexpr double kResidual = 1e-3;
+    SolverContext ctx{.bodies = bodies_.data(),
+                      .h = h,
+                      .invH2 = 1.0 / (h * h),
+                      .repairDistance = settings_.repairDistance,
+                      .repairAngle = settings_.repairAngle};
+    for (int sweep = 0; sweep < kMaxSweeps; ++sweep) {
+        ctx.repairs = 0;
+        for (Joint& joint : joints_)
+            if (joint.alive) solveJointPositions(joint, ctx);
+        if (ctx.repairs == 0) break;
+        ctx.repairDistance = kResidual * settings_.repairDistance;
+        ctx.repairAngle = kResidual * settings_.repairAngle;
+    }
+    for (Joint& joint : joints_) joint.resetMultipliers();
 }
 
 void World::integrate(double h) {
