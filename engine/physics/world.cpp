@@ -157,11 +157,11 @@ void World::step(double dt) {
 void World::repairLargeViolations(double h) {
     // One sweep looks for hard parts that are far off (it costs one evaluation of every joint
     // per frame when there are none). If it finds any, Gauss-Seidel sweeps over every hard part
-    // then bring the violations down to a thousandth of the thresholds, so that what is left
+    // then bring the violations down to 1e-5 of the thresholds, so that what is left
     // for the substeps is small. Velocities are not derived from these moves, so the repair
     // adds no kinetic energy.
-    constexpr int kMaxSweeps = 16;
-    constexpr double kResidual = 1e-3;
+    constexpr int kMaxSweeps = 32;
+    constexpr double kResidual = 1e-5;
     SolverContext ctx{.bodies = bodies_.data(),
                       .h = h,
                       .invH2 = 1.0 / (h * h),

@@ -39,7 +39,7 @@ TEST(RepairTest, HingeStartedFarOffItsAxisGainsNoEnergy) {
     for (const double angle : {M_PI / 2, 3 * M_PI / 4, 0.999 * M_PI}) {
         SCOPED_TRACE(angle);
         EXPECT_GT(kineticAfterOneFrame(JointType::Hinge, angle, false), 10.0);  // the weak spot
-        EXPECT_LT(kineticAfterOneFrame(JointType::Hinge, angle, true), 1.0);
+        EXPECT_LT(kineticAfterOneFrame(JointType::Hinge, angle, true), 0.1);
     }
 }
 
@@ -47,7 +47,7 @@ TEST(RepairTest, PrismaticAndFixedStartedFarOffGainNoEnergy) {
     for (const JointType type : {JointType::Prismatic, JointType::Fixed}) {
         for (const double angle : {M_PI / 2, 0.999 * M_PI}) {
             SCOPED_TRACE(angle);
-            EXPECT_LT(kineticAfterOneFrame(type, angle, true), 1.0);
+            EXPECT_LT(kineticAfterOneFrame(type, angle, true), 0.1);
         }
     }
 }
@@ -63,23 +63,33 @@ TEST(RepairTest, DistantAnchorsAreJoinedWithoutAKick) {
     EXPECT_LT(world.energies().kinetic, 1e-6);
 }
 
-// A body moved by hand is repaired on request, and only then: the running simulation's own
+// A body turned by hand is repaired on request, and only then: the running simulation's own
 // errors are left to the substeps.
-TEST(RepairTest, TeleportedBodyIsRepairedOnRequest) {
+TEST(RepairTest, BodyTurnedByHandIsRepairedOnRequest) {
     for (const bool request : {false, true}) {
+        SCOPED_TRACE(request);
         World world(WorldSettings{.gravity = Vec3::Zero(), .substeps = 20});
-        const BodyId ball =
-            world.createBody({.shape = sphereShape(0.1), .mass = 1, .position = Vec3(0.5, 0, 0)});
-        world.createJoint({.type = JointType::Distance, .body1 = ball, .anchor0 = Vec3(0.5, 0, 0)});
+        const BodyId bar = world.createBody(
+            {.shape = boxShape(Vec3(1, 0.1, 0.1)), .mass = 5, .position = Vec3(0.5, 2, 0)});
+        world.createJoint({.type = JointType::Hinge,
+                           .body1 = bar,
+                           .anchor0 = Vec3(0, 2, 0),
+                           .anchor1 = Vec3(-0.5, 0, 0),
+                           .axis0 = Vec3::UnitZ(),
+                           .axis1 = Vec3::UnitZ()});
         world.step(kDt);
-        world.body(ball).x = Vec3(1.5, 0, 0);  // a metre off its anchor
+        // Turn the bar 90° about world y around the hinge point: its axis now lies along x.
+        Body& body = world.body(bar);
+        const Quat turn(Eigen::AngleAxisd(M_PI / 2, Vec3::UnitY()));
+        body.q = turn * body.q;
+        body.x = Vec3(0, 2, 0) + turn * (body.x - Vec3(0, 2, 0));
         if (request) world.requestRepair();
         world.step(kDt);
         const double kinetic = world.energies().kinetic;
         if (request)
-            EXPECT_LT(kinetic, 1e-6);
+            EXPECT_LT(kinetic, 1e-3);
         else
-            EXPECT_GT(kinetic, 100.0);  // (1 m / h)² / 2 with h = 1/1200 s: the velocity kick
+            EXPECT_GT(kinetic, 10.0);  // the weak spot the repair removes
     }
 }
 
