@@ -1,0 +1,371 @@
+#include "bench_command.h"
+
+#include "atomic_file.h"
+#include "scene_source.h"
+#include "scenes/scene_registry.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <charconv>
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace substep {
+
+namespace {
+
+/// A bad option value; what() names the option.
+class UsageError : public std::runtime_error {
+  public:
+    using std::runtime_error::runtime_error;
+};
+
+/// Frames per repeat (warm-up and timed together), a sanity bound like `run`'s --frames.
+constexpr long long kMaxBenchFrames = 10'000'000;
+
+struct BenchSettings {
+    double seconds = kBenchDefaultSeconds;
+    int repeats = static_cast<int>(kBenchDefaultRepeats);
+};
+
+long long parseInteger(const char* option, const std::string& text, long long lowest,
+                       long long highest) {
+    long long value = 0;
+    const char* end = text.data() + text.size();
+    const auto [last, error] = std::from_chars(text.data(), end, value);
+    if (error == std::errc::result_out_of_range)
+        value = text.front() == '-' ? lowest - 1 : highest + 1;
+    else if (error != std::errc() || last != end || text.empty()) {
+        throw UsageError(std::string(option) + ": expected a whole number, got '" + text + "'");
+    }
+    if (value < lowest || value > highest) {
+        throw UsageError(std::string(option) + " must be between " + std::to_string(lowest) +
+                         " and " + std::to_string(highest) + ", got " + text);
+    }
+    return value;
+}
+
+double parseSeconds(const char* option, const std::string& text, double highest) {
+    double value = 0.0;
+    const char* end = text.data() + text.size();
+    const auto [last, error] = std::from_chars(text.data(), end, value);
+    if (error == std::errc::result_out_of_range) {
+        throw UsageError(std::string(option) + ": " + text + " is out of range");
+    }
+    if (error != std::errc() || last != end || text.empty()) {
+        throw UsageError(std::string(option) + ": expected a number, got '" + text + "'");
+    }
+    if (!std::isfinite(value) || value <= 0.0 || value > highest) {
+        throw UsageError(std::string(option) + " must be positive, finite and at most " +
+                         std::to_string(static_cast<long long>(highest)) + ", got " + text);
+    }
+    return value;
+}
+
+BenchSettings checkOptions(const BenchOptions& options) {
+    BenchSettings settings;
+    if (!options.seconds.empty())
+        settings.seconds = parseSeconds("--seconds", options.seconds, kBenchMaxSeconds);
+    if (!options.repeats.empty()) {
+        settings.repeats =
+            static_cast<int>(parseInteger("--repeats", options.repeats, 1, kBenchMaxRepeats));
+    }
+    return settings;
+}
+
+/// One scene to measure: its description and what the table says about it.
+struct BenchScene {
+    SceneSource source;
+    double paperMsPerFrame = 0.0;  ///< 0: the paper gives none
+    long long warmUpFrames = 0;
+    long long timedFrames = 0;
+};
+
+/// What one scene measured.
+struct BenchResult {
+    std::vector<double> repeatMsPerFrame;  ///< each repeat's mean over its timed frames
+    double medianMsPerFrame = 0.0;
+    bool finite = true;
+};
+
+/// Bodies the solver moves; static ones (a ceiling, the ground) cost nothing per substep, and
+/// the paper's Table 1 counts the moving ones ("3 Boxes").
+std::size_t movingBodies(const SceneDescription& description) {
+    return static_cast<std::size_t>(
+        std::count_if(description.bodies.begin(), description.bodies.end(),
+                      [](const SceneBody& body) { return body.def.type != BodyType::Static; }));
+}
+
+/// buildScene, with the scene named in whatever it throws (an unknown body in a built-in scene).
+SceneInstance build(const SceneSource& source) {
+    try {
+        return buildScene(source.description);
+    } catch (const std::exception& error) {
+        throw std::runtime_error(source.label + ": " + error.what());
+    }
+}
+
+/// Resolves every SCENE (default: all built-ins) and sizes its runs. Throws on the first bad
+/// one, before anything has run or been written.
+std::vector<BenchScene> resolveScenes(const BenchOptions& options, const BenchSettings& settings) {
+    std::vector<std::string> names = options.scenes;
+    if (names.empty()) {
+        for (const SceneEntry& entry : builtinScenes())
+            names.emplace_back(entry.name);
+    }
+    std::vector<BenchScene> scenes;
+    for (const std::string& name : names) {
+        BenchScene scene{.source = resolveScene(name)};
+        if (scene.source.builtin) scene.paperMsPerFrame = findBuiltinScene(name)->paperMsPerFrame;
+        const double dt = scene.source.description.dt;
+        // At least one frame each, so a --seconds shorter than dt still measures something.
+        const double warmUp = std::max(1.0, std::round(kBenchWarmUpSeconds / dt));
+        const double timed = std::max(1.0, std::round(settings.seconds / dt));
+        if (!(warmUp + timed <= static_cast<double>(kMaxBenchFrames))) {
+            throw UsageError(name + ": --seconds " + std::to_string(settings.seconds) + " at dt " +
+                             std::to_string(dt) + " is more than " +
+                             std::to_string(kMaxBenchFrames) + " frames");
+        }
+        scene.warmUpFrames = static_cast<long long>(warmUp);
+        scene.timedFrames = static_cast<long long>(timed);
+        build(scene.source);  // a scene that cannot be built fails here, before any output
+        scenes.push_back(std::move(scene));
+    }
+    return scenes;
+}
+
+// Ctrl-C ends a long bench cleanly: the loop notices, and the temporary output is removed.
+volatile std::sig_atomic_t gInterrupted = 0;
+extern "C" void onBenchInterrupt(int signal) {
+    gInterrupted = signal;
+}
+
+/// Installs onBenchInterrupt for SIGINT and SIGTERM while alive; restores the previous handlers.
+class InterruptGuard {
+  public:
+    InterruptGuard() {
+        gInterrupted = 0;
+        previousInt_ = std::signal(SIGINT, onBenchInterrupt);
+        previousTerm_ = std::signal(SIGTERM, onBenchInterrupt);
+    }
+    ~InterruptGuard() {
+        std::signal(SIGINT, previousInt_);
+        std::signal(SIGTERM, previousTerm_);
+    }
+    InterruptGuard(const InterruptGuard&) = delete;
+    InterruptGuard& operator=(const InterruptGuard&) = delete;
+
+  private:
+    void (*previousInt_)(int) = SIG_DFL;
+    void (*previousTerm_)(int) = SIG_DFL;
+};
+
+/// Thrown out of the frame loop on Ctrl-C; carries the exit code.
+struct Interrupted {
+    int exitCode;
+};
+
+double median(std::vector<double> values) {
+    std::sort(values.begin(), values.end());
+    const std::size_t middle = values.size() / 2;
+    if (values.size() % 2 == 1) return values[middle];
+    return 0.5 * (values[middle - 1] + values[middle]);
+}
+
+/// Runs one scene: every repeat from a fresh build, warm-up untimed, then only world.step
+/// timed. A scene that turns non-finite stops at once; its figures are then meaningless.
+BenchResult measure(const BenchScene& scene, const BenchSettings& settings) {
+    const double dt = scene.source.description.dt;
+    BenchResult result;
+    for (int repeat = 0; repeat < settings.repeats && result.finite; ++repeat) {
+        SceneInstance instance = build(scene.source);
+        World& world = instance.world;
+        std::chrono::steady_clock::duration stepTime{};
+        const long long frames = scene.warmUpFrames + scene.timedFrames;
+        for (long long frame = 0; frame < frames; ++frame) {
+            if (gInterrupted != 0) throw Interrupted{128 + gInterrupted};
+            const auto start = std::chrono::steady_clock::now();
+            world.step(dt);
+            const auto end = std::chrono::steady_clock::now();
+            if (frame >= scene.warmUpFrames) stepTime += end - start;
+            if (!world.isFinite()) {
+                result.finite = false;
+                break;
+            }
+        }
+        if (!result.finite) break;
+        result.repeatMsPerFrame.push_back(
+            std::chrono::duration<double, std::milli>(stepTime).count() /
+            static_cast<double>(scene.timedFrames));
+    }
+    if (result.finite) result.medianMsPerFrame = median(result.repeatMsPerFrame);
+    return result;
+}
+
+/// The table, Table 1's columns. Rows print as their scene finishes, so they are the progress.
+class BenchTable {
+  public:
+    explicit BenchTable(const std::vector<BenchScene>& scenes) {
+        for (const BenchScene& scene : scenes)
+            nameWidth_ = std::max(nameWidth_, static_cast<int>(scene.source.label.size()));
+    }
+
+    void printHeader() const {
+        std::printf("%-*s  %6s  %6s  %14s  %8s  %10s  %10s  %14s  %10s\n", nameWidth_, "scene",
+                    "bodies", "joints", "contacts/frame", "substeps", "iterations", "ms/frame",
+                    "paper ms/frame", "paper/ours");
+        std::fflush(stdout);
+    }
+
+    void printRow(const BenchScene& scene, const BenchResult& result) const {
+        const SceneDescription& description = scene.source.description;
+        std::string ours = "non-finite";
+        std::string paper;
+        std::string ratio;
+        if (result.finite) ours = format("%.4g", result.medianMsPerFrame);
+        if (scene.paperMsPerFrame > 0.0) {
+            paper = format("%.3g", scene.paperMsPerFrame);
+            if (result.finite && result.medianMsPerFrame > 0.0)
+                ratio = format("%.1fx", scene.paperMsPerFrame / result.medianMsPerFrame);
+        }
+        // Contacts per frame: always 0 until the contact module lands; the column stays so the
+        // table keeps Table 1's shape.
+        const std::string row =
+            format("%-*s  %6zu  %6zu  %14d  %8d  %10d  %10s  %14s  %10s", nameWidth_,
+                   scene.source.label.c_str(), movingBodies(description), description.joints.size(),
+                   0, description.substeps, description.iterations, ours.c_str(), paper.c_str(),
+                   ratio.c_str());
+        // Blank trailing columns leave no trailing spaces.
+        std::printf("%s\n", row.substr(0, row.find_last_not_of(' ') + 1).c_str());
+        std::fflush(stdout);
+    }
+
+  private:
+    template <typename... Args>
+    static std::string format(const char* pattern, Args... args) {
+        const int size = std::snprintf(nullptr, 0, pattern, args...);
+        std::string text(static_cast<std::size_t>(size) + 1, '\0');
+        std::snprintf(text.data(), text.size(), pattern, args...);
+        text.resize(static_cast<std::size_t>(size));
+        return text;
+    }
+
+    int nameWidth_ = 5;  // "scene"
+};
+
+/// One object per scene, the table's columns plus what the run was (frames, repeats).
+nlohmann::ordered_json resultJson(const BenchScene& scene, const BenchResult& result,
+                                  const BenchSettings& settings) {
+    const SceneDescription& description = scene.source.description;
+    nlohmann::ordered_json json;
+    json["scene"] = scene.source.label;
+    json["bodies"] = movingBodies(description);
+    json["static_bodies"] = description.bodies.size() - movingBodies(description);
+    json["joints"] = description.joints.size();
+    json["contacts_per_frame"] = 0;  // no contacts until the contact module lands
+    json["substeps"] = description.substeps;
+    json["iterations"] = description.iterations;
+    json["dt"] = description.dt;
+    json["warm_up_frames"] = scene.warmUpFrames;
+    json["timed_frames"] = scene.timedFrames;
+    json["repeats"] = settings.repeats;
+    json["repeat_ms_per_frame"] = result.repeatMsPerFrame;
+    json["median_ms_per_frame"] = nullptr;
+    if (result.finite) json["median_ms_per_frame"] = result.medianMsPerFrame;
+    json["paper_ms_per_frame"] = nullptr;
+    json["paper_ratio"] = nullptr;
+    if (scene.paperMsPerFrame > 0.0) {
+        json["paper_ms_per_frame"] = scene.paperMsPerFrame;
+        if (result.finite && result.medianMsPerFrame > 0.0)
+            json["paper_ratio"] = scene.paperMsPerFrame / result.medianMsPerFrame;
+    }
+    json["finite"] = result.finite;
+    return json;
+}
+
+int bench(const BenchOptions& options) {
+    // Check every input before anything runs or exists: bad options, scenes or an unwritable
+    // --json path leave no file behind and cost no benchmark time.
+    const BenchSettings settings = checkOptions(options);
+    const std::vector<BenchScene> scenes = resolveScenes(options, settings);
+    std::unique_ptr<AtomicFile> jsonFile;
+    if (!options.jsonPath.empty()) jsonFile = std::make_unique<AtomicFile>(options.jsonPath);
+
+    const BenchTable table(scenes);
+    table.printHeader();
+    const InterruptGuard interruptGuard;
+    nlohmann::ordered_json json = nlohmann::ordered_json::array();
+    std::vector<std::string> nonFinite;
+    for (const BenchScene& scene : scenes) {
+        BenchResult result;
+        try {
+            result = measure(scene, settings);
+        } catch (const Interrupted& interrupted) {
+            std::fprintf(stderr, "substep bench: interrupted; no output written\n");
+            return interrupted.exitCode;
+        }
+        table.printRow(scene, result);
+        json.push_back(resultJson(scene, result, settings));
+        if (!result.finite) nonFinite.push_back(scene.source.label);
+    }
+    std::printf(
+        "ms/frame: median of %d repeat%s of %.6g s each after a %.6g s warm-up, world step "
+        "only, one thread\n"
+        "bodies: moving ones; paper: Table 1 (3.6 GHz Core i7); paper/ours > 1: faster "
+        "here\n",
+        settings.repeats, settings.repeats == 1 ? "" : "s", settings.seconds, kBenchWarmUpSeconds);
+
+    if (jsonFile) {
+        jsonFile->write(json.dump(2) + "\n");
+        jsonFile->commit();
+    }
+    if (!nonFinite.empty()) {
+        std::string names;
+        for (const std::string& name : nonFinite)
+            names += (names.empty() ? "" : ", ") + name;
+        std::fprintf(stderr, "substep bench: the state turned non-finite in %s\n", names.c_str());
+        return 1;
+    }
+    return 0;
+}
+
+}  // namespace
+
+CLI::App* addBenchCommand(CLI::App& app, BenchOptions& options) {
+    CLI::App* command =
+        app.add_subcommand("bench", "Milliseconds per frame per scene, like the paper's Table 1");
+    command->add_option("SCENE", options.scenes,
+                        "Built-in scene names or .json scene files (default: every built-in)");
+    command->add_option("--json", options.jsonPath, "Write the table as a JSON array")
+        ->type_name("F");
+    command
+        ->add_option("--seconds", options.seconds,
+                     "Simulated time timed per repeat, after a 1 s warm-up (default 3)")
+        ->type_name("T");
+    command
+        ->add_option("--repeats", options.repeats,
+                     "Repeats per scene, each from a fresh build "
+                     "(1-100, default 3); the median is reported")
+        ->type_name("N");
+    return command;
+}
+
+int benchCommand(const BenchOptions& options) {
+    // Everything thrown here is bad input (UsageError, UnknownSceneError, SceneError) or an
+    // output that cannot be written (OutputError); each message names its option or file.
+    try {
+        return bench(options);
+    } catch (const std::exception& error) {
+        std::fprintf(stderr, "substep bench: %s\n", error.what());
+        return 2;
+    }
+}
+
+}  // namespace substep

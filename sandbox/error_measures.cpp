@@ -1,0 +1,87 @@
+#include "error_measures.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace substep {
+
+ErrorReference errorReference(const SceneEntry* entry, const World& world) {
+    ErrorReference reference;
+    if (entry != nullptr) reference.chain = entry->chain;
+    if (entry != nullptr && entry->energyScale > 0.0) {
+        reference.energyScale = entry->energyScale;
+        return reference;
+    }
+    // The weight lifted by 1 m: the energy a scene of this size trades in ordinary motion.
+    double weight = 0.0;
+    for (const Body& body : world.bodies())
+        if (body.alive && body.isDynamic()) weight += body.mass * world.settings().gravity.norm();
+    if (weight > 0.0 && std::isfinite(weight)) reference.energyScale = weight * 1.0;
+    return reference;
+}
+
+ErrorRecorder::ErrorRecorder(const SceneInstance& scene, const ErrorReference& reference)
+    : scene_(scene), reference_(reference) {
+    const std::span<const Joint> joints = scene.world.joints();
+    for (std::size_t i = 0; i < joints.size(); ++i) {
+        if (joints[i].alive) {
+            joints_.push_back(
+                {.index = static_cast<uint32_t>(i), .generation = joints[i].generation});
+        }
+    }
+    if (!reference_.chain.endBody.empty()) {
+        for (const auto& [name, id] : scene.namedBodies)
+            if (name == reference_.chain.endBody) chainEnd_ = id;
+        if (!chainEnd_) {
+            throw std::invalid_argument("chain measure: no body named '" +
+                                        std::string(reference_.chain.endBody) + "'");
+        }
+    }
+}
+
+void ErrorRecorder::sample() {
+    const World& world = scene_.world;
+    const double energy = world.energies().total();
+    if (samples_ == 0) initialEnergy_ = energy;
+    lastEnergy_ = energy;
+    largestEnergyChange_ = std::max(largestEnergyChange_, std::abs(energy - initialEnergy_));
+
+    double sum = 0.0;
+    for (const JointId id : joints_) {
+        const double error = world.jointReadout(id).error;
+        sum += error;
+        maxJointError_ = std::max(maxJointError_, error);
+    }
+    if (!joints_.empty()) jointErrorMeanSum_ += sum / static_cast<double>(joints_.size());
+    ++samples_;
+
+    // A non-finite sample poisons the measures for good: std::max ignores NaN, so say it here.
+    if (!std::isfinite(energy) || !std::isfinite(sum)) {
+        largestEnergyChange_ = maxJointError_ = INFINITY;
+    }
+}
+
+ErrorMeasures ErrorRecorder::measures() const {
+    ErrorMeasures result;
+    if (samples_ == 0) return result;
+    const double scale = reference_.energyScale;
+    result.energyDrift = largestEnergyChange_ / scale;
+    result.energyErrorFinal = std::abs(lastEnergy_ - initialEnergy_) / scale;
+    result.maxJointError = maxJointError_;
+    result.meanJointError = jointErrorMeanSum_ / static_cast<double>(samples_);
+    if (chainEnd_) {
+        // The end point's world position, from the end body's own (user) frame.
+        const Body& end = scene_.world.body(*chainEnd_);
+        const ChainMeasure& chain = reference_.chain;
+        const Vec3 point =
+            end.userPosition() +
+            end.userOrientation() * Vec3(chain.endPoint[0], chain.endPoint[1], chain.endPoint[2]);
+        const Vec3 anchor(chain.anchor[0], chain.anchor[1], chain.anchor[2]);
+        result.chainElongation = ((point - anchor).norm() - chain.restLength) / chain.restLength;
+    }
+    return result;
+}
+
+}  // namespace substep
