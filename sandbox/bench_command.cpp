@@ -1,31 +1,23 @@
 #include "bench_command.h"
 
 #include "atomic_file.h"
+#include "command_options.h"
 #include "scene_source.h"
 #include "scenes/scene_registry.h"
 
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
-#include <charconv>
 #include <chrono>
 #include <cmath>
-#include <csignal>
 #include <cstdio>
 #include <memory>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
 namespace substep {
 
 namespace {
-
-/// A bad option value; what() names the option.
-class UsageError : public std::runtime_error {
-  public:
-    using std::runtime_error::runtime_error;
-};
 
 /// Frames per repeat (warm-up and timed together), a sanity bound like `run`'s --frames.
 constexpr long long kMaxBenchFrames = 10'000'000;
@@ -35,44 +27,10 @@ struct BenchSettings {
     int repeats = static_cast<int>(kBenchDefaultRepeats);
 };
 
-long long parseInteger(const char* option, const std::string& text, long long lowest,
-                       long long highest) {
-    long long value = 0;
-    const char* end = text.data() + text.size();
-    const auto [last, error] = std::from_chars(text.data(), end, value);
-    if (error == std::errc::result_out_of_range)
-        value = text.front() == '-' ? lowest - 1 : highest + 1;
-    else if (error != std::errc() || last != end || text.empty()) {
-        throw UsageError(std::string(option) + ": expected a whole number, got '" + text + "'");
-    }
-    if (value < lowest || value > highest) {
-        throw UsageError(std::string(option) + " must be between " + std::to_string(lowest) +
-                         " and " + std::to_string(highest) + ", got " + text);
-    }
-    return value;
-}
-
-double parseSeconds(const char* option, const std::string& text, double highest) {
-    double value = 0.0;
-    const char* end = text.data() + text.size();
-    const auto [last, error] = std::from_chars(text.data(), end, value);
-    if (error == std::errc::result_out_of_range) {
-        throw UsageError(std::string(option) + ": " + text + " is out of range");
-    }
-    if (error != std::errc() || last != end || text.empty()) {
-        throw UsageError(std::string(option) + ": expected a number, got '" + text + "'");
-    }
-    if (!std::isfinite(value) || value <= 0.0 || value > highest) {
-        throw UsageError(std::string(option) + " must be positive, finite and at most " +
-                         std::to_string(static_cast<long long>(highest)) + ", got " + text);
-    }
-    return value;
-}
-
 BenchSettings checkOptions(const BenchOptions& options) {
     BenchSettings settings;
     if (!options.seconds.empty())
-        settings.seconds = parseSeconds("--seconds", options.seconds, kBenchMaxSeconds);
+        settings.seconds = parsePositiveReal("--seconds", options.seconds, kBenchMaxSeconds);
     if (!options.repeats.empty()) {
         settings.repeats =
             static_cast<int>(parseInteger("--repeats", options.repeats, 1, kBenchMaxRepeats));
@@ -103,15 +61,6 @@ std::size_t movingBodies(const SceneDescription& description) {
                       [](const SceneBody& body) { return body.def.type != BodyType::Static; }));
 }
 
-/// buildScene, with the scene named in whatever it throws (an unknown body in a built-in scene).
-SceneInstance build(const SceneSource& source) {
-    try {
-        return buildScene(source.description);
-    } catch (const std::exception& error) {
-        throw std::runtime_error(source.label + ": " + error.what());
-    }
-}
-
 /// Resolves every SCENE (default: all built-ins) and sizes its runs. Throws on the first bad
 /// one, before anything has run or been written.
 std::vector<BenchScene> resolveScenes(const BenchOptions& options, const BenchSettings& settings) {
@@ -135,37 +84,12 @@ std::vector<BenchScene> resolveScenes(const BenchOptions& options, const BenchSe
         }
         scene.warmUpFrames = static_cast<long long>(warmUp);
         scene.timedFrames = static_cast<long long>(timed);
-        build(scene.source);  // a scene that cannot be built fails here, before any output
+        // A scene that cannot be built fails here, before any output.
+        buildLabelledScene(scene.source.description, scene.source.label);
         scenes.push_back(std::move(scene));
     }
     return scenes;
 }
-
-// Ctrl-C ends a long bench cleanly: the loop notices, and the temporary output is removed.
-volatile std::sig_atomic_t gInterrupted = 0;
-extern "C" void onBenchInterrupt(int signal) {
-    gInterrupted = signal;
-}
-
-/// Installs onBenchInterrupt for SIGINT and SIGTERM while alive; restores the previous handlers.
-class InterruptGuard {
-  public:
-    InterruptGuard() {
-        gInterrupted = 0;
-        previousInt_ = std::signal(SIGINT, onBenchInterrupt);
-        previousTerm_ = std::signal(SIGTERM, onBenchInterrupt);
-    }
-    ~InterruptGuard() {
-        std::signal(SIGINT, previousInt_);
-        std::signal(SIGTERM, previousTerm_);
-    }
-    InterruptGuard(const InterruptGuard&) = delete;
-    InterruptGuard& operator=(const InterruptGuard&) = delete;
-
-  private:
-    void (*previousInt_)(int) = SIG_DFL;
-    void (*previousTerm_)(int) = SIG_DFL;
-};
 
 /// Thrown out of the frame loop on Ctrl-C; carries the exit code.
 struct Interrupted {
@@ -185,12 +109,12 @@ BenchResult measure(const BenchScene& scene, const BenchSettings& settings) {
     const double dt = scene.source.description.dt;
     BenchResult result;
     for (int repeat = 0; repeat < settings.repeats && result.finite; ++repeat) {
-        SceneInstance instance = build(scene.source);
+        SceneInstance instance = buildLabelledScene(scene.source.description, scene.source.label);
         World& world = instance.world;
         std::chrono::steady_clock::duration stepTime{};
         const long long frames = scene.warmUpFrames + scene.timedFrames;
         for (long long frame = 0; frame < frames; ++frame) {
-            if (gInterrupted != 0) throw Interrupted{128 + gInterrupted};
+            if (const int signal = interruptSignal(); signal != 0) throw Interrupted{128 + signal};
             const auto start = std::chrono::steady_clock::now();
             world.step(dt);
             const auto end = std::chrono::steady_clock::now();
@@ -300,6 +224,7 @@ int bench(const BenchOptions& options) {
 
     const BenchTable table(scenes);
     table.printHeader();
+    // Ctrl-C ends a long bench cleanly: the loop notices, and the temporary output is removed.
     const InterruptGuard interruptGuard;
     nlohmann::ordered_json json = nlohmann::ordered_json::array();
     std::vector<std::string> nonFinite;
@@ -358,14 +283,7 @@ CLI::App* addBenchCommand(CLI::App& app, BenchOptions& options) {
 }
 
 int benchCommand(const BenchOptions& options) {
-    // Everything thrown here is bad input (UsageError, UnknownSceneError, SceneError) or an
-    // output that cannot be written (OutputError); each message names its option or file.
-    try {
-        return bench(options);
-    } catch (const std::exception& error) {
-        std::fprintf(stderr, "substep bench: %s\n", error.what());
-        return 2;
-    }
+    return runReportingErrors("bench", [&] { return bench(options); });
 }
 
 }  // namespace substep

@@ -1,6 +1,7 @@
 #include "run_command.h"
 
 #include "atomic_file.h"
+#include "command_options.h"
 #include "csv_writer.h"
 #include "scene_source.h"
 #include "state_columns.h"
@@ -8,25 +9,16 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
-#include <charconv>
 #include <chrono>
 #include <cmath>
-#include <csignal>
 #include <cstdio>
 #include <memory>
 #include <optional>
-#include <stdexcept>
 #include <vector>
 
 namespace substep {
 
 namespace {
-
-/// A bad option value; what() names the option.
-class UsageError : public std::runtime_error {
-  public:
-    using std::runtime_error::runtime_error;
-};
 
 /// The options once checked: every value within its accepted range.
 struct RunSettings {
@@ -36,39 +28,6 @@ struct RunSettings {
     std::optional<int> iterations;
     std::optional<double> dt;
 };
-
-long long parseInteger(const char* option, const std::string& text, long long lowest,
-                       long long highest) {
-    long long value = 0;
-    const char* end = text.data() + text.size();
-    const auto [last, error] = std::from_chars(text.data(), end, value);
-    if (error == std::errc::result_out_of_range)
-        value = text.front() == '-' ? lowest - 1 : highest + 1;
-    else if (error != std::errc() || last != end || text.empty()) {
-        throw UsageError(std::string(option) + ": expected a whole number, got '" + text + "'");
-    }
-    if (value < lowest || value > highest) {
-        throw UsageError(std::string(option) + " must be between " + std::to_string(lowest) +
-                         " and " + std::to_string(highest) + ", got " + text);
-    }
-    return value;
-}
-
-double parsePositiveReal(const char* option, const std::string& text) {
-    double value = 0.0;
-    const char* end = text.data() + text.size();
-    const auto [last, error] = std::from_chars(text.data(), end, value);
-    if (error == std::errc::result_out_of_range) {
-        throw UsageError(std::string(option) + ": " + text + " is out of range");
-    }
-    if (error != std::errc() || last != end || text.empty()) {
-        throw UsageError(std::string(option) + ": expected a number, got '" + text + "'");
-    }
-    if (!std::isfinite(value) || value <= 0.0) {
-        throw UsageError(std::string(option) + " must be positive and finite, got " + text);
-    }
-    return value;
-}
 
 RunSettings checkOptions(const RunOptions& options) {
     RunSettings settings;
@@ -95,43 +54,12 @@ RunSettings checkOptions(const RunOptions& options) {
 /// frames = round(T / dt) (DESIGN.md), --seconds 5 when neither is given.
 long long frameCount(const RunSettings& settings, double dt) {
     if (settings.frames) return *settings.frames;
-    const double seconds = settings.seconds.value_or(kDefaultSeconds);
-    const double frames = std::round(seconds / dt);
-    if (!(frames <= static_cast<double>(kMaxFrames))) {
-        throw UsageError("--seconds: T/dt is more than " + std::to_string(kMaxFrames) + " frames");
-    }
-    return static_cast<long long>(frames);
+    return framesForSeconds(settings.seconds.value_or(kDefaultSeconds), dt, kMaxFrames);
 }
 
 bool allFinite(const std::vector<double>& values) {
     return std::all_of(values.begin(), values.end(), [](double v) { return std::isfinite(v); });
 }
-
-// Ctrl-C ends a long run cleanly: the loop notices, and the temporary outputs are removed.
-volatile std::sig_atomic_t gInterrupted = 0;
-extern "C" void onInterrupt(int signal) {
-    gInterrupted = signal;
-}
-
-/// Installs onInterrupt for SIGINT and SIGTERM while alive; restores the previous handlers.
-class InterruptGuard {
-  public:
-    InterruptGuard() {
-        gInterrupted = 0;
-        previousInt_ = std::signal(SIGINT, onInterrupt);
-        previousTerm_ = std::signal(SIGTERM, onInterrupt);
-    }
-    ~InterruptGuard() {
-        std::signal(SIGINT, previousInt_);
-        std::signal(SIGTERM, previousTerm_);
-    }
-    InterruptGuard(const InterruptGuard&) = delete;
-    InterruptGuard& operator=(const InterruptGuard&) = delete;
-
-  private:
-    void (*previousInt_)(int) = SIG_DFL;
-    void (*previousTerm_)(int) = SIG_DFL;
-};
 
 /// What the run measured, for --json and the printed summary.
 struct RunSummary {
@@ -178,15 +106,6 @@ void printSummary(const SceneSource& source, const RunSummary& summary, double d
     std::printf("finite     %s\n", summary.finite ? "yes" : "no");
 }
 
-/// buildScene, with the scene named in whatever it throws (an unknown body in a built-in scene).
-SceneInstance build(const SceneSource& source) {
-    try {
-        return buildScene(source.description);
-    } catch (const std::exception& error) {
-        throw std::runtime_error(source.label + ": " + error.what());
-    }
-}
-
 int run(const RunOptions& options) {
     // Check every input before any output exists: a bad option or scene leaves no file behind.
     const RunSettings settings = checkOptions(options);
@@ -197,7 +116,7 @@ int run(const RunOptions& options) {
     if (settings.dt) description.dt = *settings.dt;
     const double dt = description.dt;
     const long long frames = frameCount(settings, dt);
-    SceneInstance scene = build(source);
+    SceneInstance scene = buildLabelledScene(description, source.label);
     World& world = scene.world;
 
     std::unique_ptr<AtomicFile> csvFile;
@@ -220,12 +139,13 @@ int run(const RunOptions& options) {
     summary.finite = world.isFinite() && allFinite(row);
 
     // The frame loop: only world.step is timed; sampling and formatting are not the solver's.
+    // Ctrl-C ends a long run cleanly: the loop notices, and the temporary outputs are removed.
     const InterruptGuard interruptGuard;
     std::chrono::steady_clock::duration stepTime{};
     for (long long frame = 1; frame <= frames && summary.finite; ++frame) {
-        if (gInterrupted != 0) {
+        if (const int signal = interruptSignal(); signal != 0) {
             std::fprintf(stderr, "substep run: interrupted; no output written\n");
-            return 128 + gInterrupted;
+            return 128 + signal;
         }
         const auto start = std::chrono::steady_clock::now();
         world.step(dt);
@@ -287,15 +207,7 @@ CLI::App* addRunCommand(CLI::App& app, RunOptions& options) {
 }
 
 int runCommand(const RunOptions& options) {
-    // Everything thrown here is bad input (UsageError, UnknownSceneError, SceneError) or an
-    // output that cannot be written (OutputError); each message already names its option or
-    // file. The temporary outputs are gone by now (AtomicFile's destructor).
-    try {
-        return run(options);
-    } catch (const std::exception& error) {
-        std::fprintf(stderr, "substep run: %s\n", error.what());
-        return 2;
-    }
+    return runReportingErrors("run", [&] { return run(options); });
 }
 
 }  // namespace substep

@@ -34,4 +34,12 @@ SceneSource resolveScene(const std::string& argument) {
     return {.description = loadSceneFile(argument), .label = argument, .builtin = false};
 }
 
+SceneInstance buildLabelledScene(const SceneDescription& description, const std::string& label) {
+    try {
+        return buildScene(description);
+    } catch (const std::exception& error) {
+        throw std::runtime_error(label + ": " + error.what());
+    }
+}
+
 }  // namespace substep

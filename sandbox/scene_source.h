@@ -27,4 +27,8 @@ struct SceneSource {
 /// file.
 SceneSource resolveScene(const std::string& argument);
 
+/// buildScene(description), with `label` (a SceneSource's) named in whatever it throws: an
+/// unknown body in a built-in scene reads "pendulum3: ...", not a bare message.
+SceneInstance buildLabelledScene(const SceneDescription& description, const std::string& label);
+
 }  // namespace substep

@@ -1,16 +1,15 @@
 #include "sweep_command.h"
 
 #include "atomic_file.h"
+#include "command_options.h"
 #include "csv_writer.h"
 #include "error_measures.h"
 #include "scene_source.h"
 
 #include <algorithm>
 #include <cerrno>
-#include <charconv>
 #include <chrono>
 #include <cmath>
-#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -39,50 +38,10 @@ constexpr int kMaxSubsteps = 10000;
 constexpr int kMaxIterations = 1000;
 constexpr long long kMaxFrames = 10'000'000;
 constexpr double kDefaultSeconds = 5.0;
-/// The plotter's exit code for "matplotlib is not installed" (tools/plot_sweep.py).
+/// The plotter's exit code for "matplotlib is not installed" (tools/plot_style.py).
 constexpr int kPlotterMissingMatplotlib = 3;
 
-/// A bad option value; what() names the option.
-class UsageError : public std::runtime_error {
-  public:
-    using std::runtime_error::runtime_error;
-};
-
 // --- Options -----------------------------------------------------------------------------------
-
-long long parseInteger(const char* option, std::string_view text, long long lowest,
-                       long long highest) {
-    long long value = 0;
-    const char* end = text.data() + text.size();
-    const auto [last, error] = std::from_chars(text.data(), end, value);
-    if (error == std::errc::result_out_of_range)
-        value = text.front() == '-' ? lowest - 1 : highest + 1;
-    else if (error != std::errc() || last != end || text.empty()) {
-        throw UsageError(std::string(option) + ": expected a whole number, got '" +
-                         std::string(text) + "'");
-    }
-    if (value < lowest || value > highest) {
-        throw UsageError(std::string(option) + " must be between " + std::to_string(lowest) +
-                         " and " + std::to_string(highest) + ", got " + std::string(text));
-    }
-    return value;
-}
-
-double parsePositiveReal(const char* option, const std::string& text) {
-    double value = 0.0;
-    const char* end = text.data() + text.size();
-    const auto [last, error] = std::from_chars(text.data(), end, value);
-    if (error == std::errc::result_out_of_range) {
-        throw UsageError(std::string(option) + ": " + text + " is out of range");
-    }
-    if (error != std::errc() || last != end || text.empty()) {
-        throw UsageError(std::string(option) + ": expected a number, got '" + text + "'");
-    }
-    if (!std::isfinite(value) || value <= 0.0) {
-        throw UsageError(std::string(option) + " must be positive and finite, got " + text);
-    }
-    return value;
-}
 
 /// The budgets to sweep, ascending, without repeats (--budget and --budgets are one set).
 std::vector<int> parseBudgets(const SweepOptions& options) {
@@ -145,33 +104,7 @@ std::vector<Split> allSplits(const std::vector<int>& budgets) {
     return splits;
 }
 
-// --- Interruption and progress -----------------------------------------------------------------
-
-// Ctrl-C ends a long sweep cleanly: the loop notices, and the temporary outputs are removed.
-volatile std::sig_atomic_t gInterrupted = 0;
-extern "C" void onSweepInterrupt(int signal) {
-    gInterrupted = signal;
-}
-
-/// Installs onSweepInterrupt for SIGINT and SIGTERM while alive; restores the previous handlers.
-class InterruptGuard {
-  public:
-    InterruptGuard() {
-        gInterrupted = 0;
-        previousInt_ = std::signal(SIGINT, onSweepInterrupt);
-        previousTerm_ = std::signal(SIGTERM, onSweepInterrupt);
-    }
-    ~InterruptGuard() {
-        std::signal(SIGINT, previousInt_);
-        std::signal(SIGTERM, previousTerm_);
-    }
-    InterruptGuard(const InterruptGuard&) = delete;
-    InterruptGuard& operator=(const InterruptGuard&) = delete;
-
-  private:
-    void (*previousInt_)(int) = SIG_DFL;
-    void (*previousTerm_)(int) = SIG_DFL;
-};
+// --- Progress ----------------------------------------------------------------------------------
 
 /// Progress on stderr: a bar redrawn in place when stderr is a terminal, otherwise one line per
 /// finished split (logs stay readable). Work is counted as frames x budget, which is what a
@@ -263,13 +196,7 @@ SplitResult runSplit(const SceneSource& source, const SceneEntry* entry, const S
     description.substeps = split.substeps;
     description.iterations = split.iterations;
     const double dt = description.dt;
-    SceneInstance scene = [&] {
-        try {
-            return buildScene(description);
-        } catch (const std::exception& error) {
-            throw std::runtime_error(source.label + ": " + error.what());
-        }
-    }();
+    SceneInstance scene = buildLabelledScene(description, source.label);
     World& world = scene.world;
     ErrorRecorder recorder(scene, errorReference(entry, world));
     recorder.sample();
@@ -278,7 +205,7 @@ SplitResult runSplit(const SceneSource& source, const SceneEntry* entry, const S
     std::vector<double> frameMs;
     frameMs.reserve(static_cast<std::size_t>(frames));
     for (long long frame = 1; frame <= frames; ++frame) {
-        if (gInterrupted != 0) throw Interrupted{gInterrupted};
+        if (const int signal = interruptSignal(); signal != 0) throw Interrupted{signal};
         const Clock::time_point start = Clock::now();
         world.step(dt);
         frameMs.push_back(std::chrono::duration<double, std::milli>(Clock::now() - start).count());
@@ -358,7 +285,8 @@ std::string pythonPath() {
 }
 
 /// tools/plot_sweep.py in the source tree this program was built from, else next to the
-/// program (an installed or copied build). Empty when neither exists.
+/// program (an installed or copied build, with plot_style.py beside it). Empty when neither
+/// exists.
 std::string findPlotScript() {
     std::vector<fs::path> candidates;
 #ifdef SUBSTEP_SOURCE_DIR
@@ -447,15 +375,11 @@ int sweep(const SweepOptions& options) {
     const SceneSource source = resolveScene(options.scene);
     const SceneEntry* entry = source.builtin ? findBuiltinScene(source.label) : nullptr;
     const double dt = source.description.dt;
-    const double frameCount = std::round(seconds / dt);
-    if (!(frameCount <= static_cast<double>(kMaxFrames))) {
-        throw UsageError("--seconds: T/dt is more than " + std::to_string(kMaxFrames) + " frames");
-    }
-    if (frameCount < 1.0) {
+    const long long frames = framesForSeconds(seconds, dt, kMaxFrames);
+    if (frames < 1) {
         throw UsageError("--seconds: " + options.seconds +
                          " s is less than half a frame (dt = " + std::to_string(dt) + " s)");
     }
-    const auto frames = static_cast<long long>(frameCount);
     const std::vector<Split> splits = allSplits(budgets);
     if (splits.empty()) throw UsageError("no split of the budget is within the accepted ranges");
 
@@ -479,6 +403,8 @@ int sweep(const SweepOptions& options) {
     // The sweep: each split from a fresh build of the scene with its own settings.
     std::vector<SplitResult> results;
     {
+        // Ctrl-C ends a long sweep cleanly: the loop notices, and the temporary outputs are
+        // removed.
         const InterruptGuard interruptGuard;
         Progress progress(source.label, splits, frames);
         for (std::size_t i = 0; i < splits.size(); ++i) {
@@ -563,14 +489,7 @@ CLI::App* addSweepCommand(CLI::App& app, SweepOptions& options) {
 }
 
 int sweepCommand(const SweepOptions& options) {
-    // Everything thrown here is bad input (UsageError, UnknownSceneError, SceneError) or an
-    // output that cannot be written (OutputError); each message names its option or file.
-    try {
-        return sweep(options);
-    } catch (const std::exception& error) {
-        std::fprintf(stderr, "substep sweep: %s\n", error.what());
-        return 2;
-    }
+    return runReportingErrors("sweep", [&] { return sweep(options); });
 }
 
 }  // namespace substep

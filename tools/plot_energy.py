@@ -13,18 +13,9 @@ import argparse
 import csv
 import os
 import sys
-import tempfile
 
-
-def import_pyplot():
-    try:
-        import matplotlib
-    except ImportError:
-        sys.stderr.write("plot_energy.py: matplotlib is missing: apt-get install python3-matplotlib\n")
-        sys.exit(3)
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    return plt
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))  # plot_style.py, beside this file
+import plot_style  # noqa: E402
 
 
 def read_run(path):
@@ -51,12 +42,11 @@ def main():
             parser.error(f"expected LABEL=RUN.csv, got '{item}'")
         runs.append((label, read_run(path)))
 
-    plt = import_pyplot()
+    plt = plot_style.import_pyplot("plot_energy.py")
     fig, ax = plt.subplots(figsize=(8, 5))
-    colours = plt.get_cmap("viridis")
     for i, (label, rows) in enumerate(runs):
         ax.plot([t for t, _ in rows], [e for _, e in rows], linewidth=1.4, label=label,
-                color=colours(0.85 * i / max(1, len(runs) - 1)))
+                color=plot_style.line_colour(plt, i, len(runs)))
     ax.axhline(runs[0][1][0][1], color="grey", linestyle="--", linewidth=1, label="E(0)")
     ax.set_xlabel("t (s)")
     ax.set_ylabel("total energy (J)")
@@ -65,19 +55,7 @@ def main():
     ax.set_title(args.title)
     fig.tight_layout()
 
-    # Whole or untouched: draw to a temporary file beside the target, then rename it into place.
-    directory = os.path.dirname(os.path.abspath(args.png))
-    handle, temporary = tempfile.mkstemp(prefix=".plot_energy-", suffix=".png", dir=directory)
-    try:
-        with os.fdopen(handle, "wb") as f:
-            fig.savefig(f, format="png", dpi=110)
-        umask = os.umask(0)
-        os.umask(umask)
-        os.chmod(temporary, 0o666 & ~umask)
-        os.replace(temporary, args.png)
-    except BaseException:
-        os.unlink(temporary)
-        raise
+    plot_style.save_png(fig, args.png, prefix=".plot_energy-")
 
 
 if __name__ == "__main__":

@@ -15,9 +15,9 @@ import csv
 import math
 import os
 import sys
-import tempfile
 
-MISSING_MATPLOTLIB = 3  # sweep_command.cpp relies on this exit code
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))  # plot_style.py, beside this file
+import plot_style  # noqa: E402
 
 # Error columns of the CSV contract, with the axis label of each.
 MEASURES = [
@@ -28,18 +28,6 @@ MEASURES = [
     ("chain_elongation", "chain elongation at T (relative)"),
     ("penetration", "penetration depth (m)"),
 ]
-
-
-def import_pyplot(quiet=False):
-    try:
-        import matplotlib
-    except ImportError:
-        if not quiet:
-            sys.stderr.write("plot_sweep.py: matplotlib is missing: apt-get install python3-matplotlib\n")
-        sys.exit(MISSING_MATPLOTLIB)
-    matplotlib.use("Agg")  # no display needed
-    import matplotlib.pyplot as plt
-    return plt
 
 
 def number(text):
@@ -77,7 +65,7 @@ def plottable(value):
 
 
 def draw(rows, png, title):
-    plt = import_pyplot()
+    plt = plot_style.import_pyplot("plot_sweep.py")
     measures = [(key, label) for key, label in MEASURES
                 if key in rows[0] and any(plottable(number(r[key])) for r in rows)]
     if not measures:
@@ -88,11 +76,10 @@ def draw(rows, png, title):
     panel_rows = math.ceil(len(measures) / columns)
     fig, axes = plt.subplots(panel_rows, columns, figsize=(6.2 * columns, 4.6 * panel_rows),
                              squeeze=False)
-    colours = plt.get_cmap("viridis")
     legend = {}  # one legend for the figure: label -> line
     for ax, (key, label) in zip(axes.flat, measures):
         for b, budget in enumerate(budgets):
-            colour = colours(0.85 * b / max(1, len(budgets) - 1))
+            colour = plot_style.line_colour(plt, b, len(budgets))
             points = [(float(r["ms_per_frame"]), number(r[key]), f'{r["substeps"]}x{r["iterations"]}')
                       for r in rows if int(r["budget"]) == budget]
             points = [p for p in points if plottable(p[1]) and p[0] > 0]
@@ -122,20 +109,7 @@ def draw(rows, png, title):
                bbox_to_anchor=(0.5, 1 - 0.55 / height))
     fig.tight_layout(rect=(0, 0, 1, 1 - 0.8 / height))
 
-    # Whole or untouched: draw to a temporary file beside the target, then rename it into place.
-    directory = os.path.dirname(os.path.abspath(png))
-    handle, temporary = tempfile.mkstemp(prefix=".plot_sweep-", suffix=".png", dir=directory)
-    try:
-        with os.fdopen(handle, "wb") as f:
-            fig.savefig(f, format="png", dpi=110)
-        # mkstemp makes the file private; give it the permissions a plain open() would.
-        umask = os.umask(0)
-        os.umask(umask)
-        os.chmod(temporary, 0o666 & ~umask)
-        os.replace(temporary, png)
-    except BaseException:
-        os.unlink(temporary)
-        raise
+    plot_style.save_png(fig, png, prefix=".plot_sweep-")
 
 
 def main():
@@ -146,7 +120,7 @@ def main():
     parser.add_argument("--check", action="store_true", help="only check that matplotlib imports")
     args = parser.parse_args()
     if args.check:
-        import_pyplot(quiet=True)  # the caller explains
+        plot_style.import_pyplot("plot_sweep.py", quiet=True)  # the caller explains
         return
     if not args.csv or not args.png:
         parser.error("CSV and PNG are required")

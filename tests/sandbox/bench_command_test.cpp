@@ -2,17 +2,14 @@
 // columns, the JSON array, and that bad input exits 2 leaving nothing behind. No timings are
 // checked (DESIGN.md: timings are benchmarks, never pass/fail tests), only that they are there.
 
+#include "command_test_support.h"
 #include "scenes/scene_registry.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include <sys/wait.h>
-#include <unistd.h>
 #include <algorithm>
 #include <cstdlib>
-#include <filesystem>
-#include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -20,23 +17,14 @@
 namespace substep {
 namespace {
 
+using command_test::CommandTest;
+using command_test::quoted;
+using command_test::readFile;
+using command_test::Result;
 namespace fs = std::filesystem;
 
 // Short and single: the tests check the output's shape, not the figures.
 const std::string kQuick = " --seconds 0.1 --repeats 1";
-
-struct Result {
-    int exitCode = -1;
-    std::string out;
-    std::string err;
-};
-
-std::string readFile(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::stringstream text;
-    text << in.rdbuf();
-    return text.str();
-}
 
 std::vector<std::string> words(const std::string& line) {
     std::vector<std::string> result;
@@ -63,45 +51,11 @@ std::size_t movingBodies(const SceneDescription& scene) {
                       [](const SceneBody& body) { return body.def.type != BodyType::Static; }));
 }
 
-std::string quoted(const std::string& text) {
-    std::string result = "'";
-    for (const char c : text)
-        result += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return result + "'";
-}
-
 /// Each test runs the program in its own empty working folder; stdout and stderr are captured
 /// outside it, so "nothing written" means the folder is still empty.
-class BenchCommand : public ::testing::Test {
+class BenchCommand : public CommandTest {
   protected:
-    void SetUp() override {
-        root_ = fs::temp_directory_path() /
-                ("bench_command_test_" + std::to_string(getpid()) + "_" +
-                 ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::remove_all(root_);
-        fs::create_directories(work());
-    }
-    void TearDown() override { fs::remove_all(root_); }
-
-    fs::path work() const { return root_ / "work"; }
-
-    Result substep(const std::string& arguments) const {
-        const fs::path out = root_ / "stdout.txt";
-        const fs::path err = root_ / "stderr.txt";
-        const std::string command = "cd " + quoted(work().string()) + " && " +
-                                    quoted(SUBSTEP_EXECUTABLE) + " " + arguments + " >" +
-                                    quoted(out.string()) + " 2>" + quoted(err.string());
-        const int status = std::system(command.c_str());
-        Result result;
-        result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-        result.out = readFile(out);
-        result.err = readFile(err);
-        return result;
-    }
-
     bool workIsEmpty() const { return fs::is_empty(work()); }
-
-    fs::path root_;
 };
 
 /// The two scenes the tests bench: one with a paper figure (boxes3), one with several

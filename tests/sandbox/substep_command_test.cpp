@@ -2,17 +2,14 @@
 // the built binary against DESIGN.md's command contract: columns, rows, exit codes, summaries,
 // and that bad input never leaves a file behind.
 
+#include "command_test_support.h"
 #include "scenes/scene_registry.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include <sys/wait.h>
-#include <unistd.h>
 #include <algorithm>
 #include <cstdlib>
-#include <filesystem>
-#include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -20,31 +17,15 @@
 namespace substep {
 namespace {
 
+using command_test::CommandTest;
+using command_test::lines;
+using command_test::quoted;
+using command_test::readFile;
+using command_test::Result;
 namespace fs = std::filesystem;
 
 const fs::path kHangScene = fs::path(SUBSTEP_TEST_DATA) / "sandbox" / "hang.json";
 constexpr double kHangDt = 0.016666666666666666;  // hang.json's dt
-
-struct Result {
-    int exitCode = -1;
-    std::string out;
-    std::string err;
-};
-
-std::string readFile(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::stringstream text;
-    text << in.rdbuf();
-    return text.str();
-}
-
-std::vector<std::string> lines(const std::string& text) {
-    std::vector<std::string> result;
-    std::istringstream in(text);
-    for (std::string line; std::getline(in, line);)
-        result.push_back(line);
-    return result;
-}
 
 std::vector<std::string> split(const std::string& line) {
     std::vector<std::string> cells;
@@ -54,53 +35,8 @@ std::vector<std::string> split(const std::string& line) {
     return cells;
 }
 
-std::string quoted(const std::string& text) {
-    std::string result = "'";
-    for (const char c : text)
-        result += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return result + "'";
-}
-
-/// Each test runs the program in its own empty working folder; stdout and stderr are captured
-/// outside it, so "nothing left behind" means the folder holds only what the test put there.
-class SubstepCommand : public ::testing::Test {
-  protected:
-    void SetUp() override {
-        root_ = fs::temp_directory_path() /
-                ("substep_command_test_" + std::to_string(getpid()) + "_" +
-                 ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::remove_all(root_);
-        fs::create_directories(work());
-    }
-    void TearDown() override { fs::remove_all(root_); }
-
-    fs::path work() const { return root_ / "work"; }
-
-    Result substep(const std::string& arguments) const {
-        const fs::path out = root_ / "stdout.txt";
-        const fs::path err = root_ / "stderr.txt";
-        const std::string command = "cd " + quoted(work().string()) + " && " +
-                                    quoted(SUBSTEP_EXECUTABLE) + " " + arguments + " >" +
-                                    quoted(out.string()) + " 2>" + quoted(err.string());
-        const int status = std::system(command.c_str());
-        Result result;
-        result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-        result.out = readFile(out);
-        result.err = readFile(err);
-        return result;
-    }
-
-    std::vector<std::string> workEntries() const {
-        std::vector<std::string> names;
-        for (const auto& entry : fs::directory_iterator(work())) {
-            names.push_back(entry.path().filename().string());
-        }
-        std::sort(names.begin(), names.end());
-        return names;
-    }
-
-    fs::path root_;
-};
+/// Each test runs the program in its own empty working folder (command_test_support.h).
+class SubstepCommand : public CommandTest {};
 
 const std::string kHang = quoted(kHangScene.string());
 

@@ -4,17 +4,14 @@
 
 #include "sweep_command.h"
 #include "error_measures.h"
+#include "command_test_support.h"
 #include "scenes/scene_registry.h"
 
 #include <gtest/gtest.h>
 
-#include <sys/wait.h>
-#include <unistd.h>
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
-#include <filesystem>
-#include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -22,28 +19,11 @@
 namespace substep {
 namespace {
 
+using command_test::CommandTest;
+using command_test::lines;
+using command_test::readFile;
+using command_test::Result;
 namespace fs = std::filesystem;
-
-struct Result {
-    int exitCode = -1;
-    std::string out;
-    std::string err;
-};
-
-std::string readFile(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::stringstream text;
-    text << in.rdbuf();
-    return text.str();
-}
-
-std::vector<std::string> lines(const std::string& text) {
-    std::vector<std::string> result;
-    std::istringstream in(text);
-    for (std::string line; std::getline(in, line);)
-        result.push_back(line);
-    return result;
-}
 
 /// Cells of a CSV line, keeping empty ones (a trailing blank cell included).
 std::vector<std::string> split(const std::string& line) {
@@ -55,13 +35,6 @@ std::vector<std::string> split(const std::string& line) {
             cells.back() += c;
     }
     return cells;
-}
-
-std::string quoted(const std::string& text) {
-    std::string result = "'";
-    for (const char c : text)
-        result += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return result + "'";
 }
 
 /// A sweep CSV read back: the header's columns and one map-like row per split.
@@ -95,45 +68,8 @@ bool matplotlibAvailable() {
     return std::system("/usr/bin/python3 -c 'import matplotlib' >/dev/null 2>&1") == 0;
 }
 
-/// Each test runs the program in its own empty working folder (see substep_command_test.cpp).
-class SweepCommand : public ::testing::Test {
-  protected:
-    void SetUp() override {
-        root_ = fs::temp_directory_path() /
-                ("sweep_command_test_" + std::to_string(getpid()) + "_" +
-                 ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::remove_all(root_);
-        fs::create_directories(work());
-    }
-    void TearDown() override { fs::remove_all(root_); }
-
-    fs::path work() const { return root_ / "work"; }
-
-    /// Runs `substep ARGUMENTS` in work(); `environment` is prefixed (e.g. "VAR=value").
-    Result substep(const std::string& arguments, const std::string& environment = "") const {
-        const fs::path out = root_ / "stdout.txt";
-        const fs::path err = root_ / "stderr.txt";
-        const std::string command = "cd " + quoted(work().string()) + " && " + environment + " " +
-                                    quoted(SUBSTEP_EXECUTABLE) + " " + arguments + " >" +
-                                    quoted(out.string()) + " 2>" + quoted(err.string());
-        const int status = std::system(command.c_str());
-        Result result;
-        result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-        result.out = readFile(out);
-        result.err = readFile(err);
-        return result;
-    }
-
-    std::vector<std::string> workEntries() const {
-        std::vector<std::string> names;
-        for (const auto& entry : fs::directory_iterator(work()))
-            names.push_back(entry.path().filename().string());
-        std::sort(names.begin(), names.end());
-        return names;
-    }
-
-    fs::path root_;
-};
+/// Each test runs the program in its own empty working folder (command_test_support.h).
+class SweepCommand : public CommandTest {};
 
 TEST_F(SweepCommand, EverySplitOfTheBudgetWithTheContractHeader) {
     const Result result = substep("sweep pendulum3 --budget 4 --seconds 0.2 --csv out.csv");

@@ -1,0 +1,105 @@
+#include "command_options.h"
+
+#include <charconv>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <exception>
+
+namespace substep {
+
+namespace {
+
+/// `text` as a number, or UsageError when it is not one (or does not fit a double).
+double parseReal(const char* option, const std::string& text) {
+    double value = 0.0;
+    const char* end = text.data() + text.size();
+    const auto [last, error] = std::from_chars(text.data(), end, value);
+    if (error == std::errc::result_out_of_range) {
+        throw UsageError(std::string(option) + ": " + text + " is out of range");
+    }
+    if (error != std::errc() || last != end || text.empty()) {
+        throw UsageError(std::string(option) + ": expected a number, got '" + text + "'");
+    }
+    return value;
+}
+
+// Set by the signal handler, read by the frame loops: a sig_atomic_t is all a handler may write.
+volatile std::sig_atomic_t gInterrupted = 0;
+
+extern "C" void onInterrupt(int signal) {
+    gInterrupted = signal;
+}
+
+}  // namespace
+
+int runReportingErrors(const char* command, const std::function<int()>& body) {
+    try {
+        return body();
+    } catch (const std::exception& error) {
+        std::fprintf(stderr, "substep %s: %s\n", command, error.what());
+        return 2;
+    }
+}
+
+long long parseInteger(const char* option, std::string_view text, long long lowest,
+                       long long highest) {
+    long long value = 0;
+    const char* end = text.data() + text.size();
+    const auto [last, error] = std::from_chars(text.data(), end, value);
+    // Too large either way is reported as out of range, not as "not a whole number".
+    if (error == std::errc::result_out_of_range)
+        value = text.front() == '-' ? lowest - 1 : highest + 1;
+    else if (error != std::errc() || last != end || text.empty()) {
+        throw UsageError(std::string(option) + ": expected a whole number, got '" +
+                         std::string(text) + "'");
+    }
+    if (value < lowest || value > highest) {
+        throw UsageError(std::string(option) + " must be between " + std::to_string(lowest) +
+                         " and " + std::to_string(highest) + ", got " + std::string(text));
+    }
+    return value;
+}
+
+double parsePositiveReal(const char* option, const std::string& text) {
+    const double value = parseReal(option, text);
+    if (!std::isfinite(value) || value <= 0.0) {
+        throw UsageError(std::string(option) + " must be positive and finite, got " + text);
+    }
+    return value;
+}
+
+double parsePositiveReal(const char* option, const std::string& text, double highest) {
+    const double value = parseReal(option, text);
+    if (!std::isfinite(value) || value <= 0.0 || value > highest) {
+        throw UsageError(std::string(option) + " must be positive, finite and at most " +
+                         std::to_string(static_cast<long long>(highest)) + ", got " + text);
+    }
+    return value;
+}
+
+long long framesForSeconds(double seconds, double dt, long long maxFrames) {
+    const double frames = std::round(seconds / dt);
+    // Written so that a NaN or infinite quotient fails too.
+    if (!(frames <= static_cast<double>(maxFrames))) {
+        throw UsageError("--seconds: T/dt is more than " + std::to_string(maxFrames) + " frames");
+    }
+    return static_cast<long long>(frames);
+}
+
+int interruptSignal() {
+    return gInterrupted;
+}
+
+InterruptGuard::InterruptGuard() {
+    gInterrupted = 0;
+    previousInt_ = std::signal(SIGINT, onInterrupt);
+    previousTerm_ = std::signal(SIGTERM, onInterrupt);
+}
+
+InterruptGuard::~InterruptGuard() {
+    std::signal(SIGINT, previousInt_);
+    std::signal(SIGTERM, previousTerm_);
+}
+
+}  // namespace substep
