@@ -27,6 +27,15 @@ SlideState slideState(const Joint& joint, const Body* bodies, const JointAnchors
     return {axis, along, offset - along * axis};
 }
 
+/// The joint's anchors with body 0's taken at the point of body 0 that body 1's anchor is
+/// sliding over (p1), not at body 0's own anchor: the corrections act where the bodies meet.
+/// With p0's lever arm, two bars sliding apart at 1 m/s gained energy without bound.
+JointAnchors slidingAnchors(const Joint& joint, const Body* bodies) {
+    JointAnchors anchors = jointAnchors(joint, bodies);
+    anchors.r0 = anchors.p1 - bodies[joint.body0].x;
+    return anchors;
+}
+
 double limitExcess(const Joint& joint, double offset) {
     if (!joint.hasLimits) return 0.0;
     if (offset < joint.limits.lower) return offset - joint.limits.lower;
@@ -39,12 +48,12 @@ double limitExcess(const Joint& joint, double offset) {
 void solvePrismaticJoint(Joint& joint, SolverContext& ctx) {
     solveOrientationLock(joint, ctx);
     {
-        const JointAnchors anchors = jointAnchors(joint, ctx.bodies);
+        const JointAnchors anchors = slidingAnchors(joint, ctx.bodies);
         const SlideState s = slideState(joint, ctx.bodies, anchors);
         solvePositionPart(joint, ctx, anchors, s.offAxis, joint.compliance, joint.lambdaAttach);
     }
     if (joint.hasLimits) {
-        const JointAnchors anchors = jointAnchors(joint, ctx.bodies);
+        const JointAnchors anchors = slidingAnchors(joint, ctx.bodies);
         const SlideState s = slideState(joint, ctx.bodies, anchors);
         const double excess = limitExcess(joint, s.offset);
         if (excess != 0.0)
@@ -52,7 +61,7 @@ void solvePrismaticJoint(Joint& joint, SolverContext& ctx) {
                               joint.lambdaLimit);
     }
     if (joint.drive == Joint::Drive::Position) {
-        const JointAnchors anchors = jointAnchors(joint, ctx.bodies);
+        const JointAnchors anchors = slidingAnchors(joint, ctx.bodies);
         const SlideState s = slideState(joint, ctx.bodies, anchors);
         solvePositionPart(joint, ctx, anchors, s.axis * (s.offset - joint.target),
                           joint.driveCompliance, joint.lambdaDrive);
