@@ -52,7 +52,7 @@ inline void moveBody(SolverContext& ctx, uint32_t index, const Vec3& dx, const V
         return;
     }
     body.x += dx;
-    if (body.rotates()) addRotation(body.q, dtheta);
+    if (body.rotates()) integrateRotation(body.q, dtheta);
 }
 
 /// World inverse inertia R diag(I⁻¹) Rᵀ (zero for bodies that do not rotate).

@@ -160,7 +160,7 @@ void World::repairLargeViolations(double h) {
     // then bring the violations down to 1e-5 of the thresholds, so that what is left
     // for the substeps is small. Velocities are not derived from these moves, so the repair
     // adds no kinetic energy.
-    constexpr int kMaxSweeps = 32;
+    constexpr int kMaxSweeps = 2000;
     constexpr double kResidual = 1e-5;
     SolverContext ctx{.bodies = bodies_.data(),
                       .h = h,
