@@ -3,6 +3,8 @@
 #include "physics/joints/joint_parts.h"
 #include "physics/joints/joint_solver.h"
 
+#include <Eigen/LU>
+
 #include <algorithm>
 #include <cmath>
 
@@ -21,6 +23,26 @@ Quat jointFrame(const Vec3& axis, const std::optional<Vec3>& normal) {
     frame.col(1) = b;
     frame.col(2) = a.cross(b);
     return Quat(frame).normalized();
+}
+
+/// One Newton step of the implicit gyroscopic update (Catto, "Numerical Methods", GDC 2015):
+/// ω' = ω − J⁻¹ h ω × Iω with J = I + h ([ω]× I − [Iω]×), all in the principal frame.
+Vec3 implicitGyroscopicStep(const Vec3& omega, const Vec3& inertia, double h) {
+    const Vec3 momentum = inertia.cwiseProduct(omega);
+    const Vec3 residual = h * omega.cross(momentum);
+    Mat3 omegaCross;
+    omegaCross << 0.0, -omega.z(), omega.y(), omega.z(), 0.0, -omega.x(), -omega.y(), omega.x(), 0.0;
+    Mat3 momentumCross;
+    momentumCross << 0.0, -momentum.z(), momentum.y(), momentum.z(), 0.0, -momentum.x(),
+        -momentum.y(), momentum.x(), 0.0;
+    Mat3 jacobian = h * (omegaCross * inertia.asDiagonal().toDenseMatrix() - momentumCross);
+    jacobian.diagonal() += inertia;
+    Mat3 inverse;
+    bool invertible = false;
+    double determinant = 0.0;
+    jacobian.computeInverseAndDetWithCheck(inverse, determinant, invertible, 1e-300);
+    if (!invertible) return omega;
+    return omega - inverse * residual;
 }
 
 }  // namespace
@@ -187,13 +209,12 @@ void World::integrate(double h) {
         b.x += h * b.v;
         if (!b.rotates()) continue;
         b.qPrev = b.q;
-        // Algorithm 2: ω ← ω + h I⁻¹(τ − ω × Iω), evaluated in the principal frame where I is
-        // diagonal. With equal moments ω × Iω vanishes, so cubes and spheres skip it.
-        if (!b.isotropic) {
-            Vec3 w = b.q.conjugate() * b.omega;
-            w += h * b.invInertia.cwiseProduct(-w.cross(b.inertia.cwiseProduct(w)));
-            b.omega = b.q * w;
-        }
+        // Algorithm 2's gyroscopic term ω ← ω − h I⁻¹ (ω × Iω), taken implicitly: one Newton
+        // step on I (ω' − ω) + h ω' × Iω' = 0 in the principal frame, where I is diagonal.
+        // The explicit form grows a wobble on a stable spin by exp(λ² h t / 2) (a disc at
+        // 100 rad/s: 14x per second at 20 substeps; a wheel on a light carrier blew up).
+        // With equal moments ω × Iω vanishes, so cubes and spheres skip it.
+        if (!b.isotropic) b.omega = b.q * implicitGyroscopicStep(b.q.conjugate() * b.omega, b.inertia, h);
         integrateRotation(b.q, h * b.omega);
     }
 }
