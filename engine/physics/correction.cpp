@@ -62,12 +62,6 @@ inline Mat3 worldInverseInertia(const Body& body) {
     return r * body.invInertia.asDiagonal() * r.transpose();
 }
 
-inline Mat3 crossMatrix(const Vec3& v) {
-    Mat3 m;
-    m << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
-    return m;
-}
-
 }  // namespace
 
 Vec3 applyPositionalCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, const Vec3& delta,

@@ -1,6 +1,8 @@
 #pragma once
-/// The two correction operations of paper 3.3: every joint and contact moves bodies through
-/// these, and only these, at the position level; plus their velocity-level counterpart (Eq. 33).
+/// The two correction operations of paper 3.3 (positional, Eqs. 2-9; angular, Eqs. 11-16) and
+/// their block forms for attachments, orientation locks and welds: every joint moves bodies
+/// through these, and only these, at the position level. Plus the velocity-level counterpart
+/// (Eq. 33).
 
 #include "physics/body.h"
 #include "physics/math.h"

@@ -107,6 +107,13 @@ inline double wrapAngle(double angle) {
     return angle <= -M_PI ? angle + 2.0 * M_PI : angle;
 }
 
+/// The matrix [v]× with [v]× u = v × u.
+inline Mat3 crossMatrix(const Vec3& v) {
+    Mat3 m;
+    m << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
+    return m;
+}
+
 inline bool isFinite(const Vec3& v) { return v.allFinite(); }
 inline bool isFinite(const Quat& q) { return q.coeffs().allFinite(); }
 

@@ -30,12 +30,8 @@ Quat jointFrame(const Vec3& axis, const std::optional<Vec3>& normal) {
 Vec3 implicitGyroscopicStep(const Vec3& omega, const Vec3& inertia, double h) {
     const Vec3 momentum = inertia.cwiseProduct(omega);
     const Vec3 residual = h * omega.cross(momentum);
-    Mat3 omegaCross;
-    omegaCross << 0.0, -omega.z(), omega.y(), omega.z(), 0.0, -omega.x(), -omega.y(), omega.x(), 0.0;
-    Mat3 momentumCross;
-    momentumCross << 0.0, -momentum.z(), momentum.y(), momentum.z(), 0.0, -momentum.x(),
-        -momentum.y(), momentum.x(), 0.0;
-    Mat3 jacobian = h * (omegaCross * inertia.asDiagonal().toDenseMatrix() - momentumCross);
+    Mat3 jacobian =
+        h * (crossMatrix(omega) * inertia.asDiagonal().toDenseMatrix() - crossMatrix(momentum));
     jacobian.diagonal() += inertia;
     Mat3 inverse;
     bool invertible = false;
