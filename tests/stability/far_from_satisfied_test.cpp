@@ -2,13 +2,14 @@
 // satisfied resolve in one substep and may inject energy. Measures the energy after the first
 // frame against before for the hinge, fixed, prismatic and spherical (with a swing limit) joints
 // whose axes start 90°, 135° and 180° apart or whose anchors start 1 m apart, at 20 substeps.
-// Documents the values; fails only on a real blow-up (non-finite, or more than 10 times the
-// energy the scene starts with).
+// FIXED weak spot for all but one case: with exact rotations and a repair that sweeps until
+// converged, the repair keeps the energy (asserted tightly, below).
 
 #include "stability_support.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <ostream>
@@ -154,15 +155,16 @@ class FarFromSatisfiedTest : public ::testing::TestWithParam<JointType> {};
 // 80, to show how it scales with h), with the engine's repair pass (World::repairLargeViolations,
 // the default) and without it (the paper's method): the energy above the lowest configuration
 // before, after the first frame, its kinetic part, the largest over 3 s, and the joint error at
-// 3 s. Fails only on a blow-up: non-finite anywhere, or, with the repair at 20 substeps or more,
-// the energy after the first frame above 10 times the energy before.
-// Measured (docs/STABILITY.md): without the repair every single bar but the fixed joint's jumps
-// 5-1200 fold (hinge turned 90°: 6.9 J -> 1074 J); the repair brings all of them to at most
-// 1.5 fold (what is left is potential energy: the repaired pose can sit higher). A chain of three
-// still jumps with the repair (hinge turned 90°: 68 J -> 1118 J; fixed 135°: 49 J -> 884 J;
-// spherical 180°: 44 J -> 264 kJ; every chain with anchors 1 m apart 80-23 000 fold): its 32
-// Gauss-Seidel sweeps leave 2-32 cm, which the first substep turns into velocity / h.
-// ENGINE WEAK SPOT: these fail the check.
+// 3 s. Measured (docs/STABILITY.md): without the repair, up to 6.6e4 fold (documented, not
+// judged). With the repair, at 5, 20 and 80 substeps, every case ends the first frame at most
+// 1.48 times its energy before (the swing-limited bar turned 180°: the repaired pose sits higher;
+// chains at most 1.13) and never exceeds that over 3 s (on the older engine chains reached
+// 16-2.3e4 fold). Asserted: after <= 1.6 x before, and the largest over 3 s <= 1.05 x
+// max(before, after).
+// ENGINE WEAK SPOT, still present: the prismatic chain with anchors 1 m apart gains x1.0 / x1.93
+// / x3.3 in the first frame at 5 / 20 / 80 substeps and goes on gaining (largest over 3 s 134 J
+// at 20, 1038 J = x23.5 at 80). Its present limit is asserted instead: first frame <= 5 x before,
+// largest over 3 s <= 50 x before (without the repair: x1e3-1.7e4 in the first frame).
 TEST_P(FarFromSatisfiedTest, EnergyAfterTheFirstFrame) {
     const JointType type = GetParam();
     for (const int links : {1, 3}) {
@@ -183,11 +185,19 @@ TEST_P(FarFromSatisfiedTest, EnergyAfterTheFirstFrame) {
                         r.lastError, r.finite ? "" : ", NON-FINITE");
                     if (substeps == 20) report("far_" + name + "_energy_ratio", r.after / r.before);
                     EXPECT_TRUE(r.finite) << name;
-                    // The paper's method (no repair) and substeps coarser than the default are
-                    // documented, not judged.
-                    if (!repair || substeps < 20) continue;
-                    EXPECT_LT(r.after, 10.0 * r.before)
-                        << name << " blows up in the first frame (docs/STABILITY.md)";
+                    // The paper's method (no repair) is documented, not judged.
+                    if (!repair) continue;
+                    const bool weakSpot = type == JointType::Prismatic && links == 3 &&
+                                          start == Start::Apart1m;
+                    if (weakSpot) {
+                        EXPECT_LE(r.after, 5.0 * r.before) << name << " (present limit x5)";
+                        EXPECT_LE(r.largest, 50.0 * r.before) << name << " (present limit x50)";
+                    } else {
+                        EXPECT_LE(r.after, 1.6 * r.before)
+                            << name << " gains energy in the first frame (docs/STABILITY.md)";
+                        EXPECT_LE(r.largest, 1.05 * std::max(r.before, r.after))
+                            << name << " gains energy after the first frame";
+                    }
                 }
             }
         }

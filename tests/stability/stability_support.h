@@ -122,16 +122,18 @@ inline constexpr double kDefaultSubstep = kDt / 20;
 /// The checks every case makes on its sweep, whatever its bounds:
 /// - finite at every count;
 /// - no blow-up at the default substep length or finer: energy gained at most 10 times the
-///   case's energy `scale` (skipped when `scale` is 0, where something drives the system);
+///   case's energy `scale` (skipped when `scale` is 0, where something drives the system); where
+///   a case is a documented weak spot, only from `blowUpFrom` substeps on (its present limit,
+///   docs/STABILITY.md), coarser counts being measured and documented, not judged;
 /// - where it breaks no later than `documented` (the value docs/STABILITY.md gives; 0 when the
 ///   case does not hold at any count of the list, which is then not checked).
 inline void expectStable(const std::string& name, const Sweep& sweep, double scale, int documented,
-                         double dt = kDt) {
+                         double dt = kDt, int blowUpFrom = 0) {
     for (size_t i = 0; i < sweep.substeps.size(); ++i) {
         const int n = sweep.substeps[i];
         const Outcome& o = sweep.outcomes[i];
         EXPECT_TRUE(o.finite) << name << " @ " << n << " substeps: non-finite state";
-        if (scale > 0.0 && dt / n <= kDefaultSubstep * (1.0 + 1e-9)) {
+        if (scale > 0.0 && dt / n <= kDefaultSubstep * (1.0 + 1e-9) && n >= blowUpFrom) {
             EXPECT_LE(o.energyGain, 10.0 * scale)
                 << name << " @ " << n << " substeps blows up: energy gained " << o.energyGain
                 << " J against " << scale << " J (docs/STABILITY.md)";
