@@ -30,15 +30,17 @@ Quat jointFrame(const Vec3& axis, const std::optional<Vec3>& normal) {
 Vec3 implicitGyroscopicStep(const Vec3& omega, const Vec3& inertia, double h) {
     const Vec3 momentum = inertia.cwiseProduct(omega);
     const Vec3 residual = h * omega.cross(momentum);
-    Mat3 jacobian =
-        h * (crossMatrix(omega) * inertia.asDiagonal().toDenseMatrix() - crossMatrix(momentum));
-    jacobian.diagonal() += inertia;
-    Mat3 inverse;
-    bool invertible = false;
-    double determinant = 0.0;
-    jacobian.computeInverseAndDetWithCheck(inverse, determinant, invertible, 1e-300);
-    if (!invertible) return omega;
-    return omega - inverse * residual;
+    // J = diag(I) + h ([ω]× diag(I) − [Iω]×), written out entry by entry.
+    Mat3 jacobian;
+    jacobian << inertia.x(), h * (momentum.z() - omega.z() * inertia.y()),
+        h * (omega.y() * inertia.z() - momentum.y()),  //
+        h * (omega.z() * inertia.x() - momentum.z()), inertia.y(),
+        h * (momentum.x() - omega.x() * inertia.z()),  //
+        h * (momentum.y() - omega.y() * inertia.x()), h * (omega.x() * inertia.y() - momentum.x()),
+        inertia.z();
+    const double determinant = jacobian.determinant();
+    if (!(std::abs(determinant) > 1e-300)) return omega;
+    return omega - jacobian.inverse() * residual;
 }
 
 }  // namespace
