@@ -224,7 +224,9 @@ namespace {
 /// The point correction once both sides' responses are known (applyPointCorrection).
 Vec3 solvePoint(SolverContext& ctx, uint32_t i0, uint32_t i1, const Vec3& delta,
                 const PointResponse& s0, const PointResponse& s1, double compliance, Vec3& lambda) {
-    if (skippedByRepair(ctx, delta.norm(), ctx.repairDistance, compliance)) return Vec3::Zero();
+    if (ctx.repairDistance > 0.0 &&  // the norm only matters while repairing
+        skippedByRepair(ctx, delta.norm(), ctx.repairDistance, compliance))
+        return Vec3::Zero();
     const Body& b0 = ctx.bodies[i0];
     const Body& b1 = ctx.bodies[i1];
     // K = Σ (1/m) 1 − [r]× I⁻¹ [r]×: the generalised inverse mass of Eqs. 2-3 for every
@@ -267,7 +269,8 @@ Vec3 applyAttachmentCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1,
 
 Vec3 applyRotationCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, const Vec3& rotation,
                              double compliance, Vec3& lambda, const Vec3* freeAxis) {
-    if (skippedByRepair(ctx, rotation.norm(), ctx.repairAngle, compliance)) return Vec3::Zero();
+    if (ctx.repairAngle > 0.0 && skippedByRepair(ctx, rotation.norm(), ctx.repairAngle, compliance))
+        return Vec3::Zero();
     const Body& b0 = ctx.bodies[i0];
     const Body& b1 = ctx.bodies[i1];
     // K = I0⁻¹ + I1⁻¹ in world coordinates, each Σ d_k e_k e_kᵀ over the principal axes.
