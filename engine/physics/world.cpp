@@ -175,11 +175,11 @@ void World::step(double dt) {
 }
 
 void World::repairLargeViolations(double h) {
-    // One sweep looks for hard parts that are far off (it costs one evaluation of every joint
-    // per frame when there are none). If it finds any, Gauss-Seidel sweeps over every hard part
-    // then bring the violations down to 1e-5 of the thresholds, so that what is left
-    // for the substeps is small. Velocities are not derived from these moves, so the repair
-    // adds no kinetic energy.
+    // One sweep looks for hard parts that are far off (hard drives included: a hard target far
+    // from the starting pose is reached here, not in one violent substep). If it finds any,
+    // Gauss-Seidel sweeps over every hard part bring the violations down to 1e-5 of the
+    // thresholds, so that what is left for the substeps is small. Velocities are not derived
+    // from these moves, so the repair adds no kinetic energy.
     constexpr int kMaxSweeps = 2000;
     constexpr double kResidual = 1e-5;
     SolverContext ctx{.bodies = bodies_.data(),
