@@ -114,7 +114,4 @@ inline Mat3 crossMatrix(const Vec3& v) {
     return m;
 }
 
-inline bool isFinite(const Vec3& v) { return v.allFinite(); }
-inline bool isFinite(const Quat& q) { return q.coeffs().allFinite(); }
-
 }  // namespace substep

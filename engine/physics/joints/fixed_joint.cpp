@@ -16,7 +16,7 @@ void solveFixedJoint(Joint& joint, SolverContext& ctx) {
         worldFrame1(joint, ctx.bodies) * worldFrame0(joint, ctx.bodies).conjugate();
     applyWeldCorrection(ctx, joint.body0, joint.body1, anchors.p1 - anchors.p0, anchors.r0,
                         anchors.r1, rotationVector(difference), joint.compliance,
-                        joint.lambdaPoint, joint.lambdaWeldAngle, joint.linearImpulse,
+                        joint.lambdaPoint, joint.lambdaRotation, joint.linearImpulse,
                         joint.angularImpulse);
 }
 

@@ -90,10 +90,8 @@ struct Joint {
 
     // Runtime: one λ per part, zeroed each substep.
     Vec3 lambdaPoint = Vec3::Zero();  ///< attachment (vector multiplier, applyPointCorrection)
-    Vec3 lambdaWeldAngle = Vec3::Zero();  ///< fixed joint's orientation lock (applyWeldCorrection)
-    Vec3 lambdaRotation = Vec3::Zero();  ///< orientation lock or hinge axis alignment (block form)
+    Vec3 lambdaRotation = Vec3::Zero();  ///< orientation lock, weld or hinge axis alignment
     double lambdaAttach = 0.0;
-    double lambdaAlign = 0.0;
     double lambdaLimit = 0.0;
     double lambdaTwist = 0.0;
     double lambdaDrive = 0.0;
@@ -104,9 +102,8 @@ struct Joint {
 
     void resetMultipliers() {
         lambdaPoint.setZero();
-        lambdaWeldAngle.setZero();
         lambdaRotation.setZero();
-        lambdaAttach = lambdaAlign = lambdaLimit = lambdaTwist = lambdaDrive = 0.0;
+        lambdaAttach = lambdaLimit = lambdaTwist = lambdaDrive = 0.0;
         linearImpulse.setZero();
         angularImpulse.setZero();
     }
