@@ -55,6 +55,7 @@ void ErrorRecorder::sample() {
         maxJointError_ = std::max(maxJointError_, error);
     }
     if (!joints_.empty()) jointErrorMeanSum_ += sum / static_cast<double>(joints_.size());
+    penetration_ = std::max(penetration_, world.maxPenetration());
     ++samples_;
 
     // A non-finite sample poisons the measures for good: std::max ignores NaN, so say it here.
@@ -71,6 +72,7 @@ ErrorMeasures ErrorRecorder::measures() const {
     result.energyErrorFinal = std::abs(lastEnergy_ - initialEnergy_) / scale;
     result.maxJointError = maxJointError_;
     result.meanJointError = jointErrorMeanSum_ / static_cast<double>(samples_);
+    result.penetration = penetration_;
     if (chainEnd_) {
         // The end point's world position, from the end body's own (user) frame.
         const Body& end = scene_.world.body(*chainEnd_);

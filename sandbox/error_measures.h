@@ -32,8 +32,7 @@ struct ErrorMeasures {
     double meanJointError = 0.0;    ///< mean over samples of the mean over joints (m)
     /// (L − L0) / L0 at the last sample, L the anchor to end-point distance; none without a chain.
     std::optional<double> chainElongation;
-    /// Deepest contact penetration (m). Always 0 until contacts are built; the column is kept
-    /// so the CSV contract does not change when they are.
+    /// Deepest contact penetration over samples (m); 0 for a scene without contacts.
     double penetration = 0.0;
 };
 
@@ -62,6 +61,7 @@ class ErrorRecorder {
     double largestEnergyChange_ = 0.0;
     double maxJointError_ = 0.0;
     double jointErrorMeanSum_ = 0.0;  ///< Σ over samples of the mean over joints
+    double penetration_ = 0.0;
 };
 
 }  // namespace substep

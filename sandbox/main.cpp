@@ -3,9 +3,11 @@
 // (run_command.h, ...); the ones the contract names but this build lacks answer with exit 2.
 
 #include "bench_command.h"
+#include "render_command.h"
 #include "run_command.h"
 #include "scenes/scene_registry.h"
 #include "sweep_command.h"
+#include "view/view_command.h"
 
 #include <CLI/CLI.hpp>
 
@@ -24,7 +26,6 @@ struct PendingCommand {
 };
 
 constexpr PendingCommand kPendingCommands[] = {
-    {"render", "Headless PNGs of a scene: render SCENE --frames LIST --out DIR [--size WxH]"},
     {"capture", "Scripted regression captures against goldens: capture SCRIPT [--update]"},
 };
 
@@ -42,29 +43,17 @@ int listScenes() {
     return 0;
 }
 
-/// `substep` and `substep view`: the window is not part of this build yet.
-int viewUnavailable() {
-    std::fprintf(stderr,
-                 "substep: the interactive viewer is not in this build yet.\n"
-                 "  substep run SCENE     simulates headless and prints a summary\n"
-                 "  substep render SCENE  renders PNGs headless (once built)\n"
-                 "  substep scenes        lists the built-in scenes\n");
-    return 2;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
     // 1. Declare the commands.
-    CLI::App app{"Substep: XPBD rigid bodies, headless and (soon) interactive", "substep"};
+    CLI::App app{"Substep: XPBD rigid bodies, interactive and headless", "substep"};
     app.set_version_flag("--version", SUBSTEP_VERSION);
     app.require_subcommand(0, 1);
     app.footer("Exit codes: 0 success, 1 a check failed (non-finite state), 2 bad input.");
 
-    std::string viewScene;
-    CLI::App* viewCommand =
-        app.add_subcommand("view", "Interactive window (not in this build yet)");
-    viewCommand->add_option("SCENE", viewScene, "A built-in scene name or a .json scene file");
+    substep::view::ViewOptions viewOptions;
+    substep::view::addViewCommand(app, viewOptions);
 
     CLI::App* scenesCommand = app.add_subcommand("scenes", "List the built-in scenes");
 
@@ -76,6 +65,9 @@ int main(int argc, char** argv) {
 
     substep::SweepOptions sweepOptions;
     CLI::App* sweepCommand = substep::addSweepCommand(app, sweepOptions);
+
+    substep::RenderOptions renderOptions;
+    CLI::App* renderCommand = substep::addRenderCommand(app, renderOptions);
 
     // Pending commands take any arguments, so the answer is "not built" rather than a usage error.
     for (const PendingCommand& pending : kPendingCommands) {
@@ -95,11 +87,12 @@ int main(int argc, char** argv) {
     if (runCommand->parsed()) return substep::runCommand(runOptions);
     if (benchCommand->parsed()) return substep::benchCommand(benchOptions);
     if (sweepCommand->parsed()) return substep::sweepCommand(sweepOptions);
+    if (renderCommand->parsed()) return substep::renderCommand(renderOptions);
     for (const PendingCommand& pending : kPendingCommands) {
         if (app.get_subcommand(pending.name)->parsed()) {
             std::fprintf(stderr, "substep %s: not available in this build yet\n", pending.name);
             return 2;
         }
     }
-    return viewUnavailable();
+    return substep::view::viewCommand(viewOptions);  // `view`, or no command at all
 }

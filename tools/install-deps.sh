@@ -7,6 +7,9 @@ packages=(
   libeigen3-dev nlohmann-json3-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   python3-matplotlib
+  libglfw3-dev libimgui-dev libstb-dev libassimp-dev
+  libegl-dev libopengl-dev libgl-dev libegl1-mesa-dev libgl1-mesa-dri libosmesa6-dev
+  xvfb xauth
 )
 
 missing=()

@@ -70,16 +70,21 @@ struct Body {
     Vec3 pointToWorld(const Vec3& local) const { return x + q * local; }
 
     /// I⁻¹ v for a world vector v, evaluated in the rest frame (paper 3.3.2).
+    /// With equal moments (spheres, cubes) I⁻¹ is a scalar and needs no rotation.
     Vec3 applyInverseInertia(const Vec3& worldVector) const {
+        if (isotropic) return invInertia.x() * worldVector;
         return q * invInertia.cwiseProduct(q.conjugate() * worldVector);
     }
     /// The generalised inverse mass of Eqs. 2-3 for a correction along unit n at offset r.
     double positionalInverseMass(const Vec3& r, const Vec3& n) const {
-        const Vec3 rn = q.conjugate() * r.cross(n);
-        return invMass + rn.dot(invInertia.cwiseProduct(rn));
+        const Vec3 rn = r.cross(n);
+        if (isotropic) return invMass + invInertia.x() * rn.squaredNorm();
+        const Vec3 rnBody = q.conjugate() * rn;
+        return invMass + rnBody.dot(invInertia.cwiseProduct(rnBody));
     }
     /// The generalised inverse mass of Eqs. 11-12 for a rotation about unit n.
     double angularInverseMass(const Vec3& n) const {
+        if (isotropic) return invInertia.x() * n.squaredNorm();
         const Vec3 nb = q.conjugate() * n;
         return nb.dot(invInertia.cwiseProduct(nb));
     }

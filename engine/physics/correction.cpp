@@ -18,6 +18,10 @@ struct BodyResponse {
 inline BodyResponse positionalResponse(const Body& body, const Vec3& r, const Vec3& n) {
     if (body.invMass == 0.0) return {};
     if (!body.rotates()) return {body.invMass, Vec3::Zero()};
+    if (body.isotropic) {
+        const Vec3 rn = r.cross(n);
+        return {body.invMass + body.invInertia.x() * rn.squaredNorm(), body.invInertia.x() * rn};
+    }
     const Vec3 rn = body.q.conjugate() * r.cross(n);  // into the rest frame (paper 3.3.2)
     const Vec3 invInertiaRn = body.invInertia.cwiseProduct(rn);
     return {body.invMass + rn.dot(invInertiaRn), body.q * invInertiaRn};
@@ -65,7 +69,8 @@ inline Mat3 worldInverseInertia(const Body& body) {
 }  // namespace
 
 Vec3 applyPositionalCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, const Vec3& delta,
-                               const Vec3& r0, const Vec3& r1, double compliance, double& lambda) {
+                               const Vec3& r0, const Vec3& r1, double compliance, double& lambda,
+                               double lambdaLimit) {
     const double c = delta.norm();
     // A zero correction has no direction; there is nothing to do (and no NaN to make).
     if (!(c > kDirectionEpsilon)) return Vec3::Zero();
@@ -80,6 +85,7 @@ Vec3 applyPositionalCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, con
     if (!(denominator > 0.0)) return Vec3::Zero();  // two static bodies
     // Eq. 4 with ERRATA item 1's sign: λ grows with the stretch c, so f = λ n / h² (Eq. 10).
     const double deltaLambda = (c - alphaTilde * lambda) / denominator;
+    if (lambda + deltaLambda > lambdaLimit) return Vec3::Zero();
     lambda += deltaLambda;  // Eq. 5
     const Vec3 p = deltaLambda * n;
     moveBody(ctx, i0, p * b0.invMass, s0.rotationPerUnit * deltaLambda);
@@ -126,7 +132,7 @@ void applyWeldCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, const Vec
 }
 
 Vec3 applyAngularCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, const Vec3& rotation,
-                            double compliance, double& lambda) {
+                            double compliance, double& lambda, double lambdaLimit) {
     const double theta = rotation.norm();
     if (!(theta > kDirectionEpsilon)) return Vec3::Zero();
     if (skippedByRepair(ctx, theta, ctx.repairAngle, compliance)) return Vec3::Zero();
@@ -137,6 +143,7 @@ Vec3 applyAngularCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, const 
     const double denominator = s0.w + s1.w + alphaTilde;
     if (!(denominator > 0.0)) return Vec3::Zero();
     const double deltaLambda = (theta - alphaTilde * lambda) / denominator;  // Eq. 13
+    if (lambda + deltaLambda > lambdaLimit) return Vec3::Zero();
     lambda += deltaLambda;                                                  // Eq. 14
     moveBody(ctx, i0, Vec3::Zero(), s0.rotationPerUnit * deltaLambda);
     moveBody(ctx, i1, Vec3::Zero(), -s1.rotationPerUnit * deltaLambda);
@@ -301,6 +308,18 @@ Vec3 applyRotationCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, const
     moveBody(ctx, i0, Vec3::Zero(), s0.turn(deltaLambda));
     moveBody(ctx, i1, Vec3::Zero(), -s1.turn(deltaLambda));
     return deltaLambda;
+}
+
+void applyImpulse(SolverContext& ctx, uint32_t i0, uint32_t i1, const Vec3& linear,
+                  const Vec3& angular0, const Vec3& angular1) {
+    const Body& b0 = ctx.bodies[i0];
+    const Body& b1 = ctx.bodies[i1];
+    if (b0.invMass > 0.0)
+        moveBody(ctx, i0, linear * b0.invMass,
+                 b0.rotates() ? b0.applyInverseInertia(angular0) : Vec3::Zero());
+    if (b1.invMass > 0.0)
+        moveBody(ctx, i1, -linear * b1.invMass,
+                 b1.rotates() ? Vec3(-b1.applyInverseInertia(angular1)) : Vec3::Zero());
 }
 
 Vec3 applyVelocityCorrection(Body& b0, Body& b1, const Vec3& deltaVelocity, const Vec3& r0,

@@ -8,6 +8,7 @@
 #include "physics/math.h"
 
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 namespace substep {
@@ -23,6 +24,9 @@ struct JacobiDelta {
     Vec3 rotation = Vec3::Zero();
     uint32_t count = 0;
 };
+
+/// No bound on a correction's multiplier.
+inline constexpr double kUnlimited = std::numeric_limits<double>::infinity();
 
 /// What a correction needs to know about the current solve.
 struct SolverContext {
@@ -41,9 +45,12 @@ struct SolverContext {
 /// Eqs. 2-9: moves the point at world offset r0 of body i0 by `delta` relative to the point at
 /// offset r1 of body i1 (|delta| is the constraint value c, its direction n), sharing the
 /// motion by generalised inverse mass. XPBD with compliance α: Δλ = (c − α̃λ)/(w0 + w1 + α̃).
-/// Returns the impulse p = Δλ n given to body 0 (body 1 receives −p).
+/// Returns the impulse p = Δλ n given to body 0 (body 1 receives −p). With `lambdaLimit` the
+/// correction is made only if the new λ stays at or below it (static friction, paper 3.5:
+/// "only if λ_t < μ_s λ_n"); otherwise nothing moves and zero is returned.
 Vec3 applyPositionalCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, const Vec3& delta,
-                               const Vec3& r0, const Vec3& r1, double compliance, double& lambda);
+                               const Vec3& r0, const Vec3& r1, double compliance, double& lambda,
+                               double lambdaLimit = kUnlimited);
 
 /// The attachment form of Eqs. 2-9: makes the point at r0 on body i0 coincide with the point at
 /// r1 on body i1 (delta = p1 − p0) with a vector multiplier and the 3 x 3 generalised inverse
@@ -84,9 +91,16 @@ Vec3 applyRotationCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, const
 
 /// Eqs. 11-16: turns body i0 by the world rotation vector `rotation` relative to body i1 (its
 /// length is the angle θ), shared by inverse inertia about the axis. Returns the angular
-/// impulse given to body 0 (body 1 receives the opposite).
+/// impulse given to body 0 (body 1 receives the opposite). `lambdaLimit` as for
+/// applyPositionalCorrection.
 Vec3 applyAngularCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, const Vec3& rotation,
-                            double compliance, double& lambda);
+                            double compliance, double& lambda, double lambdaLimit = kUnlimited);
+
+/// Moves two bodies by a positional impulse gathered elsewhere (a contact patch's block solve):
+/// body 0 by `linear` / m0 and turned by I0⁻¹ `angular0`, body 1 by −`linear` / m1 and turned
+/// by −I1⁻¹ `angular1` (the angular impulses are Σ r × p about each body's centre).
+void applyImpulse(SolverContext& ctx, uint32_t i0, uint32_t i1, const Vec3& linear,
+                  const Vec3& angular0, const Vec3& angular1);
 
 /// Eq. 33: changes the relative velocity of the points at r0, r1 (body 0's minus body 1's) by
 /// `deltaVelocity`. Returns the impulse given to body 0.

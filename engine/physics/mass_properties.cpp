@@ -1,5 +1,7 @@
 #include "physics/mass_properties.h"
 
+#include "physics/collision/convex_hull.h"
+
 #include <Eigen/Eigenvalues>
 
 namespace substep {
@@ -109,9 +111,19 @@ MassProperties shapeMassProperties(const Shape& shape, double density) {
             return boxMassProperties(shape.size, density);
         case ShapeType::Capsule:
             return capsuleMassProperties(shape.radius, shape.length, density);
-        // A convex-flagged mesh still weighs as the mesh itself, not its hull.
-        case ShapeType::Mesh:
-            return shape.mesh ? meshMassProperties(*shape.mesh, density) : MassProperties{};
+        case ShapeType::Mesh: {
+            // A convex mesh collides as its hull, so it weighs as its hull too (a dent in the
+            // mesh is filled); the hull is built here if the shape was made without one.
+            if (!shape.convex) {
+                return shape.mesh ? meshMassProperties(*shape.mesh, density) : MassProperties{};
+            }
+            if (shape.hull) return meshMassProperties(hullTriangleMesh(*shape.hull), density);
+            if (!shape.mesh) return {};
+            return meshMassProperties(hullTriangleMesh(buildConvexHull(shape.mesh->vertices)),
+                                      density);
+        }
+        case ShapeType::Heightfield:  // static only, like the plane
+        case ShapeType::Spline:
         case ShapeType::Plane:  // static only: infinite extent has no finite mass
         case ShapeType::None:
             return {};

@@ -1,5 +1,7 @@
 #include "physics/world.h"
 
+#include "physics/collision/narrowphase.h"
+#include "physics/collision/shape_bounds.h"
 #include "physics/joints/joint_parts.h"
 #include "physics/joints/joint_solver.h"
 
@@ -14,6 +16,9 @@ namespace {
 /// Joint frame [a, b, c] from an axis and an optional normal, in one body's user frame. A
 /// missing normal is the same fixed perpendicular of the axis on both sides, so equal axes on
 /// equally oriented bodies give angle 0.
+/// Whether a body takes part in collision detection.
+bool collides(const Body& b) { return b.alive && b.collide && b.shape.type != ShapeType::None; }
+
 Quat jointFrame(const Vec3& axis, const std::optional<Vec3>& normal) {
     const Vec3 a = axis.normalized();
     Vec3 b = normal ? (*normal - normal->dot(a) * a) : anyPerpendicular(a);
@@ -66,6 +71,7 @@ BodyId World::createBody(const BodyDef& def) {
         index = static_cast<uint32_t>(bodies_.size());
         bodies_.push_back(body);
     }
+    if (collides(body)) ++collidingBodies_;
     return {index, body.generation};
 }
 
@@ -76,6 +82,7 @@ void World::destroyBody(BodyId id) {
         if (joint.alive && (joint.body0 == id.index || joint.body1 == id.index))
             destroyJoint({j, joint.generation});
     }
+    if (collides(bodies_[id.index])) --collidingBodies_;
     bodies_[id.index] = Body{};  // dead: static, never integrated
     freeBodies_.push_back(id.index);
 }
@@ -119,6 +126,7 @@ JointId World::createJoint(const JointDef& def) {
     joint.generation = nextGeneration_++;
     anyDamping_ = anyDamping_ || def.linearDamping > 0.0 || def.angularDamping > 0.0;
     repairPending_ = true;
+    jointsChanged_ = true;
 
     uint32_t index;
     if (!freeJoints_.empty()) {
@@ -136,6 +144,7 @@ void World::destroyJoint(JointId id) {
     if (!isValid(id)) return;
     joints_[id.index] = Joint{};
     freeJoints_.push_back(id.index);
+    jointsChanged_ = true;
 }
 
 bool World::isValid(BodyId id) const {
@@ -160,6 +169,8 @@ void World::step(double dt) {
         if (settings_.repairDistance > 0.0 && settings_.repairAngle > 0.0) repairLargeViolations(h);
     }
 
+    // Algorithm 2: pairs once per frame, their contacts on the current poses every substep.
+    collectContactPairs(dt);
     for (int s = 0; s < substeps; ++s) {
         // λ is zeroed before each substep's solve (paper 3.3.1); motors advance their target.
         for (Joint& joint : joints_) {
@@ -168,9 +179,103 @@ void World::step(double dt) {
                 joint.target = wrapAngle(joint.target + h * joint.targetVelocity);
         }
         integrate(h);
+        if (!contactPairs_.empty()) findContacts();
         for (int i = 0; i < settings_.iterations; ++i) solvePositions(h);
         deriveVelocities(h);
-        if (anyDamping_) solveVelocities(h);
+        if (anyDamping_ || !contacts_.empty()) solveVelocities(h);
+    }
+}
+
+void World::collectContactPairs(double dt) {
+    // Last frame's pairs keep their static friction anchors (contact.h) when they are found
+    // again; both lists are sorted by (body0, body1).
+    previousPairs_.swap(contactPairs_);
+    contactPairs_.clear();
+    contacts_.clear();
+    if (collidingBodies_ < 2) return;  // nothing can touch: no broadphase at all
+    if (jointsChanged_) {
+        jointsChanged_ = false;
+        jointExclusions_.clear();
+        for (const Joint& joint : joints_) {
+            if (!joint.alive || joint.collide || joint.body0 == joint.body1) continue;
+            jointExclusions_.push_back({std::min(joint.body0, joint.body1), std::max(joint.body0, joint.body1)});
+        }
+        std::sort(jointExclusions_.begin(), jointExclusions_.end(),
+                  [](const BodyPair& a, const BodyPair& b) {
+                      return a.body0 != b.body0 ? a.body0 < b.body0 : a.body1 < b.body1;
+                  });
+    }
+    broadphase_.update(bodies_, dt);
+    reaches_.assign(bodies_.size(), 0.0);
+    poses_.resize(bodies_.size());
+    size_t previous = 0;
+    for (const BodyPair& candidate : broadphase_.pairs()) {
+        const bool joined = std::binary_search(
+            jointExclusions_.begin(), jointExclusions_.end(), candidate,
+            [](const BodyPair& a, const BodyPair& b) {
+                return a.body0 != b.body0 ? a.body0 < b.body0 : a.body1 < b.body1;
+            });
+        if (joined) continue;
+        const Body& b0 = bodies_[candidate.body0];
+        const Body& b1 = bodies_[candidate.body1];
+        if (!canCollide(b0.shape.type, b1.shape.type)) continue;
+        reaches_[candidate.body0] = shapeReach(b0.shape);
+        reaches_[candidate.body1] = shapeReach(b1.shape);
+        // Paper 3.5: a pair's coefficients are the averages of its bodies'.
+        ContactPair pair{.body0 = candidate.body0,
+                         .body1 = candidate.body1,
+                         .staticFriction = 0.5 * (b0.staticFriction + b1.staticFriction),
+                         .dynamicFriction = 0.5 * (b0.dynamicFriction + b1.dynamicFriction),
+                         .restitution = 0.5 * (b0.restitution + b1.restitution)};
+        while (previous < previousPairs_.size() &&
+               (previousPairs_[previous].body0 < pair.body0 ||
+                (previousPairs_[previous].body0 == pair.body0 && previousPairs_[previous].body1 < pair.body1)))
+            ++previous;
+        if (previous < previousPairs_.size() && previousPairs_[previous].body0 == pair.body0 &&
+            previousPairs_[previous].body1 == pair.body1) {
+            const ContactPair& old = previousPairs_[previous];
+            pair.anchor0 = old.anchor0;
+            pair.anchor1 = old.anchor1;
+            pair.turnAnchor = old.turnAnchor;
+            pair.anchored = old.anchored;
+        }
+        contactPairs_.push_back(pair);
+    }
+}
+
+void World::findContacts() {
+    contacts_.clear();
+    // Each colliding body's shape pose, once per substep rather than once per pair.
+    for (size_t i = 0; i < bodies_.size(); ++i)
+        if (reaches_[i] > 0.0) poses_[i] = {bodies_[i].userPosition(), bodies_[i].userOrientation()};
+    ContactManifold manifold;
+    for (ContactPair& pair : contactPairs_) {
+        const Body& b0 = bodies_[pair.body0];
+        const Body& b1 = bodies_[pair.body1];
+        const Pose& pose0 = poses_[pair.body0];
+        const Pose& pose1 = poses_[pair.body1];
+        // Bounding spheres first: most of a frame's candidate pairs are not touching in a
+        // given substep, and this test costs a fraction of the narrowphase.
+        const double reach = reaches_[pair.body0] + reaches_[pair.body1] + settings_.contactMargin;
+        if (std::isfinite(reach) && (pose0.position - pose1.position).squaredNorm() > reach * reach)
+            manifold.clear();
+        else
+            collide(b0.shape, pose0, b1.shape, pose1, settings_.contactMargin, manifold);
+        pair.first = static_cast<uint32_t>(contacts_.size());
+        pair.count = static_cast<uint32_t>(manifold.count);
+        if (manifold.count == 0) pair.anchored = false;  // apart: the next touch anchors anew
+        pair.lambdaNormal = pair.lambdaTangent1 = pair.lambdaTangent2 = pair.lambdaTwist = 0.0;
+        // Paper 3.5: the points are kept in the bodies' frames (r1, r2), so the position solve
+        // measures the depth on the poses as other corrections leave them.
+        const Quat q0Inverse = b0.q.conjugate();
+        const Quat q1Inverse = b1.q.conjugate();
+        for (int i = 0; i < manifold.count; ++i) {
+            const ContactPoint& point = manifold.points[i];
+            contacts_.push_back({.local0 = q0Inverse * (point.point0 - b0.x),
+                                 .local1 = q1Inverse * (point.point1 - b1.x),
+                                 .normal = point.normal,
+                                 .feature = point.feature});
+        }
     }
 }
 
@@ -223,17 +328,17 @@ void World::solvePositions(double h) {
                       .invH2 = 1.0 / (h * h),
                       .solver = settings_.solver,
                       .deltas = jacobiDeltas_.data()};
-    if (settings_.solver == SolverType::GaussSeidel) {
-        for (Joint& joint : joints_)
-            if (joint.alive) solveJointPositions(joint, ctx);
-        return;
-    }
-    // Jacobi: every joint sees the iteration's starting state; the gathered corrections are
-    // summed. Averaging them, or splitting a body's mass among its joints, shifts the fixed
-    // point: the joints' λ then no longer balance the weights they carry.
+    // Joints first, contacts last: a substep ends with the hard inequalities met.
     for (Joint& joint : joints_)
         if (joint.alive) solveJointPositions(joint, ctx);
-    applyJacobiDeltas(bodies_.data(), jacobiDeltas_.data(), bodies_.size());
+    for (ContactPair& pair : contactPairs_)
+        if (pair.count > 0)
+            solveContactPositions(pair, std::span(contacts_).subspan(pair.first, pair.count), ctx);
+    // Jacobi: every constraint saw the iteration's starting state; the gathered corrections
+    // are summed. Averaging them, or splitting a body's mass among its joints, shifts the fixed
+    // point: the joints' λ then no longer balance the weights they carry.
+    if (settings_.solver == SolverType::Jacobi)
+        applyJacobiDeltas(bodies_.data(), jacobiDeltas_.data(), bodies_.size());
 }
 
 void World::deriveVelocities(double h) {
@@ -250,8 +355,14 @@ void World::deriveVelocities(double h) {
 }
 
 void World::solveVelocities(double h) {
-    for (const Joint& joint : joints_)
-        if (joint.alive) solveJointVelocities(joint, bodies_.data(), h);
+    if (anyDamping_)
+        for (const Joint& joint : joints_)
+            if (joint.alive) solveJointVelocities(joint, bodies_.data(), h);
+    const double gravity = settings_.gravity.norm();
+    for (const ContactPair& pair : contactPairs_)
+        if (pair.count > 0)
+            solveContactVelocities(pair, std::span(contacts_).subspan(pair.first, pair.count),
+                                   bodies_.data(), h, gravity);
 }
 
 JointReadout World::jointReadout(JointId id) const {
@@ -280,6 +391,19 @@ double World::maxJointError() const {
     for (const Joint& joint : joints_)
         if (joint.alive) largest = std::max(largest, readJoint(joint, bodies_.data(), lastSubstep_).error);
     return largest;
+}
+
+double World::maxPenetration() const {
+    double deepest = 0.0;
+    for (const ContactPair& pair : contactPairs_)
+        for (uint32_t i = pair.first; i < pair.first + pair.count; ++i)
+            deepest = std::max(deepest, contactDepth(contacts_[i], bodies_[pair.body0], bodies_[pair.body1]));
+    return deepest;
+}
+
+int World::activeContactCount() const {
+    return static_cast<int>(std::count_if(contacts_.begin(), contacts_.end(),
+                                          [](const Contact& c) { return c.lambdaNormal > 0.0; }));
 }
 
 bool World::isFinite() const {

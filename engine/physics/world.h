@@ -4,6 +4,8 @@
 /// correction operations, velocity derivation, velocity pass).
 
 #include "physics/body.h"
+#include "physics/collision/broadphase.h"
+#include "physics/contact.h"
 #include "physics/correction.h"
 #include "physics/handles.h"
 #include "physics/joints/joint.h"
@@ -29,6 +31,9 @@ struct WorldSettings {
     /// 0 switches it off.
     double repairDistance = 0.05;  ///< m
     double repairAngle = 0.25;     ///< rad
+    /// The narrowphase also reports points this far apart (m), so that a point that a
+    /// correction elsewhere pushes into contact later in the substep is still held.
+    double contactMargin = 0.002;
 };
 
 /// Energies as DESIGN.md defines them (J).
@@ -73,15 +78,25 @@ public:
     Energies energies() const;
     /// Largest positional error over all joints (m).
     double maxJointError() const;
+    /// Deepest current overlap over this substep's contact points (m); 0 without contacts.
+    double maxPenetration() const;
+    /// Contact points that pushed in the last substep (λ_n > 0).
+    int activeContactCount() const;
     /// True while every body's state is finite.
     bool isFinite() const;
 
     /// Storage views for drawing and diagnostics; index 0 is the world's static anchor body.
     std::span<const Body> bodies() const { return bodies_; }
     std::span<const Joint> joints() const { return joints_; }
+    /// The pairs the broadphase found this frame and the contact points of the last substep
+    /// (a pair's points are contacts()[pair.first, pair.first + pair.count)).
+    std::span<const ContactPair> contactPairs() const { return contactPairs_; }
+    std::span<const Contact> contacts() const { return contacts_; }
 
 private:
     void repairLargeViolations(double h);
+    void collectContactPairs(double dt);
+    void findContacts();
     void integrate(double h);
     void solvePositions(double h);
     void deriveVelocities(double h);
@@ -93,6 +108,17 @@ private:
     std::vector<Joint> joints_;
     std::vector<uint32_t> freeJoints_;
     std::vector<JacobiDelta> jacobiDeltas_;
+    Broadphase broadphase_;
+    std::vector<ContactPair> contactPairs_;
+    std::vector<ContactPair> previousPairs_;
+    std::vector<double> reaches_;  ///< per body: its shape's reach (0: in no pair this frame)
+    std::vector<Pose> poses_;      ///< per body: its shape's pose this substep
+    std::vector<Contact> contacts_;
+    /// Body pairs joined by a joint that does not let them collide, sorted; rebuilt when the
+    /// joints change.
+    std::vector<BodyPair> jointExclusions_;
+    bool jointsChanged_ = true;
+    int collidingBodies_ = 0;  ///< bodies with a shape that collides: below 2, no broadphase
     uint32_t nextGeneration_ = 1;
     double lastSubstep_ = 0.0;
     bool anyDamping_ = false;

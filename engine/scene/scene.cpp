@@ -1,12 +1,38 @@
-/// buildScene: a SceneDescription (from a file or a built-in scene) becomes a World.
+/// buildScene: a SceneDescription (from a file or a built-in scene) becomes entities, and the
+/// physics system makes the World from them.
 
 #include "scene/scene.h"
 
+#include "ecs/body_components.h"
+#include "ecs/components.h"
+
+#include <array>
+#include <cstddef>
 #include <stdexcept>
 #include <string>
 #include <unordered_map>
 
 namespace substep {
+
+namespace {
+
+/// A default look per body until scene files carry colours: static bodies grey, moving ones
+/// from a small palette in description order, so neighbours differ.
+Vec3 defaultColour(std::size_t bodyIndex, const BodyDef& def) {
+    static constexpr std::array<std::array<double, 3>, 6> kPalette{{
+        {0.86, 0.42, 0.27},  // terracotta
+        {0.29, 0.56, 0.85},  // blue
+        {0.95, 0.77, 0.30},  // yellow
+        {0.40, 0.73, 0.45},  // green
+        {0.62, 0.47, 0.80},  // violet
+        {0.30, 0.75, 0.75},  // teal
+    }};
+    if (def.type == BodyType::Static) return Vec3(0.55, 0.55, 0.58);
+    const std::array<double, 3>& c = kPalette[bodyIndex % kPalette.size()];
+    return Vec3(c[0], c[1], c[2]);
+}
+
+}  // namespace
 
 SceneInstance buildScene(const SceneDescription& description) {
     SceneInstance instance{
@@ -15,27 +41,35 @@ SceneInstance buildScene(const SceneDescription& description) {
                                      .iterations = description.iterations}),
         .namedBodies = {},
         .namedJoints = {},
+        .registry = {},
+        .bodyEntities = {},
+        .jointEntities = {},
     };
-    World& world = instance.world;
+    ecs::Registry& registry = instance.registry;
 
-    // Bodies in order; named ones are remembered for joints and, in order, for output columns.
-    std::unordered_map<std::string, BodyId> bodiesByName;
-    for (const SceneBody& body : description.bodies) {
-        const BodyId id = world.createBody(body.def);
+    // One entity per body, in order; named ones are remembered for joints.
+    std::unordered_map<std::string, ecs::Entity> entitiesByName;
+    for (std::size_t i = 0; i < description.bodies.size(); ++i) {
+        const SceneBody& body = description.bodies[i];
+        const ecs::Entity entity = registry.create();
+        ecs::emplaceBody(registry, entity, body.def);
+        registry.emplace<ecs::RenderMaterial>(
+            entity, ecs::RenderMaterial{.colour = defaultColour(i, body.def)});
+        instance.bodyEntities.push_back(entity);
         if (body.name.empty()) continue;
         // "world" would be ambiguous in joints, and a repeated name would repeat CSV columns.
-        if (body.name == "world" || !bodiesByName.emplace(body.name, id).second) {
+        if (body.name == "world" || !entitiesByName.emplace(body.name, entity).second) {
             throw std::invalid_argument("scene " + description.name + ": body name \"" + body.name +
                                         "\" is reserved or used twice");
         }
-        instance.namedBodies.emplace_back(body.name, id);
+        registry.emplace<ecs::Name>(entity, body.name);
     }
 
-    // Empty or "world" is the world, which JointDef spells as a null id.
-    const auto resolve = [&](const std::string& name) -> BodyId {
-        if (name.empty() || name == "world") return BodyId{};
-        const auto it = bodiesByName.find(name);
-        if (it == bodiesByName.end()) {
+    // Empty or "world" is the world, which a Joint component spells as the null entity.
+    const auto resolve = [&](const std::string& name) -> ecs::Entity {
+        if (name.empty() || name == "world") return ecs::kNullEntity;
+        const auto it = entitiesByName.find(name);
+        if (it == entitiesByName.end()) {
             throw std::invalid_argument("scene " + description.name + ": a joint names body \"" +
                                         name + "\", which does not exist");
         }
@@ -43,11 +77,29 @@ SceneInstance buildScene(const SceneDescription& description) {
     };
 
     for (const SceneJoint& joint : description.joints) {
-        JointDef def = joint.def;
-        def.body0 = resolve(joint.body0);
-        def.body1 = resolve(joint.body1);
-        const JointId id = world.createJoint(def);
-        if (!joint.name.empty()) instance.namedJoints.emplace_back(joint.name, id);
+        const ecs::Entity body0 = resolve(joint.body0);
+        const ecs::Entity body1 = resolve(joint.body1);
+        const ecs::Entity entity = registry.create();
+        registry.emplace<ecs::Joint>(entity,
+                                     ecs::Joint{.def = joint.def, .body0 = body0, .body1 = body1});
+        if (!joint.name.empty()) registry.emplace<ecs::Name>(entity, joint.name);
+        instance.jointEntities.push_back(entity);
+    }
+
+    // The system creates every body, then every joint, each in the order added above.
+    instance.physics().sync();
+
+    for (std::size_t i = 0; i < description.bodies.size(); ++i) {
+        const std::string& name = description.bodies[i].name;
+        if (name.empty()) continue;
+        instance.namedBodies.emplace_back(
+            name, registry.get<ecs::RigidBody>(instance.bodyEntities[i]).id);
+    }
+    for (std::size_t i = 0; i < description.joints.size(); ++i) {
+        const std::string& name = description.joints[i].name;
+        if (name.empty()) continue;
+        instance.namedJoints.emplace_back(name,
+                                          registry.get<ecs::Joint>(instance.jointEntities[i]).id);
     }
     return instance;
 }

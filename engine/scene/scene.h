@@ -1,7 +1,11 @@
 #pragma once
 /// A scene as data: world settings, named bodies and joints, and an optional camera. Scene files
-/// (scene_loader.h) and the built-in scenes both produce one; buildScene turns it into a world.
+/// (scene_loader.h) and the built-in scenes both produce one; buildScene turns it into entities
+/// and, through the ECS physics system, a world.
 
+#include "ecs/entity.h"
+#include "ecs/physics_system.h"
+#include "ecs/registry.h"
 #include "physics/body.h"
 #include "physics/joints/joint.h"
 #include "physics/math.h"
@@ -43,15 +47,32 @@ struct SceneDescription {
     std::optional<SceneCamera> camera;
 };
 
-/// A world built from a description, with the ids of its named bodies and joints in file order.
+/// A scene built from a description: its entities and the world the physics system made from
+/// them, with the ids of its named bodies and joints in file order.
+///
+/// Returned by value and moved: nothing in it points at another member (the registry's pools
+/// are on the heap, and the physics system binding registry and world is made on demand by
+/// physics()), so a moved instance is whole.
 struct SceneInstance {
     World world;
     std::vector<std::pair<std::string, BodyId>> namedBodies;
     std::vector<std::pair<std::string, JointId>> namedJoints;
+
+    /// One entity per body of the description (Transform, RigidBody, Collider, RenderMaterial,
+    /// Name when named) and one per joint (Joint, Name when named).
+    ecs::Registry registry;
+    std::vector<ecs::Entity> bodyEntities;   ///< in description order
+    std::vector<ecs::Entity> jointEntities;  ///< in description order
+
+    /// The physics system over this instance's registry and world. Made per call and cheap; do
+    /// not keep it across a move of the instance.
+    ecs::PhysicsSystem physics() { return ecs::PhysicsSystem(registry, world); }
 };
 
-/// Builds the world. Body names referenced by joints must exist (the loader checks files;
-/// built-in scenes are checked by their tests): an unknown name throws std::invalid_argument.
+/// Builds the entities, then the world from them: bodies in description order, then joints in
+/// description order (the world's storage order, on which every output depends). Body names
+/// referenced by joints must exist (the loader checks files; built-in scenes are checked by
+/// their tests): an unknown name throws std::invalid_argument.
 SceneInstance buildScene(const SceneDescription& description);
 
 }  // namespace substep

@@ -41,7 +41,8 @@ SceneDescription rope100() {
         scene.bodies.push_back({name, BodyDef{.shape = capsuleShape(kRadius, kSegment),
                                               .mass = 0.05,
                                               .position = start + Vec3(kPitch * (i + 0.5), 0.0, 0.0),
-                                              .orientation = alongX}});
+                                              .orientation = alongX,
+                                              .collide = false}});
         JointDef ball{.type = JointType::Spherical, .anchor0 = tip, .anchor1 = -tip};
         if (i == 0) ball.anchor0 = start;
         addJoint(scene, "joint" + std::to_string(i + 1), i == 0 ? "" : "segment" + std::to_string(i), name, ball);

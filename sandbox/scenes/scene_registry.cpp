@@ -44,6 +44,15 @@ constexpr std::array kScenes{
                .description = "Benchmark: 100 capsules on ball joints released horizontal (PEERS.md)",
                .build = scenes::rope100,
                .paperMsPerFrame = 3.5},
+    SceneEntry{.name = "stack10",
+               .description = "Benchmark: 10 unit cubes stacked on the ground (PEERS.md)",
+               .build = scenes::stack10},
+    SceneEntry{.name = "pyramid10",
+               .description = "A pyramid of 10 rows of unit cubes (55 boxes)",
+               .build = scenes::pyramid10},
+    SceneEntry{.name = "spheres1000",
+               .description = "Benchmark: 1000 spheres dropped into a walled box (PEERS.md)",
+               .build = scenes::spheres1000},
 };
 
 }  // namespace

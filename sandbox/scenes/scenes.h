@@ -14,26 +14,34 @@ SceneDescription pendula();    ///< Fig. 8: double, triple and closed-loop pendu
 SceneDescription pendulum3();  ///< PEERS.md pendulum3: triple pendulum released horizontal
 SceneDescription chain100();   ///< PEERS.md chain100: 100 boxes on ball joints, at rest
 SceneDescription rope100();    ///< PEERS.md rope100: 100 capsules released horizontal
+SceneDescription stack10();    ///< PEERS.md stack10: 10 unit cubes stacked on the ground
+SceneDescription pyramid10();  ///< a pyramid of 10 rows of unit cubes (55 boxes)
+SceneDescription spheres1000();  ///< PEERS.md spheres1000: 1000 spheres dropped into a box
 
 /// The paper's gravity (its demos use 10 m/s²).
 inline const Vec3 kPaperGravity(0.0, -10.0, 0.0);
 
-/// Adds a dynamic box and returns its index in description.bodies.
+/// Adds a dynamic box and returns its index in description.bodies. It collides only when asked:
+/// the joint demos (Figs. 4-8, PEERS' chains and pendulums) have no contacts, so their links
+/// swing through one another and their figures stay the joints' alone.
 inline size_t addBox(SceneDescription& scene, std::string name, const Vec3& size, double mass,
-                     const Vec3& position, const Quat& orientation = Quat::Identity()) {
+                     const Vec3& position, const Quat& orientation = Quat::Identity(),
+                     bool collide = false) {
     scene.bodies.push_back({std::move(name), BodyDef{.shape = boxShape(size),
                                                      .mass = mass,
                                                      .position = position,
-                                                     .orientation = orientation}});
+                                                     .orientation = orientation,
+                                                     .collide = collide}});
     return scene.bodies.size() - 1;
 }
 
-/// Adds a static box (a ceiling or a mount) and returns its index.
+/// Adds a static box (a ceiling or a mount) and returns its index; like addBox, no contacts.
 inline size_t addStaticBox(SceneDescription& scene, std::string name, const Vec3& size,
                            const Vec3& position) {
-    scene.bodies.push_back(
-        {std::move(name),
-         BodyDef{.shape = boxShape(size), .type = BodyType::Static, .position = position}});
+    scene.bodies.push_back({std::move(name), BodyDef{.shape = boxShape(size),
+                                                     .type = BodyType::Static,
+                                                     .position = position,
+                                                     .collide = false}});
     return scene.bodies.size() - 1;
 }
 

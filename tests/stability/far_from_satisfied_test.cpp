@@ -95,7 +95,8 @@ struct FarRig {
             const BodyId bar = world.createBody({.shape = boxShape(kSize),
                                                  .mass = kMass,
                                                  .position = left + orientation * half,
-                                                 .orientation = orientation});
+                                                 .orientation = orientation,
+                                                 .collide = false});  // a joint case: no contacts
             JointDef def{.type = type,
                          .body0 = previous,
                          .body1 = bar,

@@ -114,7 +114,8 @@ struct AlternatingChain {
             const BodyId link =
                 world.createBody({.shape = boxShape(Vec3(kLength, 0.02, 0.02)),
                                   .mass = mass,
-                                  .position = kCeiling + Vec3(kLength * (i + 0.5), 0, 0)});
+                                  .position = kCeiling + Vec3(kLength * (i + 0.5), 0, 0),
+                                  .collide = false});  // a joint case: links pass through each other
             world.createJoint({.type = JointType::Hinge,
                                .body0 = previous,
                                .body1 = link,

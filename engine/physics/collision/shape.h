@@ -2,6 +2,7 @@
 /// Shape descriptions: the geometry a body carries, used for its mass properties now and for
 /// collision (broadphase bounds, narrowphase dispatch) as the collision module grows.
 
+#include "physics/collision/aabb.h"
 #include "physics/math.h"
 
 #include <array>
@@ -10,7 +11,14 @@
 
 namespace substep {
 
-enum class ShapeType { None, Sphere, Box, Capsule, Plane, Mesh };
+enum class ShapeType { None, Sphere, Box, Capsule, Plane, Mesh, Heightfield, Spline };
+
+// Collision data of the shapes that need more than a few numbers; each is defined in its own
+// header under collision/ and shared between bodies that use the same geometry.
+struct ConvexHull;       ///< convex_hull.h: a mesh's hull (mesh with convex = true)
+struct MeshCollider;     ///< mesh_collider.h: a static triangle mesh with its BVH
+struct HeightfieldData;  ///< heightfield.h: a regular grid of heights
+struct SplineTube;       ///< spline_tube.h: a tube around a Hermite spline
 
 /// A closed (for mass properties) or open triangle mesh in its own frame.
 struct TriangleMesh {
@@ -28,6 +36,13 @@ struct Shape {
     double offset = 0.0;                 ///< plane
     std::shared_ptr<const TriangleMesh> mesh;  ///< mesh (already scaled)
     bool convex = false;                 ///< mesh: collide as its convex hull
+    std::shared_ptr<const ConvexHull> hull;            ///< mesh with convex = true
+    std::shared_ptr<const MeshCollider> meshCollider;  ///< mesh with convex = false (static)
+    std::shared_ptr<const HeightfieldData> heightfield;
+    std::shared_ptr<const SplineTube> spline;
+    /// Bounds in the shape's own frame for mesh, heightfield and spline shapes (the builders of
+    /// their collision data fill it); the primitives' bounds follow from their parameters.
+    Aabb localBounds;
 };
 
 inline Shape sphereShape(double radius) { return {.type = ShapeType::Sphere, .radius = radius}; }

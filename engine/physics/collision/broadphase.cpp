@@ -1,0 +1,313 @@
+#include "physics/collision/broadphase.h"
+
+#include "physics/collision/shape_bounds.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace substep {
+
+namespace {
+
+Aabb infiniteBox() {
+    const double inf = std::numeric_limits<double>::infinity();
+    return {Vec3::Constant(-inf), Vec3::Constant(inf)};
+}
+
+bool isFinite(const Aabb& box) {
+    return box.min.allFinite() && box.max.allFinite();
+}
+
+/// Same geometry as far as the bounds are concerned (a static body is re-boxed only when this
+/// or its pose changes).
+bool sameGeometry(const Shape& a, const Shape& b) {
+    return a.type == b.type && a.radius == b.radius && a.size == b.size && a.length == b.length &&
+           a.mesh == b.mesh && a.localBounds.min == b.localBounds.min &&
+           a.localBounds.max == b.localBounds.max;
+}
+
+BodyPair orderedPair(uint32_t a, uint32_t b) {
+    return a < b ? BodyPair{a, b} : BodyPair{b, a};
+}
+
+bool pairLess(const BodyPair& a, const BodyPair& b) {
+    return a.body0 != b.body0 ? a.body0 < b.body0 : a.body1 < b.body1;
+}
+
+}  // namespace
+
+Broadphase::Broadphase(const BroadphaseSettings& settings)
+    : settings_(settings), staticTree_(0.0), dynamicTree_(settings.fatMargin) {}
+
+void Broadphase::setSettings(const BroadphaseSettings& settings) {
+    settings_ = settings;
+    dynamicTree_ = AabbTree(settings.fatMargin);
+    clear();
+}
+
+void Broadphase::clear() {
+    slots_.clear();
+    boxes_.clear();
+    staticTree_.clear();
+    dynamicTree_.clear();
+    dynamic_.clear();
+    planes_.clear();
+    sweep_.clear();
+    found_.clear();
+    pairs_.clear();
+}
+
+const Aabb& Broadphase::bounds(uint32_t index) const {
+    static const Aabb kEmpty;
+    return index < boxes_.size() ? boxes_[index] : kEmpty;
+}
+
+void Broadphase::update(std::span<const Body> bodies, double dt, double k) {
+    // Slots beyond the span belong to bodies that no longer exist.
+    for (size_t i = bodies.size(); i < slots_.size(); ++i)
+        leave(static_cast<uint32_t>(i));
+    slots_.resize(bodies.size());
+    boxes_.resize(bodies.size());
+
+    dynamic_.clear();
+    planes_.clear();
+    for (size_t i = 0; i < bodies.size(); ++i)
+        syncSlot(static_cast<uint32_t>(i), bodies[i], dt, k);
+
+    found_.clear();
+    if (settings_.method == BroadphaseMethod::SweepAndPrune) collectSweepPairs();
+    collectStaticAndTreePairs();
+    collectPlanePairs(bodies);
+    sortPairs(bodies.size());
+}
+
+void Broadphase::leave(uint32_t index) {
+    Slot& slot = slots_[index];
+    if (slot.proxy != AabbTree::kNull) {
+        (slot.kind == Kind::Static ? staticTree_ : dynamicTree_).destroyProxy(slot.proxy);
+    }
+    slot.proxy = AabbTree::kNull;
+    slot.kind = Kind::None;
+    boxes_[index] = Aabb{};
+    slot.shape = Shape{};  // drops references to mesh data
+    slot.inSweep = false;  // its sweep entry is dropped at the next sweep
+}
+
+void Broadphase::syncSlot(uint32_t index, const Body& body, double dt, double k) {
+    Kind wanted = Kind::None;
+    if (body.alive && body.collide && body.shape.type != ShapeType::None) {
+        if (body.shape.type == ShapeType::Plane) {
+            wanted = Kind::Plane;
+        } else {
+            wanted = body.isDynamic() ? Kind::Dynamic : Kind::Static;
+        }
+    }
+    Slot& slot = slots_[index];
+    // A slot reused by a new body, or a body that changed its kind, starts over.
+    if (slot.kind != Kind::None && (slot.kind != wanted || slot.generation != body.generation)) {
+        leave(index);
+    }
+    slot.generation = body.generation;
+    if (wanted == Kind::None) return;
+
+    if (wanted == Kind::Plane) {
+        slot.kind = Kind::Plane;
+        boxes_[index] = infiniteBox();
+        if (body.shape.normal.allFinite() && std::isfinite(body.shape.offset)) {
+            planes_.push_back(index);
+        }
+        return;
+    }
+
+    // A static body that has not moved or changed keeps its box and its leaf untouched.
+    const bool still = body.v.isZero(0.0) && body.omega.isZero(0.0);
+    if (wanted == Kind::Static && slot.kind == Kind::Static && still && body.x == slot.position &&
+        body.q.coeffs() == slot.orientation.coeffs() && sameGeometry(body.shape, slot.shape)) {
+        return;
+    }
+
+    const Aabb tight = shapeBounds(body.shape, body.userPosition(), body.userOrientation());
+    if (tight.isEmpty() || !isFinite(tight)) {
+        if (slot.kind != Kind::None) leave(index);
+        return;
+    }
+    double growth = 0.0;
+    Vec3 sweep = Vec3::Zero();
+    if (!still) {
+        double speed = body.rotates()
+                           ? body.omega.norm() * (body.userOrigin.norm() + shapeReach(body.shape))
+                           : 0.0;
+        if (settings_.sweptGrowth) {
+            sweep = (k * dt) * body.v;
+            // A sweep that is not finite or too long becomes the clamped growth on every side.
+            if (!(sweep.norm() <= settings_.maxGrowth)) {
+                sweep.setZero();
+                speed = std::numeric_limits<double>::infinity();
+            }
+        } else {
+            speed += body.v.norm();
+        }
+        growth = std::abs(k * dt) * speed;
+        // Clamped, NaN included: a runaway body gets a large finite box, never a broken tree.
+        if (!(growth <= settings_.maxGrowth)) growth = settings_.maxGrowth;
+    }
+    Aabb box = tight.inflated(growth + settings_.margin);
+    box.min += sweep.cwiseMin(0.0);
+    box.max += sweep.cwiseMax(0.0);
+    if (!isFinite(box)) {
+        if (slot.kind != Kind::None) leave(index);
+        return;
+    }
+    boxes_[index] = box;
+
+    if (wanted == Kind::Static) {
+        slot.position = body.x;
+        slot.orientation = body.q;
+        slot.shape = body.shape;
+        if (slot.proxy == AabbTree::kNull) {
+            slot.proxy = staticTree_.createProxy(box, index);
+        } else {
+            staticTree_.moveProxy(slot.proxy, box);
+        }
+    } else {
+        dynamic_.push_back(index);
+        if (settings_.method == BroadphaseMethod::AabbTree) {
+            if (slot.proxy == AabbTree::kNull) {
+                slot.proxy = dynamicTree_.createProxy(box, index);
+            } else {
+                dynamicTree_.moveProxy(slot.proxy, box);
+            }
+        }
+    }
+    slot.kind = wanted;
+}
+
+void Broadphase::collectStaticAndTreePairs() {
+    const bool useTree = settings_.method == BroadphaseMethod::AabbTree;
+    for (const uint32_t i : dynamic_) {
+        const Aabb& box = boxes_[i];
+        // Leaves hold fattened boxes: keep only partners whose pairing boxes overlap.
+        staticTree_.query(box, [&](int32_t proxy) {
+            const uint32_t j = staticTree_.userData(proxy);
+            if (boxes_[j].overlaps(box)) found_.push_back(orderedPair(i, j));
+        });
+        if (!useTree) continue;
+        // Each dynamic pair is reported by its lower body only.
+        dynamicTree_.query(box, [&](int32_t proxy) {
+            const uint32_t j = dynamicTree_.userData(proxy);
+            if (j > i && boxes_[j].overlaps(box)) found_.push_back({i, j});
+        });
+    }
+}
+
+void Broadphase::collectSweepPairs() {
+    // Drop entries of bodies that left, add the newcomers.
+    std::erase_if(sweep_, [&](const SweepEntry& e) {
+        return e.body >= slots_.size() || !slots_[e.body].inSweep;
+    });
+    for (const uint32_t i : dynamic_) {
+        if (!slots_[i].inSweep) {
+            sweep_.push_back({0.0, i});
+            slots_[i].inSweep = true;
+        }
+    }
+    if (sweep_.size() < 2) return;
+
+    // Sweep along the axis where the boxes spread most; switch only for a clear gain, since
+    // a new axis costs a full re-sort.
+    Vec3 sum = Vec3::Zero();
+    Vec3 sumSquares = Vec3::Zero();
+    for (const SweepEntry& e : sweep_) {
+        const Vec3 c = boxes_[e.body].center();
+        sum += c;
+        sumSquares += c.cwiseProduct(c);
+    }
+    const double n = static_cast<double>(sweep_.size());
+    const Vec3 variance = sumSquares / n - (sum / n).cwiseProduct(sum / n);
+    int best = sweepAxis_;
+    for (int axis = 0; axis < 3; ++axis) {
+        if (variance[axis] > 1.5 * variance[best]) best = axis;
+    }
+    sweepAxis_ = best;
+    const int a = sweepAxis_;
+    const int b = (a + 1) % 3;
+    const int c = (a + 2) % 3;
+
+    for (SweepEntry& e : sweep_)
+        e.min = boxes_[e.body].min[a];
+    // Insertion sort: last frame's order is nearly right, so this is close to linear.
+    auto before = [](const SweepEntry& x, const SweepEntry& y) {
+        return x.min != y.min ? x.min < y.min : x.body < y.body;
+    };
+    for (size_t i = 1; i < sweep_.size(); ++i) {
+        const SweepEntry entry = sweep_[i];
+        size_t j = i;
+        while (j > 0 && before(entry, sweep_[j - 1])) {
+            sweep_[j] = sweep_[j - 1];
+            --j;
+        }
+        sweep_[j] = entry;
+    }
+
+    // Gather the boxes in sweep order so the inner loop reads contiguous memory.
+    const size_t count = sweep_.size();
+    sweepMin_.resize(count + 1);
+    sweepMax_.resize(count);
+    sweepCross_.resize(count);
+    for (size_t i = 0; i < count; ++i) {
+        const Aabb& box = boxes_[sweep_[i].body];
+        sweepMin_[i] = box.min[a];
+        sweepMax_[i] = box.max[a];
+        sweepCross_[i] = {box.min[b], box.max[b], box.min[c], box.max[c]};
+    }
+    // A sentinel past the end stops every scan without a bounds check.
+    sweepMin_[count] = std::numeric_limits<double>::infinity();
+    for (size_t i = 0; i < count; ++i) {
+        const double maxA = sweepMax_[i];
+        const CrossExtent p = sweepCross_[i];
+        for (size_t j = i + 1; sweepMin_[j] <= maxA; ++j) {
+            const CrossExtent& q = sweepCross_[j];
+            if (q.minB <= p.maxB && p.minB <= q.maxB && q.minC <= p.maxC && p.minC <= q.maxC) {
+                found_.push_back(orderedPair(sweep_[i].body, sweep_[j].body));
+            }
+        }
+    }
+}
+
+void Broadphase::collectPlanePairs(std::span<const Body> bodies) {
+    for (const uint32_t p : planes_) {
+        const Vec3& n = bodies[p].shape.normal;
+        const double offset = bodies[p].shape.offset;
+        const Vec3 nAbs = n.cwiseAbs();
+        for (const uint32_t i : dynamic_) {
+            // The box's lowest point along n; the box already carries the margin.
+            const Aabb& box = boxes_[i];
+            const double lowest = n.dot(box.center()) - 0.5 * nAbs.dot(box.extents());
+            if (lowest <= offset) found_.push_back(orderedPair(p, i));
+        }
+    }
+}
+
+void Broadphase::sortPairs(size_t bodyCount) {
+    // Counting sort by body0, then insertion sort, which only moves pairs within a body0 run.
+    bucketStart_.assign(bodyCount + 1, 0);
+    for (const BodyPair& pair : found_)
+        ++bucketStart_[pair.body0 + 1];
+    for (size_t i = 1; i <= bodyCount; ++i)
+        bucketStart_[i] += bucketStart_[i - 1];
+    pairs_.resize(found_.size());
+    for (const BodyPair& pair : found_)
+        pairs_[bucketStart_[pair.body0]++] = pair;
+    for (size_t i = 1; i < pairs_.size(); ++i) {
+        const BodyPair pair = pairs_[i];
+        size_t j = i;
+        while (j > 0 && pairLess(pair, pairs_[j - 1])) {
+            pairs_[j] = pairs_[j - 1];
+            --j;
+        }
+        pairs_[j] = pair;
+    }
+}
+
+}  // namespace substep

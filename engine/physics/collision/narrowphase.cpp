@@ -1,0 +1,140 @@
+// The narrowphase dispatch table: one slot per ordered pair of shape types, built at compile
+// time from the list of implemented pairs below. A pair listed as (A, B) fills slot [A][B]
+// directly and slot [B][A] as "swapped": collide() then calls the function with the shapes
+// exchanged and flips the normals and the two points of each contact.
+
+#include "physics/collision/narrowphase.h"
+
+#include "physics/collision/collide_convex.h"
+#include "physics/collision/collide_curved.h"
+#include "physics/collision/collide_primitives.h"
+
+#include <array>
+#include <utility>
+
+namespace substep {
+
+namespace {
+
+// A Mesh shape is either a dynamic convex hull (convex = true) or a static triangle mesh with a
+// BVH; these pick the pair function by the mesh's kind.
+void collideSphereAnyMesh(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb,
+                          double margin, ContactManifold& out) {
+    if (b.convex) collideSphereConvex(a, pa, b, pb, margin, out);
+    else collideSphereMesh(a, pa, b, pb, margin, out);
+}
+
+void collideCapsuleAnyMesh(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb,
+                           double margin, ContactManifold& out) {
+    if (b.convex) collideCapsuleConvex(a, pa, b, pb, margin, out);
+    else collideCapsuleMesh(a, pa, b, pb, margin, out);
+}
+
+void collideBoxAnyMesh(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb,
+                       double margin, ContactManifold& out) {
+    if (b.convex) collideBoxConvex(a, pa, b, pb, margin, out);
+    else collideBoxMesh(a, pa, b, pb, margin, out);
+}
+
+/// Hull against hull; a hull against a triangle mesh has no pair function yet.
+void collideMeshMesh(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb,
+                     double margin, ContactManifold& out) {
+    if (a.convex && b.convex) collideConvexConvex(a, pa, b, pb, margin, out);
+}
+
+/// A triangle mesh is static, like the plane, so only a hull meets a plane.
+void collideMeshPlane(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb,
+                      double margin, ContactManifold& out) {
+    if (a.convex) collideConvexPlane(a, pa, b, pb, margin, out);
+}
+
+struct PairEntry {
+    ShapeType a;
+    ShapeType b;
+    CollideFunction function;  ///< shape of type a first
+};
+
+// Every pair the narrowphase handles, once each, shape a's type first. To add a pair (mesh,
+// heightfield, spline), add one line here with its function; the reversed order follows.
+// Plane–plane and anything with None are deliberately absent: they never collide.
+constexpr PairEntry kPairs[] = {
+    {ShapeType::Sphere, ShapeType::Sphere, collideSphereSphere},
+    {ShapeType::Sphere, ShapeType::Plane, collideSpherePlane},
+    {ShapeType::Sphere, ShapeType::Box, collideSphereBox},
+    {ShapeType::Sphere, ShapeType::Capsule, collideSphereCapsule},
+    {ShapeType::Capsule, ShapeType::Capsule, collideCapsuleCapsule},
+    {ShapeType::Capsule, ShapeType::Plane, collideCapsulePlane},
+    {ShapeType::Capsule, ShapeType::Box, collideCapsuleBox},
+    {ShapeType::Box, ShapeType::Plane, collideBoxPlane},
+    {ShapeType::Box, ShapeType::Box, collideBoxBox},
+    {ShapeType::Sphere, ShapeType::Mesh, collideSphereAnyMesh},
+    {ShapeType::Capsule, ShapeType::Mesh, collideCapsuleAnyMesh},
+    {ShapeType::Box, ShapeType::Mesh, collideBoxAnyMesh},
+    {ShapeType::Mesh, ShapeType::Mesh, collideMeshMesh},
+    {ShapeType::Mesh, ShapeType::Plane, collideMeshPlane},
+    {ShapeType::Sphere, ShapeType::Heightfield, collideSphereHeightfield},
+    {ShapeType::Capsule, ShapeType::Heightfield, collideCapsuleHeightfield},
+    {ShapeType::Box, ShapeType::Heightfield, collideBoxHeightfield},
+    {ShapeType::Sphere, ShapeType::Spline, collideSphereSpline},
+    {ShapeType::Capsule, ShapeType::Spline, collideCapsuleSpline},
+};
+
+constexpr int kShapeTypeCount = static_cast<int>(ShapeType::Spline) + 1;
+
+struct Slot {
+    CollideFunction function = nullptr;
+    bool swapped = false;  ///< call with (b, a) and flip the result
+};
+
+using Table = std::array<std::array<Slot, kShapeTypeCount>, kShapeTypeCount>;
+
+constexpr Table buildTable() {
+    Table table{};
+    for (const PairEntry& entry : kPairs) {
+        const int a = static_cast<int>(entry.a);
+        const int b = static_cast<int>(entry.b);
+        table[a][b] = {entry.function, false};
+        if (a != b) table[b][a] = {entry.function, true};
+    }
+    return table;
+}
+
+constexpr bool listsEachPairOnce() {
+    for (std::size_t i = 0; i < std::size(kPairs); ++i) {
+        for (std::size_t k = i + 1; k < std::size(kPairs); ++k) {
+            const bool same = kPairs[i].a == kPairs[k].a && kPairs[i].b == kPairs[k].b;
+            const bool reversed = kPairs[i].a == kPairs[k].b && kPairs[i].b == kPairs[k].a;
+            if (same || reversed) return false;
+        }
+    }
+    return true;
+}
+static_assert(listsEachPairOnce(), "kPairs lists a pair twice (possibly in reversed order)");
+
+constexpr Table kTable = buildTable();
+
+}  // namespace
+
+void collide(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb, double margin,
+             ContactManifold& out) {
+    out.clear();
+    const Slot& slot = kTable[static_cast<int>(a.type)][static_cast<int>(b.type)];
+    if (slot.function == nullptr) return;
+    if (!slot.swapped) {
+        slot.function(a, pa, b, pb, margin, out);
+        return;
+    }
+    slot.function(b, pb, a, pa, margin, out);
+    // The function saw b as shape 0: swap the roles; the depth is unchanged.
+    for (int k = 0; k < out.count; ++k) {
+        ContactPoint& p = out.points[k];
+        std::swap(p.point0, p.point1);
+        p.normal = -p.normal;
+    }
+}
+
+bool canCollide(ShapeType a, ShapeType b) {
+    return kTable[static_cast<int>(a)][static_cast<int>(b)].function != nullptr;
+}
+
+}  // namespace substep

@@ -1,0 +1,289 @@
+#include "scene_drawing.h"
+
+#include "physics/collision/heightfield.h"
+#include "physics/collision/spline_tube.h"
+#include "render/camera_framing.h"
+#include "render/mesh_builders.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <vector>
+
+namespace substep {
+namespace {
+
+render::Vec3f toFloat(const Vec3& v) { return v.cast<float>(); }
+
+/// Extent of a body's shape about its frame's origin (m), for framing and floors.
+double shapeRadius(const Shape& shape) {
+    switch (shape.type) {
+        case ShapeType::Sphere: return shape.radius;
+        case ShapeType::Box: return shape.size.norm() / 2.0;
+        case ShapeType::Capsule: return shape.radius + shape.length / 2.0;
+        case ShapeType::Mesh:
+        case ShapeType::Heightfield:
+        case ShapeType::Spline:
+            if (shape.localBounds.min.allFinite() && shape.localBounds.max.allFinite()) {
+                return std::max(shape.localBounds.min.norm(), shape.localBounds.max.norm());
+            }
+            return 0.0;
+        default: return 0.0;
+    }
+}
+
+/// Bounds of every body but the world anchor and planes, on the current state.
+Eigen::AlignedBox3d bodyBounds(const World& world) {
+    Eigen::AlignedBox3d box;
+    const auto bodies = world.bodies();
+    for (std::size_t i = 1; i < bodies.size(); ++i) {
+        const Body& body = bodies[i];
+        if (!body.alive || body.shape.type == ShapeType::Plane) continue;
+        const double radius = shapeRadius(body.shape);
+        box.extend(body.userPosition() - Vec3::Constant(radius));
+        box.extend(body.userPosition() + Vec3::Constant(radius));
+    }
+    return box;
+}
+
+/// Grid lines at a power of ten that suits the scene's size.
+float gridSpacingFor(double size) {
+    return static_cast<float>(std::pow(10.0, std::floor(std::log10(std::max(size, 0.1)))));
+}
+
+void addArrow(render::RenderScene& scene, const render::Vec3f& from, const render::Vec3f& to,
+              const render::Colour& colour) {
+    scene.lines.push_back({from, to, colour});
+    const render::Vec3f shaft = to - from;
+    const float length = shaft.norm();
+    if (length < 1e-6f) return;
+    // Two short barbs in a plane containing the shaft.
+    const render::Vec3f direction = shaft / length;
+    const render::Vec3f side = direction.unitOrthogonal();
+    for (const float sign : {1.0f, -1.0f}) {
+        scene.lines.push_back({to, to - 0.2f * length * direction + sign * 0.08f * length * side, colour});
+    }
+}
+
+}  // namespace
+
+render::Colour bodyColour(std::size_t index, bool isStatic) {
+    if (isStatic) return {0.55f, 0.56f, 0.60f};
+    // Warm and cool colours alternating, saturated enough to tell neighbours apart.
+    static constexpr std::array<std::array<float, 3>, 8> kPalette{{
+        {0.90f, 0.45f, 0.25f},  // orange
+        {0.25f, 0.55f, 0.85f},  // blue
+        {0.95f, 0.75f, 0.25f},  // yellow
+        {0.40f, 0.70f, 0.40f},  // green
+        {0.85f, 0.35f, 0.45f},  // red
+        {0.55f, 0.45f, 0.80f},  // violet
+        {0.30f, 0.75f, 0.75f},  // teal
+        {0.85f, 0.60f, 0.45f},  // sand
+    }};
+    const auto& c = kPalette[(index + kPalette.size() - 1) % kPalette.size()];
+    return {c[0], c[1], c[2]};
+}
+
+SceneDrawing::SceneDrawing(const SceneDescription& description, const World& world, float aspect,
+                           const DrawingOptions& options)
+    : options_(options) {
+    const Eigen::AlignedBox3d box = bodyBounds(world);
+    const Vec3 centre = box.isEmpty() ? Vec3(Vec3::Zero()) : Vec3(box.center());
+    const double radius = box.isEmpty() ? 1.0 : std::max(box.diagonal().norm() / 2.0, 0.05);
+
+    if (description.camera) {
+        camera_ = {.position = toFloat(description.camera->position),
+                   .target = toFloat(description.camera->target),
+                   .up = render::Vec3f::UnitY(),
+                   .fovY = static_cast<float>(description.camera->fov)};
+    } else {
+        camera_ = render::framingCamera(toFloat(centre), static_cast<float>(radius), 0.8f, aspect);
+    }
+
+    // The scene's own plane is the ground; without one a reference floor sits at y = 0, or under
+    // the lowest body if something starts below that.
+    for (const Body& body : world.bodies()) {
+        if (body.alive && body.shape.type == ShapeType::Plane) {
+            ground_ = render::Ground{.normal = toFloat(body.shape.normal.normalized()),
+                                     .offset = static_cast<float>(body.shape.offset)};
+            break;
+        }
+    }
+    if (!ground_) {
+        const double lowest = box.isEmpty() ? 0.0 : box.min().y();
+        ground_ = render::Ground{.normal = render::Vec3f::UnitY(),
+                                 .offset = static_cast<float>(std::min(0.0, lowest - 0.1 * radius))};
+    }
+    ground_->gridSpacing = gridSpacingFor(radius);
+
+    // Overlays are sized to the bodies as well as to the scene, so a rope of thin capsules is not
+    // buried under its own joint frames: the median body's size caps them.
+    std::vector<double> bodySizes;
+    for (const Body& body : world.bodies()) {
+        if (body.alive && body.shape.type != ShapeType::Plane && shapeRadius(body.shape) > 0.0) {
+            bodySizes.push_back(shapeRadius(body.shape));
+        }
+    }
+    double medianSize = radius;
+    if (!bodySizes.empty()) {
+        std::nth_element(bodySizes.begin(), bodySizes.begin() + bodySizes.size() / 2, bodySizes.end());
+        medianSize = bodySizes[bodySizes.size() / 2];
+    }
+    markerLength_ = static_cast<float>(std::min(0.06 * radius, 0.8 * medianSize));
+    // Forces: the heaviest moving body's weight is drawn a tenth of the scene's size long, and no
+    // arrow is longer than a quarter of it (a whipping pendulum pulls many times its weight).
+    double heaviestWeight = 0.0;
+    for (const Body& body : world.bodies()) {
+        if (body.alive && body.isDynamic()) {
+            heaviestWeight = std::max(heaviestWeight, body.mass * world.settings().gravity.norm());
+        }
+    }
+    forceScale_ = heaviestWeight > 0.0 ? static_cast<float>(0.1 * radius / heaviestWeight) : 0.0f;
+    longestArrow_ = static_cast<float>(std::min(0.25 * radius, 3.0 * medianSize));
+}
+
+render::RenderScene SceneDrawing::draw(const World& world) {
+    render::RenderScene scene;
+    scene.camera = camera_;
+    scene.ground = ground_;
+    addBodies(world, scene);
+    addJoints(world, scene);
+    addContacts(world, scene);
+    return scene;
+}
+
+std::shared_ptr<const render::MeshData> SceneDrawing::meshFor(const Shape& shape) {
+    const void* source = nullptr;
+    if (shape.type == ShapeType::Mesh) source = shape.mesh.get();
+    if (shape.type == ShapeType::Spline) source = shape.spline.get();
+    if (shape.type == ShapeType::Heightfield) source = shape.heightfield.get();
+    if (source == nullptr) return nullptr;
+    if (const auto found = meshes_.find(source); found != meshes_.end()) return found->second;
+
+    auto mesh = std::make_shared<render::MeshData>();
+    if (shape.type == ShapeType::Mesh) {
+        std::vector<render::Vec3f> points;
+        points.reserve(shape.mesh->vertices.size());
+        for (const Vec3& v : shape.mesh->vertices) points.push_back(toFloat(v));
+        std::vector<uint32_t> triangles;
+        triangles.reserve(shape.mesh->triangles.size() * 3);
+        for (const auto& t : shape.mesh->triangles) {
+            triangles.insert(triangles.end(), {static_cast<uint32_t>(t[0]), static_cast<uint32_t>(t[1]),
+                                               static_cast<uint32_t>(t[2])});
+        }
+        *mesh = render::flatShadedMesh(points, triangles);
+    } else if (shape.type == ShapeType::Heightfield) {
+        const HeightfieldData& field = *shape.heightfield;
+        const std::vector<float> heights(field.heights.begin(), field.heights.end());
+        *mesh = render::heightfieldMesh(
+            field.columns, field.rows,
+            render::Vec2f(static_cast<float>(-0.5 * field.sizeX), static_cast<float>(-0.5 * field.sizeZ)),
+            render::Vec2f(static_cast<float>(field.cellX()), static_cast<float>(field.cellZ())), heights);
+    } else {
+        // The tube's curve sampled finely enough that its polyline looks smooth.
+        const SplineTube& tube = *shape.spline;
+        std::vector<render::Vec3f> centres;
+        constexpr int kSamplesPerSegment = 12;
+        for (std::size_t s = 0; s < tube.segments.size(); ++s) {
+            const bool lastOfOpen = !tube.closed && s + 1 == tube.segments.size();
+            const int samples = kSamplesPerSegment + (lastOfOpen ? 1 : 0);
+            for (int i = 0; i < samples; ++i) {
+                centres.push_back(toFloat(tube.segments[s].point(static_cast<double>(i) / kSamplesPerSegment)));
+            }
+        }
+        if (tube.segments.empty() && !tube.points.empty()) centres.push_back(toFloat(tube.points.front()));
+        *mesh = render::tubeMesh(centres, static_cast<float>(tube.radius), tube.closed);
+    }
+    meshes_.emplace(source, mesh);
+    return mesh;
+}
+
+void SceneDrawing::addBodies(const World& world, render::RenderScene& scene) {
+    const auto bodies = world.bodies();
+    for (std::size_t i = 1; i < bodies.size(); ++i) {
+        const Body& body = bodies[i];
+        if (!body.alive) continue;
+        render::RenderInstance instance{.position = toFloat(body.userPosition()),
+                                        .orientation = body.userOrientation().cast<float>(),
+                                        .colour = bodyColour(i, !body.isDynamic())};
+        const Shape& shape = body.shape;
+        switch (shape.type) {
+            case ShapeType::Sphere:
+                instance.kind = render::ShapeKind::Sphere;
+                instance.dimensions = render::Vec3f::Constant(static_cast<float>(shape.radius));
+                break;
+            case ShapeType::Box:
+                instance.kind = render::ShapeKind::Box;
+                instance.dimensions = toFloat(shape.size);
+                break;
+            case ShapeType::Capsule:
+                instance.kind = render::ShapeKind::Capsule;
+                instance.dimensions = render::Vec3f(static_cast<float>(shape.radius),
+                                                    static_cast<float>(shape.length), 0.0f);
+                break;
+            case ShapeType::Mesh:
+            case ShapeType::Heightfield:
+            case ShapeType::Spline:
+                instance.kind = render::ShapeKind::Mesh;
+                instance.mesh = meshFor(shape);
+                if (!instance.mesh) continue;
+                break;
+            default: continue;  // planes are the ground; shapeless bodies have nothing to show
+        }
+        scene.instances.push_back(std::move(instance));
+    }
+}
+
+void SceneDrawing::addJoints(const World& world, render::RenderScene& scene) const {
+    const auto bodies = world.bodies();
+    const double h = world.lastSubstep();
+    for (const Joint& joint : world.joints()) {
+        if (!joint.alive) continue;
+        const Body& body0 = bodies[joint.body0];
+        const Body& body1 = bodies[joint.body1];
+        const render::Vec3f anchor0 = toFloat(body0.pointToWorld(joint.anchor0));
+        const render::Vec3f anchor1 = toFloat(body1.pointToWorld(joint.anchor1));
+        // The link between the anchors: a spring's stretch, a rope's slack, a joint's error.
+        scene.lines.push_back({anchor0, anchor1, {0.95f, 0.85f, 0.30f}});
+        if (options_.jointFrames) {
+            const std::pair<const Body*, std::pair<Quat, render::Vec3f>> frames[2] = {
+                {&body0, {joint.frame0, anchor0}}, {&body1, {joint.frame1, anchor1}}};
+            for (const auto& [body, frame] : frames) {
+                const Eigen::Matrix3d axes = (body->q * frame.first).toRotationMatrix();
+                const render::Colour colours[3] = {{0.9f, 0.2f, 0.2f}, {0.2f, 0.8f, 0.2f}, {0.25f, 0.4f, 1.0f}};
+                for (int axis = 0; axis < 3; ++axis) {
+                    scene.lines.push_back({frame.second,
+                                           frame.second + markerLength_ * toFloat(axes.col(axis)),
+                                           colours[axis]});
+                }
+            }
+        }
+    }
+    // Forces after every frame, so overlays of one kind stay together in the list.
+    if (!options_.jointForces || h <= 0.0 || forceScale_ <= 0.0f) return;
+    for (const Joint& joint : world.joints()) {
+        if (!joint.alive) continue;
+        // Force on body 1 (a correction is the motion of body 0 along the impulse): λ/h² (Eq. 10).
+        const render::Vec3f anchor1 = toFloat(bodies[joint.body1].pointToWorld(joint.anchor1));
+        const render::Vec3f arrow = forceScale_ * toFloat(-joint.linearImpulse / (h * h));
+        const float length = arrow.norm();
+        if (length > 1e-4f) {
+            addArrow(scene, anchor1, anchor1 + arrow * std::min(1.0f, longestArrow_ / length), {0.85f, 0.30f, 0.85f});
+        }
+    }
+}
+
+void SceneDrawing::addContacts(const World& world, render::RenderScene& scene) const {
+    if (!options_.contacts) return;
+    const auto bodies = world.bodies();
+    const auto contacts = world.contacts();
+    for (const ContactPair& pair : world.contactPairs()) {
+        for (uint32_t i = pair.first; i < pair.first + pair.count && i < contacts.size(); ++i) {
+            const Contact& contact = contacts[i];
+            const render::Vec3f point = toFloat(bodies[pair.body1].pointToWorld(contact.local1));
+            addArrow(scene, point, point + markerLength_ * toFloat(contact.normal), {1.0f, 0.35f, 0.2f});
+        }
+    }
+}
+
+}  // namespace substep

@@ -1,0 +1,55 @@
+#pragma once
+/// A physics World as a RenderScene: every body's shape in its colour, the ground (the scene's
+/// plane, or a reference floor under the bodies), and debug lines for joint frames, joint forces
+/// and contact points (World::contacts()). What stays fixed over a rendering (camera, ground, colours, force scale) is
+/// decided once from the initial state, so frames of one scene line up.
+
+#include "render/render_scene.h"
+#include "scene/scene.h"
+
+#include <map>
+#include <memory>
+
+namespace substep {
+
+/// Which debug overlays to draw.
+struct DrawingOptions {
+    bool jointFrames = true;  ///< each joint's axes on both bodies (a red, b green, c blue)
+    bool jointForces = true;  ///< the joint's force on body 1, scaled to the scene
+    /// Contact points with their normals: off by default, since a pile of bodies turns them
+    /// into a thicket that hides the scene (the viewer offers them as a toggle).
+    bool contacts = false;
+};
+
+class SceneDrawing {
+  public:
+    /// Fixes the camera (the scene's own, else one that frames the bodies of `world` for an image
+    /// of the given aspect ratio), the ground and the scales of the overlays.
+    SceneDrawing(const SceneDescription& description, const World& world, float aspect,
+                 const DrawingOptions& options = {});
+
+    /// The world's current state to draw.
+    render::RenderScene draw(const World& world);
+
+    const render::Camera& camera() const { return camera_; }
+
+  private:
+    void addBodies(const World& world, render::RenderScene& scene);
+    void addJoints(const World& world, render::RenderScene& scene) const;
+    void addContacts(const World& world, render::RenderScene& scene) const;
+    std::shared_ptr<const render::MeshData> meshFor(const Shape& shape);
+
+    DrawingOptions options_;
+    render::Camera camera_;
+    std::optional<render::Ground> ground_;
+    float markerLength_ = 0.1f;  ///< joint frame axes and contact normals (m)
+    float forceScale_ = 0.0f;    ///< m per N
+    float longestArrow_ = 1.0f;  ///< force arrows are clipped to this (m)
+    /// Render meshes built from shape data, by the address of that data (shared between bodies).
+    std::map<const void*, std::shared_ptr<const render::MeshData>> meshes_;
+};
+
+/// The colour body `index` is drawn in: static bodies a neutral grey, moving ones from a palette.
+render::Colour bodyColour(std::size_t index, bool isStatic);
+
+}  // namespace substep

@@ -1,0 +1,45 @@
+#pragma once
+/// Dragging a body with the mouse through a compliant spring (the paper's Fig. 5 interaction):
+/// the spring joins a point of the body to a point of the world that follows the cursor across
+/// a plane facing the camera. Going through the solver like any joint, the pull stays stable
+/// however far or fast the cursor moves, and the body keeps its dynamics while held.
+
+#include "physics/world.h"
+#include "render/render_scene.h"
+
+#include <optional>
+
+namespace substep::view {
+
+/// A ray in world coordinates; direction of unit length.
+struct Ray {
+    Vec3 origin = Vec3::Zero();
+    Vec3 direction = Vec3::UnitZ();
+};
+
+/// The ray through window point (x, y) (pixels, y down) of a `width` x `height` view of `camera`.
+Ray cursorRay(const render::Camera& camera, float x, float y, float width, float height);
+
+class BodyDragger {
+  public:
+    /// Grabs the nearest dynamic body the ray hits (its shape's local bounding box, exact for
+    /// boxes) with a spring at the hit point. Returns false, doing nothing, when none is hit.
+    bool grab(World& world, const Ray& ray);
+    /// Moves the spring's world end to where the ray meets the drag plane.
+    void drag(World& world, const Ray& ray);
+    /// Removes the spring.
+    void release(World& world);
+    /// Forgets the spring without touching a world: for when the world itself was replaced.
+    void forget() { joint_.reset(); }
+    bool active() const { return joint_.has_value(); }
+
+    /// The spring as a line from the cursor's point to the body, when held.
+    std::optional<render::DebugLine> line(const World& world) const;
+
+  private:
+    std::optional<JointId> joint_;
+    Vec3 planePoint_ = Vec3::Zero();   ///< the drag plane passes through the grab point...
+    Vec3 planeNormal_ = Vec3::UnitZ();  ///< ...facing the ray it was grabbed along
+};
+
+}  // namespace substep::view

@@ -1,0 +1,90 @@
+#include "view/view_command.h"
+
+#include "atomic_file.h"
+#include "command_options.h"
+#include "render_command.h"
+#include "scene_source.h"
+#include "scenes/scene_registry.h"
+#include "view/view_app.h"
+
+#include "render/png_codec.h"
+
+#include <cstdio>
+#include <cstdlib>
+#include <memory>
+
+namespace substep::view {
+
+namespace {
+
+/// Debian's GLFW is built for X11, so an X display is what a window needs (XWayland gives one).
+bool hasDisplay() {
+    const char* display = std::getenv("DISPLAY");
+    return display != nullptr && display[0] != '\0';
+}
+
+int runView(const ViewOptions& options) {
+    // Every input is checked before the window opens or any output exists.
+    const auto [width, height] = parseImageSize(options.size);
+    if (!options.screenshot.empty() && options.frames == 0) {
+        throw UsageError("--screenshot: needs --frames N, the frame whose window is saved");
+    }
+    SceneSource source = resolveScene(options.scene.empty() ? defaultViewScene() : options.scene);
+    if (!hasDisplay()) {
+        std::fprintf(stderr,
+                     "substep: no display ($DISPLAY is unset); use `substep render SCENE --frames LIST "
+                     "--out DIR` to render PNGs headless\n"
+                     "  (or `substep run SCENE` to simulate headless and print a summary)\n");
+        return 2;
+    }
+    // Opened before the window, so a screenshot path that cannot be written fails before any
+    // simulation runs; committed only once the frame exists.
+    std::unique_ptr<AtomicFile> screenshot;
+    if (!options.screenshot.empty()) screenshot = std::make_unique<AtomicFile>(options.screenshot);
+
+    ViewAppOptions appOptions;
+    appOptions.width = width;
+    appOptions.height = height;
+    appOptions.frames = options.frames;
+    appOptions.captureLastFrame = screenshot != nullptr;
+    const std::string label = source.label;
+    const ViewAppResult result = runViewApp(std::move(source), appOptions);
+
+    if (screenshot) {
+        if (!result.lastFrame) throw OutputError("--screenshot " + options.screenshot + ": the window had no pixels to save");
+        screenshot->write(render::encodePng(*result.lastFrame));
+        screenshot->commit();
+        std::printf("saved %s after %lld frame%s of %s (%dx%d)\n", options.screenshot.c_str(), options.frames,
+                    options.frames == 1 ? "" : "s", label.c_str(), result.lastFrame->width, result.lastFrame->height);
+    }
+    if (!result.finite) {
+        std::fprintf(stderr, "substep view: the state of %s turned non-finite\n", label.c_str());
+        return options.frames > 0 ? 1 : 0;
+    }
+    return 0;
+}
+
+}  // namespace
+
+std::string defaultViewScene() {
+    if (findBuiltinScene("boxes3") != nullptr) return "boxes3";
+    return std::string(builtinScenes().front().name);
+}
+
+CLI::App* addViewCommand(CLI::App& app, ViewOptions& options) {
+    CLI::App* command = app.add_subcommand("view", "Interactive window (the default command)");
+    command->add_option("SCENE", options.scene, "A built-in scene name or a .json scene file (default boxes3)");
+    command->add_option("--frames", options.frames, "Run N frames without waiting for real time, then exit")
+        ->type_name("N")
+        ->check(CLI::Range(1LL, kMaxRenderFrame));
+    command->add_option("--screenshot", options.screenshot, "Save the window's last frame as a PNG (needs --frames)")
+        ->type_name("F.png");
+    command->add_option("--size", options.size, "Window size in pixels (default 1280x720)")->type_name("WxH");
+    return command;
+}
+
+int viewCommand(const ViewOptions& options) {
+    return runReportingErrors("view", [&] { return runView(options); });
+}
+
+}  // namespace substep::view

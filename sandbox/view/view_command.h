@@ -1,0 +1,32 @@
+#pragma once
+/// `substep view [SCENE] [--frames N --screenshot F.png] [--size WxH]` and `substep` alone: the
+/// interactive window (DESIGN.md's command contract). Without a display it says so, points to
+/// `substep render`, and exits 2. With --frames it runs N frames as fast as it can (one scene dt
+/// each, no waiting for real time), optionally saves the window as a PNG, and exits: the
+/// scripted form the tests run under Xvfb.
+
+#include <CLI/CLI.hpp>
+
+#include <string>
+
+namespace substep::view {
+
+/// The options as typed; checked by viewCommand.
+struct ViewOptions {
+    std::string scene;  ///< empty: the default scene (boxes3, else the first built-in)
+    long long frames = 0;  ///< 0: interactive, until the window is closed
+    std::string screenshot;
+    std::string size = "1280x720";
+};
+
+/// The scene `substep` alone opens.
+std::string defaultViewScene();
+
+/// Declares `view` and its options on `app`, bound to `options`.
+CLI::App* addViewCommand(CLI::App& app, ViewOptions& options);
+
+/// Runs the viewer. Returns the exit code: 0 closed (or the scripted frames done), 1 the state
+/// turned non-finite in a scripted run, 2 no display, bad input, or an unwritable screenshot.
+int viewCommand(const ViewOptions& options);
+
+}  // namespace substep::view

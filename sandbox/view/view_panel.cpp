@@ -1,0 +1,105 @@
+#include "view/view_panel.h"
+
+#include "scenes/scene_registry.h"
+
+#include <imgui.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace substep::view {
+
+namespace {
+
+/// A plot of `history` with its latest value and range written over it. The range is padded so a
+/// constant quantity draws as a flat line mid-plot rather than at an edge.
+void plotHistory(const char* id, const PlotHistory& history, const char* format) {
+    auto [lowest, highest] = history.range();
+    // Padded so a constant quantity draws as a flat line mid-plot: a float range of zero width
+    // (or one lost in rounding, 1e-6 around 20 J) draws nothing at all.
+    const float magnitude = std::max(std::abs(lowest), std::abs(highest));
+    const float pad = std::max({0.05f * (highest - lowest), 1e-4f * magnitude, 1e-9f});
+    char overlay[96];
+    std::snprintf(overlay, sizeof overlay, format, history.latest());
+    // Until the ring is full its samples are the first count() slots, oldest first.
+    const bool full = history.count() == static_cast<std::size_t>(history.size());
+    const int count = full ? history.size() : static_cast<int>(history.count());
+    ImGui::PlotLines(id, history.data(), count, full ? history.offset() : 0, overlay, lowest - pad, highest + pad,
+                     ImVec2(ImGui::GetContentRegionAvail().x, 70.0f));
+    ImGui::TextDisabled("range %.6g .. %.6g", lowest, highest);
+}
+
+}  // namespace
+
+PanelRequests ViewPanel::draw(ViewSession& session, const FrameTimes& times, const std::string& loadError) {
+    PanelRequests requests;
+    SessionControls& controls = session.controls();
+    ImGui::SetNextWindowPos(ImVec2(10.0f, 10.0f), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize(ImVec2(360.0f, 0.0f), ImGuiCond_FirstUseEver);
+    ImGui::Begin("Substep");
+
+    // Scene: the built-ins in a combo, any scene file by path.
+    const std::string& label = session.source().label;
+    if (ImGui::BeginCombo("scene", label.c_str())) {
+        for (const SceneEntry& entry : builtinScenes()) {
+            const std::string name(entry.name);
+            if (ImGui::Selectable(name.c_str(), name == label)) requests.loadScene = name;
+            if (ImGui::IsItemHovered()) {
+                ImGui::SetTooltip("%.*s", static_cast<int>(entry.description.size()), entry.description.data());
+            }
+        }
+        ImGui::EndCombo();
+    }
+    ImGui::InputTextWithHint("##path", "path/to/scene.json", path_, sizeof path_);
+    ImGui::SameLine();
+    if (ImGui::Button("open") && path_[0] != '\0') requests.loadScene = std::string(path_);
+    if (!loadError.empty()) ImGui::TextColored(ImVec4(1.0f, 0.4f, 0.3f, 1.0f), "%s", loadError.c_str());
+
+    // Time.
+    ImGui::Separator();
+    if (ImGui::Button(controls.playing ? "pause" : "play")) controls.playing = !controls.playing;
+    ImGui::SameLine();
+    if (ImGui::Button("step")) requests.step = true;
+    ImGui::SameLine();
+    if (ImGui::Button("restart")) requests.restart = true;
+    ImGui::SameLine();
+    ImGui::TextDisabled("(space, S, R)");
+    ImGui::Text("frame %lld   t = %.3f s", session.frame(), session.simulatedTime());
+    if (!session.finite()) ImGui::TextColored(ImVec4(1.0f, 0.3f, 0.3f, 1.0f), "state turned non-finite: restart");
+    ImGui::SliderFloat("time scale", &controls.timeScale, 0.05f, 4.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
+
+    // Solver.
+    ImGui::Separator();
+    requests.controlsChanged |= ImGui::SliderInt("substeps", &controls.substeps, 1, 200, "%d",
+                                                 ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
+    requests.controlsChanged |= ImGui::SliderInt("iterations", &controls.iterations, 1, 50, "%d",
+                                                 ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
+    requests.controlsChanged |=
+        ImGui::SliderFloat("gravity y", &controls.gravityY, -30.0f, 30.0f, "%.2f m/s^2", ImGuiSliderFlags_AlwaysClamp);
+
+    // Debug layers.
+    ImGui::Separator();
+    requests.drawingChanged |= ImGui::Checkbox("joints", &controls.drawing.jointFrames);
+    ImGui::SameLine();
+    requests.drawingChanged |= ImGui::Checkbox("forces", &controls.drawing.jointForces);
+    ImGui::SameLine();
+    requests.drawingChanged |= ImGui::Checkbox("contacts", &controls.drawing.contacts);
+
+    // Measures.
+    ImGui::Separator();
+    ImGui::TextUnformatted("total energy (J)");
+    plotHistory("##energy", session.energyHistory(), "%.5g J");
+    ImGui::TextUnformatted("largest joint error (m)");
+    plotHistory("##joint_error", session.jointErrorHistory(), "%.3g m");
+
+    ImGui::Separator();
+    ImGui::Text("physics %.2f ms   render %.2f ms", session.lastStepMs(), times.renderMs);
+    ImGui::Text("frame %.1f ms (%.0f fps)", times.frameMs, times.frameMs > 0.0 ? 1000.0 / times.frameMs : 0.0);
+    ImGui::TextDisabled("mouse: left drag a body or orbit,");
+    ImGui::TextDisabled("right/middle pan, wheel zoom");
+    ImGui::End();
+    return requests;
+}
+
+}  // namespace substep::view

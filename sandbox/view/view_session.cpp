@@ -1,0 +1,109 @@
+#include "view/view_session.h"
+
+#include <chrono>
+
+namespace substep::view {
+
+namespace {
+
+/// Frames one advance() may step. A scene slower than real time then runs slow but the window
+/// stays responsive, instead of owing ever more steps (the "spiral of death").
+constexpr int kMaxFramesPerAdvance = 4;
+
+SessionControls controlsOf(const SceneDescription& description, const SessionControls& kept) {
+    SessionControls controls = kept;
+    controls.substeps = description.substeps;
+    controls.iterations = description.iterations;
+    controls.gravityY = static_cast<float>(description.gravity.y());
+    return controls;
+}
+
+}  // namespace
+
+ViewSession::ViewSession(SceneSource source, float aspect) : source_(std::move(source)), aspect_(aspect) {
+    controls_ = controlsOf(source_.description, controls_);
+    rebuild();
+}
+
+void ViewSession::load(SceneSource source) {
+    source_ = std::move(source);
+    controls_ = controlsOf(source_.description, controls_);
+    rebuild();
+}
+
+void ViewSession::restart() { rebuild(); }
+
+void ViewSession::rebuild() {
+    dragger_.forget();  // its spring goes with the old world
+    instance_ = buildLabelledScene(source_.description, source_.label);
+    applyControls();
+    applyDrawingOptions();
+    frame_ = 0;
+    pendingSeconds_ = 0.0;
+    finite_ = instance_.world.isFinite();
+    lastStepMs_ = 0.0;
+    energy_.clear();
+    jointError_.clear();
+    sample();
+}
+
+void ViewSession::applyControls() {
+    WorldSettings settings = instance_.world.settings();
+    settings.substeps = controls_.substeps;
+    settings.iterations = controls_.iterations;
+    settings.gravity.y() = controls_.gravityY;
+    instance_.world.setSettings(settings);
+}
+
+void ViewSession::applyDrawingOptions() {
+    // SceneDrawing fixes its camera, ground and force scale from the state it is made from; a
+    // fresh build of the scene gives the same ones as at the start, whatever the world did since.
+    const SceneInstance initial = buildLabelledScene(source_.description, source_.label);
+    drawing_ = std::make_unique<SceneDrawing>(source_.description, initial.world, aspect_, controls_.drawing);
+}
+
+void ViewSession::advance(double wallSeconds) {
+    if (!controls_.playing || !finite_) {
+        pendingSeconds_ = 0.0;
+        return;
+    }
+    const double dt = source_.description.dt;
+    pendingSeconds_ += wallSeconds * controls_.timeScale;
+    int frames = 0;
+    while (pendingSeconds_ >= dt && frames < kMaxFramesPerAdvance && finite_) {
+        stepOnce();
+        pendingSeconds_ -= dt;
+        ++frames;
+    }
+    // What could not be stepped now is dropped, not carried: the scene runs slow, then catches
+    // nothing up in a burst.
+    if (frames == kMaxFramesPerAdvance) pendingSeconds_ = 0.0;
+}
+
+void ViewSession::stepOnce() {
+    if (!finite_) return;
+    const auto start = std::chrono::steady_clock::now();
+    instance_.world.step(source_.description.dt);
+    lastStepMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    ++frame_;
+    finite_ = instance_.world.isFinite();
+    if (!finite_) {
+        controls_.playing = false;
+        return;
+    }
+    sample();
+}
+
+void ViewSession::sample() {
+    energy_.push(static_cast<float>(instance_.world.energies().total()));
+    jointError_.push(static_cast<float>(instance_.world.maxJointError()));
+}
+
+render::RenderScene ViewSession::draw(const render::Camera& camera) {
+    render::RenderScene scene = drawing_->draw(instance_.world);
+    scene.camera = camera;
+    if (const std::optional<render::DebugLine> spring = dragger_.line(instance_.world)) scene.lines.push_back(*spring);
+    return scene;
+}
+
+}  // namespace substep::view

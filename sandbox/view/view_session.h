@@ -1,0 +1,91 @@
+#pragma once
+/// What the viewer shows and steers: one scene's world, stepped in real time (or a frame at a
+/// time), with the settings the panel edits and the histories it plots. Knows nothing of windows
+/// or ImGui, so the scripted run and the interactive loop step it the same way.
+
+#include "scene_drawing.h"
+#include "scene_source.h"
+#include "view/body_dragger.h"
+#include "view/plot_history.h"
+
+#include "render/render_scene.h"
+#include "scene/scene.h"
+
+#include <memory>
+#include <string>
+
+namespace substep::view {
+
+/// The settings the panel edits. Substeps, iterations and gravity start from the scene's.
+struct SessionControls {
+    bool playing = true;
+    float timeScale = 1.0f;  ///< simulated seconds per wall second
+    int substeps = 20;
+    int iterations = 1;
+    float gravityY = -10.0f;  ///< m/s²; x and z stay the scene's
+    DrawingOptions drawing;
+};
+
+class ViewSession {
+  public:
+    /// Builds `source`'s scene; `aspect` frames its camera. Throws what buildLabelledScene throws.
+    ViewSession(SceneSource source, float aspect);
+
+    /// Replaces the scene and resets the controls to its settings (keeping play state and layers).
+    void load(SceneSource source);
+    /// Rebuilds the current scene from its initial state, keeping the controls.
+    void restart();
+    /// Pushes substeps, iterations and gravity from controls() into the world.
+    void applyControls();
+    /// Redoes the overlays after a change of controls().drawing.
+    void applyDrawingOptions();
+
+    /// Real time: steps as many frames of the scene's dt as `wallSeconds` x time scale covers,
+    /// at most a few per call so a slow scene slows down instead of freezing the window.
+    /// Does nothing while paused or once the state turned non-finite.
+    void advance(double wallSeconds);
+    /// One frame of the scene's dt, paused or not.
+    void stepOnce();
+
+    /// Grabs the body under `ray` with a spring (body_dragger.h); false when none is there.
+    bool grab(const Ray& ray) { return dragger_.grab(instance_.world, ray); }
+    /// Moves the held spring's end along `ray`.
+    void drag(const Ray& ray) { dragger_.drag(instance_.world, ray); }
+    void release() { dragger_.release(instance_.world); }
+    bool dragging() const { return dragger_.active(); }
+
+    /// The current state to draw, seen through `camera`.
+    render::RenderScene draw(const render::Camera& camera);
+
+    SessionControls& controls() { return controls_; }
+    const SceneSource& source() const { return source_; }
+    /// The camera the scene starts from (its own, else one framing the bodies).
+    const render::Camera& startCamera() const { return drawing_->camera(); }
+    const World& world() const { return instance_.world; }
+
+    long long frame() const { return frame_; }
+    double simulatedTime() const { return frame_ * source_.description.dt; }
+    bool finite() const { return finite_; }
+    double lastStepMs() const { return lastStepMs_; }
+    const PlotHistory& energyHistory() const { return energy_; }
+    const PlotHistory& jointErrorHistory() const { return jointError_; }
+
+  private:
+    void rebuild();
+    void sample();
+
+    SceneSource source_;
+    float aspect_;
+    SessionControls controls_;
+    SceneInstance instance_;
+    std::unique_ptr<SceneDrawing> drawing_;
+    BodyDragger dragger_;
+    long long frame_ = 0;
+    double pendingSeconds_ = 0.0;  ///< simulated time owed to real time, less than one dt
+    bool finite_ = true;
+    double lastStepMs_ = 0.0;
+    PlotHistory energy_{600};
+    PlotHistory jointError_{600};
+};
+
+}  // namespace substep::view

@@ -1,0 +1,2 @@
+// Depth only: nothing to write.
+void main() {}

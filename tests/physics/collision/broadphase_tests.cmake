@@ -1,0 +1,2 @@
+# broadphase tests (physics_add_test(...))
+physics_add_test(broadphase_test SOURCES collision/broadphase_test.cpp LIBS substep_physics)

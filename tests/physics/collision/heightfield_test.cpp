@@ -1,0 +1,75 @@
+// Tests engine/physics/collision/heightfield.cpp: the grid's geometry, its triangles, crease
+// flags, bounds and the validation of its input.
+
+#include "physics/collision/heightfield.h"
+
+#include <gtest/gtest.h>
+
+#include <stdexcept>
+
+namespace substep {
+namespace {
+
+TEST(Heightfield, GridIsCentredOnTheOrigin) {
+    const auto field = makeHeightfield(3, 2, {0, 1, 2, 3, 4, 5}, 4.0, 1.0);
+    EXPECT_TRUE(field->vertex(0, 0).isApprox(Vec3(-2, 0, -0.5)));
+    EXPECT_TRUE(field->vertex(2, 1).isApprox(Vec3(2, 5, 0.5)));
+    EXPECT_TRUE(field->vertex(1, 1).isApprox(Vec3(0, 4, 0.5)));
+    const Shape shape = heightfieldShape(field);
+    EXPECT_EQ(shape.type, ShapeType::Heightfield);
+    EXPECT_TRUE(shape.localBounds.min.isApprox(Vec3(-2, 0, -0.5)));
+    EXPECT_TRUE(shape.localBounds.max.isApprox(Vec3(2, 5, 0.5)));
+}
+
+TEST(Heightfield, TrianglesFaceUpAndCoverTheCell) {
+    const auto field = makeHeightfield(2, 2, {0, 0, 0, 0}, 2.0, 2.0);
+    for (int half = 0; half < 2; ++half) {
+        const ContactTriangle tri = field->triangle(0, 0, half);
+        EXPECT_TRUE(tri.normal.isApprox(Vec3::UnitY()));
+        EXPECT_NEAR((tri.v[1] - tri.v[0]).cross(tri.v[2] - tri.v[0]).norm(), 4.0, 1e-12);
+    }
+}
+
+TEST(Heightfield, FlatInteriorEdgesAreInactive) {
+    const auto field = makeHeightfield(3, 3, std::vector<double>(9, 1.0), 2.0, 2.0);
+    // Cell (0, 0), triangle 0 = corners (0,0), (0,1), (1,1): its edge 0 is the field's border
+    // x = -1, its edges 1 and 2 are shared with flat neighbours.
+    const ContactTriangle tri = field->triangle(0, 0, 0);
+    EXPECT_TRUE(tri.edgeActive(0));
+    EXPECT_FALSE(tri.edgeActive(1));
+    EXPECT_FALSE(tri.edgeActive(2));
+    EXPECT_FALSE(tri.vertexActive(2));  // (1, 1), the grid's centre
+}
+
+TEST(Heightfield, RidgeEdgesAreActive) {
+    // A ridge along z at x = 0: heights 0, 1, 0 across.
+    const auto field = makeHeightfield(3, 2, {0, 1, 0, 0, 1, 0}, 2.0, 1.0);
+    // Cell (0, 0), triangle 1 = (0,0), (1,1), (1,0): edge 1 runs along the ridge top.
+    EXPECT_TRUE(field->triangle(0, 0, 1).edgeActive(1));
+}
+
+TEST(Heightfield, VisitsOnlyCellsUnderTheBox) {
+    const auto field = makeHeightfield(5, 5, std::vector<double>(25, 0.0), 4.0, 4.0);
+    int visited = 0;
+    field->forTrianglesIn({Vec3(-0.5, -1, -0.5), Vec3(0.5, 1, 0.5)},
+                          [&](const ContactTriangle&) { ++visited; });
+    EXPECT_EQ(visited, 8);  // 2 x 2 cells
+    visited = 0;
+    field->forTrianglesIn({Vec3(3, -1, 0), Vec3(4, 1, 1)},
+                          [&](const ContactTriangle&) { ++visited; });
+    EXPECT_EQ(visited, 0);
+    // Wholly above the surface: nothing to test.
+    field->forTrianglesIn({Vec3(-0.5, 0.1, -0.5), Vec3(0.5, 1, 0.5)},
+                          [&](const ContactTriangle&) { ++visited; });
+    EXPECT_EQ(visited, 0);
+}
+
+TEST(Heightfield, RejectsBadInput) {
+    EXPECT_THROW(makeHeightfield(1, 2, {0, 0}, 1, 1), std::invalid_argument);
+    EXPECT_THROW(makeHeightfield(2, 2, {0, 0, 0}, 1, 1), std::invalid_argument);
+    EXPECT_THROW(makeHeightfield(2, 2, {0, 0, 0, 0}, 0, 1), std::invalid_argument);
+    EXPECT_THROW(makeHeightfield(2, 2, {0, 0, NAN, 0}, 1, 1), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace substep

@@ -1,0 +1,2 @@
+# narrowphase tests (physics_add_test(...))
+physics_add_test(narrowphase_test SOURCES collision/narrowphase_test.cpp LIBS substep_physics)

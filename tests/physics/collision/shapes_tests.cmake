@@ -1,0 +1,9 @@
+# Curved and complex collision shapes: spline tubes, triangle meshes, heightfields.
+physics_add_test(cubic_segment_test SOURCES collision/cubic_segment_test.cpp LIBS substep_physics)
+physics_add_test(spline_tube_test SOURCES collision/spline_tube_test.cpp LIBS substep_physics)
+physics_add_test(collide_spline_test SOURCES collision/collide_spline_test.cpp LIBS substep_physics)
+physics_add_test(triangle_contact_test SOURCES collision/triangle_contact_test.cpp LIBS substep_physics)
+physics_add_test(mesh_collider_test SOURCES collision/mesh_collider_test.cpp LIBS substep_physics)
+physics_add_test(heightfield_test SOURCES collision/heightfield_test.cpp LIBS substep_physics)
+physics_add_test(collide_mesh_test SOURCES collision/collide_mesh_test.cpp LIBS substep_physics)
+physics_add_test(curved_robustness_test SOURCES collision/curved_robustness_test.cpp LIBS substep_physics)

@@ -1,0 +1,163 @@
+// Tests sandbox/scene_drawing.cpp: a World becomes a RenderScene with every body's shape where
+// the body is, a ground under everything, a camera that sees the bodies, and debug lines for
+// joints and their forces.
+
+#include "scene_drawing.h"
+
+#include "physics/collision/heightfield.h"
+#include "physics/collision/spline_tube.h"
+#include "render/render_math.h"
+#include "scenes/scene_registry.h"
+
+#include <gtest/gtest.h>
+
+namespace substep {
+namespace {
+
+std::size_t drawableBodies(const World& world) {
+    std::size_t count = 0;
+    for (std::size_t i = 1; i < world.bodies().size(); ++i) {
+        const ShapeType type = world.bodies()[i].shape.type;
+        if (world.bodies()[i].alive && type != ShapeType::Plane && type != ShapeType::None) ++count;
+    }
+    return count;
+}
+
+/// Where a world point lands in normalised device coordinates of the drawing's camera.
+render::Vec3f project(const render::Camera& camera, float aspect, const render::Vec3f& point) {
+    const render::Mat4f viewProjection = render::perspective(camera.fovY, aspect, 0.01f, 1000.0f) *
+                                         render::lookAt(camera.position, camera.target, camera.up);
+    const render::Vec4f clip = viewProjection * point.homogeneous();
+    return clip.head<3>() / clip.w();
+}
+
+TEST(SceneDrawing, EveryBuiltinSceneShowsEachBodyAboveTheGround) {
+    for (const SceneEntry& entry : builtinScenes()) {
+        SCOPED_TRACE(std::string(entry.name));
+        const SceneDescription description = entry.build();
+        SceneInstance scene = buildScene(description);
+        SceneDrawing drawing(description, scene.world, 4.0f / 3.0f);
+        const render::RenderScene drawn = drawing.draw(scene.world);
+        EXPECT_EQ(drawn.instances.size(), drawableBodies(scene.world));
+        ASSERT_TRUE(drawn.ground.has_value());
+        for (const render::RenderInstance& instance : drawn.instances) {
+            EXPECT_GE(drawn.ground->normal.dot(instance.position), drawn.ground->offset);
+        }
+        if (description.camera) EXPECT_TRUE(drawn.camera.position.isApprox(description.camera->position.cast<float>()));
+    }
+}
+
+TEST(SceneDrawing, InstancesFollowTheBodies) {
+    const SceneDescription description = findBuiltinScene("pendula")->build();
+    SceneInstance scene = buildScene(description);
+    SceneDrawing drawing(description, scene.world, 1.0f);
+    const render::RenderScene before = drawing.draw(scene.world);
+    for (int i = 0; i < 30; ++i) scene.world.step(description.dt);
+    const render::RenderScene after = drawing.draw(scene.world);
+    ASSERT_EQ(before.instances.size(), after.instances.size());
+    float largestMove = 0.0f;
+    for (std::size_t i = 0; i < before.instances.size(); ++i) {
+        largestMove = std::max(largestMove, (after.instances[i].position - before.instances[i].position).norm());
+    }
+    EXPECT_GT(largestMove, 0.05f);
+    // The camera is fixed for the whole rendering.
+    EXPECT_TRUE(after.camera.position.isApprox(before.camera.position));
+    // The instance is at the body's user frame, as `run --csv` reports it.
+    const Body& body = scene.world.bodies()[1];
+    EXPECT_TRUE(after.instances[0].position.isApprox(body.userPosition().cast<float>(), 1e-5f));
+}
+
+TEST(SceneDrawing, JointsGetFramesAndForces) {
+    const SceneDescription description = findBuiltinScene("boxes3")->build();
+    SceneInstance scene = buildScene(description);
+    SceneDrawing drawing(description, scene.world, 1.0f);
+    const std::size_t joints = description.joints.size();
+    // Before any step: a link line and two three-axis frames per joint, no forces yet.
+    EXPECT_EQ(drawing.draw(scene.world).lines.size(), joints * 7);
+    scene.world.step(description.dt);
+    // After one: a spring that pulls (the world reports a force) holds its box up with an arrow
+    // of three lines pointing up.
+    const render::RenderScene drawn = drawing.draw(scene.world);
+    std::size_t pulling = 0;
+    for (const auto& [name, id] : scene.namedJoints) pulling += scene.world.jointReadout(id).force > 0.0 ? 1 : 0;
+    ASSERT_EQ(drawn.lines.size(), joints * 7 + pulling * 3);
+    for (std::size_t line = joints * 7; line < drawn.lines.size(); line += 3) {
+        EXPECT_GT(drawn.lines[line].to.y() - drawn.lines[line].from.y(), 0.0f) << "arrow " << line;
+    }
+    SceneDrawing plain(description, scene.world, 1.0f, {.jointFrames = false, .jointForces = false});
+    EXPECT_EQ(plain.draw(scene.world).lines.size(), joints);
+}
+
+TEST(SceneDrawing, DefaultCameraSeesEveryBody) {
+    SceneDescription description = findBuiltinScene("pendula")->build();
+    description.camera.reset();
+    SceneInstance scene = buildScene(description);
+    const float aspect = 16.0f / 9.0f;
+    SceneDrawing drawing(description, scene.world, aspect);
+    for (const render::RenderInstance& instance : drawing.draw(scene.world).instances) {
+        const render::Vec3f ndc = project(drawing.camera(), aspect, instance.position);
+        EXPECT_LT(std::abs(ndc.x()), 1.0f);
+        EXPECT_LT(std::abs(ndc.y()), 1.0f);
+    }
+}
+
+TEST(SceneDrawing, SplineTubesHeightfieldsAndMeshesBecomeMeshInstances) {
+    World world;
+    const auto field = makeHeightfield(3, 2, {0, 0.5, 0, 0, 0.2, 0}, 2.0, 1.0);
+    world.createBody({.shape = heightfieldShape(field), .type = BodyType::Static});
+    const auto tube = makeSplineTube({Vec3(0, 1, 0), Vec3(1, 1.5, 0), Vec3(2, 1, 0)}, 0.05, false);
+    world.createBody({.shape = splineShape(tube), .type = BodyType::Static});
+    auto tetrahedron = std::make_shared<TriangleMesh>();
+    tetrahedron->vertices = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)};
+    tetrahedron->triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+    Shape mesh{.type = ShapeType::Mesh, .mesh = tetrahedron};
+    world.createBody({.shape = mesh, .type = BodyType::Static, .position = Vec3(0, 2, 0)});
+    world.createBody({.shape = mesh, .type = BodyType::Static, .position = Vec3(1, 2, 0)});
+
+    SceneDrawing drawing(SceneDescription{}, world, 1.0f);
+    const render::RenderScene drawn = drawing.draw(world);
+    ASSERT_EQ(drawn.instances.size(), 4u);
+    // The heightfield's grid is centred on its frame, as the physics has it.
+    float lowestX = 1e9f;
+    for (const render::MeshVertex& v : drawn.instances[0].mesh->vertices) lowestX = std::min(lowestX, v.position[0]);
+    EXPECT_FLOAT_EQ(lowestX, -1.0f);
+    for (const render::RenderInstance& instance : drawn.instances) {
+        EXPECT_EQ(instance.kind, render::ShapeKind::Mesh);
+        ASSERT_TRUE(instance.mesh);
+        EXPECT_FALSE(instance.mesh->indices.empty());
+    }
+    // Bodies sharing a mesh share its render mesh (one instanced draw), frame after frame.
+    EXPECT_EQ(drawn.instances[2].mesh, drawn.instances[3].mesh);
+    EXPECT_EQ(drawing.draw(world).instances[2].mesh, drawn.instances[2].mesh);
+}
+
+TEST(SceneDrawing, BodiesHaveDistinctColoursAndStaticOnesAreGrey) {
+    EXPECT_FALSE(bodyColour(1, false).isApprox(bodyColour(2, false)));
+    const render::Colour grey = bodyColour(5, true);
+    EXPECT_NEAR(grey.x(), grey.z(), 0.1f);
+}
+
+}  // namespace
+}  // namespace substep
+
+namespace substep {
+namespace {
+
+TEST(SceneDrawing, ContactsAreArrowsAlongTheirNormalsWhenAskedFor) {
+    const SceneEntry* entry = findBuiltinScene("stack10");
+    if (entry == nullptr) GTEST_SKIP() << "no stack10 scene in this build";
+    const SceneDescription description = entry->build();
+    SceneInstance scene = buildScene(description);
+    for (int i = 0; i < 5; ++i) scene.world.step(description.dt);
+    std::size_t points = 0;
+    for (const ContactPair& pair : scene.world.contactPairs()) points += pair.count;
+    const DrawingOptions contactsOnly{.jointFrames = false, .jointForces = false, .contacts = true};
+    SceneDrawing drawing(description, scene.world, 1.0f, contactsOnly);
+    EXPECT_EQ(drawing.draw(scene.world).lines.size(), points * 3);
+    // Off by default.
+    SceneDrawing plain(description, scene.world, 1.0f);
+    EXPECT_EQ(plain.draw(scene.world).lines.size(), scene.world.joints().size() * 7);
+}
+
+}  // namespace
+}  // namespace substep
