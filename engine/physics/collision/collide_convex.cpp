@@ -1,5 +1,7 @@
 #include "physics/collision/collide_convex.h"
 
+#include "physics/collision/primitive_geometry.h"
+
 #include "physics/collision/convex_hull.h"
 
 #include <algorithm>
@@ -180,31 +182,8 @@ bool isMinkowskiFace(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d)
 /// Closest points of the segments p + s u and q + t v, s, t in [0, 1] (Ericson 5.1.9).
 void closestOnSegments(const Vec3& p, const Vec3& u, const Vec3& q, const Vec3& v, Vec3& onFirst,
                        Vec3& onSecond) {
-    const Vec3 r = p - q;
-    const double a = u.squaredNorm(), e = v.squaredNorm(), f = v.dot(r);
     double s = 0.0, t = 0.0;
-    if (a <= 0.0 && e <= 0.0) {
-        // both points
-    } else if (a <= 0.0) {
-        t = std::clamp(f / e, 0.0, 1.0);
-    } else {
-        const double c = u.dot(r);
-        if (e <= 0.0) {
-            s = std::clamp(-c / a, 0.0, 1.0);
-        } else {
-            const double b = u.dot(v);
-            const double denominator = a * e - b * b;
-            s = denominator > 0.0 ? std::clamp((b * f - c * e) / denominator, 0.0, 1.0) : 0.0;
-            t = (b * s + f) / e;
-            if (t < 0.0) {
-                t = 0.0;
-                s = std::clamp(-c / a, 0.0, 1.0);
-            } else if (t > 1.0) {
-                t = 1.0;
-                s = std::clamp((b - c) / a, 0.0, 1.0);
-            }
-        }
-    }
+    primitive::closestParametersBetweenSegments(p, u, q, v, s, t);
     onFirst = p + s * u;
     onSecond = q + t * v;
 }

@@ -1,5 +1,7 @@
 #include "physics/collision/triangle_contact.h"
 
+#include "physics/collision/primitive_geometry.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -130,39 +132,7 @@ TrianglePoint closestOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, con
 
 void closestSegmentSegment(const Vec3& p0, const Vec3& p1, const Vec3& q0, const Vec3& q1,
                            double& s, double& t) {
-    // Ericson, Real-Time Collision Detection 5.1.9, with both degenerate cases.
-    const Vec3 d1 = p1 - p0;
-    const Vec3 d2 = q1 - q0;
-    const Vec3 r = p0 - q0;
-    const double a = d1.squaredNorm();
-    const double e = d2.squaredNorm();
-    const double f = d2.dot(r);
-    if (a <= 0.0 && e <= 0.0) {
-        s = t = 0.0;
-        return;
-    }
-    if (a <= 0.0) {
-        s = 0.0;
-        t = std::clamp(f / e, 0.0, 1.0);
-        return;
-    }
-    const double c = d1.dot(r);
-    if (e <= 0.0) {
-        t = 0.0;
-        s = std::clamp(-c / a, 0.0, 1.0);
-        return;
-    }
-    const double b = d1.dot(d2);
-    const double denom = a * e - b * b;
-    s = denom > 0.0 ? std::clamp((b * f - c * e) / denom, 0.0, 1.0) : 0.0;
-    t = (b * s + f) / e;
-    if (t < 0.0) {
-        t = 0.0;
-        s = std::clamp(-c / a, 0.0, 1.0);
-    } else if (t > 1.0) {
-        t = 1.0;
-        s = std::clamp((b - c) / a, 0.0, 1.0);
-    }
+    primitive::closestParametersBetweenSegments(p0, p1 - p0, q0, q1 - q0, s, t);
 }
 
 void addSphereTriangleContacts(const ContactTriangle& tri, const Vec3& c, double r, double margin,
