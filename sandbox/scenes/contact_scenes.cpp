@@ -60,7 +60,7 @@ SceneDescription spheres1000() {
     addGroundPlane(scene, 0.5, 0.1);
     constexpr double kInside = 3.0;
     constexpr double kWall = 0.2;
-    constexpr double kHeight = 3.0;
+    constexpr double kHeight = 1.5;  // above the settled pile (about 0.8 m), low enough to see in
     for (int side = 0; side < 4; ++side) {
         const bool alongX = side < 2;
         const double offset = (side % 2 == 0 ? -1.0 : 1.0) * 0.5 * (kInside + kWall);
@@ -89,7 +89,7 @@ SceneDescription spheres1000() {
                                  .dynamicFriction = 0.5,
                                  .restitution = 0.1}});
             }
-    scene.camera = SceneCamera{.position = Vec3(4.0, 5.0, 6.0), .target = Vec3(0.0, 0.8, 0.0)};
+    scene.camera = SceneCamera{.position = Vec3(3.5, 6.5, 5.0), .target = Vec3(0.0, 0.4, 0.0)};
     return scene;
 }
 
