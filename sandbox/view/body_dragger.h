@@ -32,6 +32,8 @@ class BodyDragger {
     /// Forgets the spring without touching a world: for when the world itself was replaced.
     void forget() { joint_.reset(); }
     bool active() const { return joint_.has_value(); }
+    /// The spring, while held.
+    std::optional<JointId> joint() const { return joint_; }
 
     /// The spring as a line from the cursor's point to the body, when held.
     std::optional<render::DebugLine> line(const World& world) const;

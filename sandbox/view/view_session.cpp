@@ -1,5 +1,6 @@
 #include "view/view_session.h"
 
+#include <algorithm>
 #include <chrono>
 
 namespace substep::view {
@@ -95,8 +96,25 @@ void ViewSession::stepOnce() {
 }
 
 void ViewSession::sample() {
-    energy_.push(static_cast<float>(instance_.world.energies().total()));
-    jointError_.push(static_cast<float>(instance_.world.maxJointError()));
+    // The plots measure the scene, not the hand pulling it: the drag spring's stretch and stored
+    // energy are left out (the work it does still shows as a change of the scene's energy).
+    const World& world = instance_.world;
+    const std::optional<JointId> spring = dragger_.joint();
+    double energy = world.energies().total();
+    double jointError = 0.0;
+    if (!spring) {
+        jointError = world.maxJointError();
+    } else {
+        energy -= world.jointReadout(*spring).elasticEnergy;
+        const std::span<const Joint> joints = world.joints();
+        for (std::size_t index = 0; index < joints.size(); ++index) {
+            if (!joints[index].alive || index == spring->index) continue;
+            const JointId id{static_cast<uint32_t>(index), joints[index].generation};
+            jointError = std::max(jointError, world.jointReadout(id).error);
+        }
+    }
+    energy_.push(static_cast<float>(energy));
+    jointError_.push(static_cast<float>(jointError));
 }
 
 render::RenderScene ViewSession::draw(const render::Camera& camera) {
