@@ -288,5 +288,27 @@ TEST(ContactTest, FrictionAndNormalForcesBalanceTheWeightOnAnIncline) {
     EXPECT_NEAR(pair.lambdaTangent() / h2, mass * kG * std::sin(angle), 0.02 * mass * kG);
 }
 
+// Degenerate and extreme input stays finite: a ball at 1e5 m/s into the ground, two boxes and
+// two spheres created exactly on top of each other (no direction to push them apart in), a
+// tiny sphere, a thin box.
+TEST(ContactTest, DegenerateAndExtremeContactsStayFinite) {
+    World world = makeWorld();
+    addGround(world);
+    world.createBody({.shape = sphereShape(0.1), .mass = 1.0, .position = Vec3(5, 1, 0),
+                      .velocity = Vec3(0, -1e5, 0)});
+    for (int i = 0; i < 2; ++i) {
+        world.createBody({.shape = boxShape(Vec3::Constant(0.5)), .mass = 1.0, .position = Vec3(0, 0.25, 0)});
+        world.createBody({.shape = sphereShape(0.2), .mass = 1.0, .position = Vec3(2, 0.2, 0)});
+    }
+    world.createBody({.shape = sphereShape(1e-6), .mass = 1e-3, .position = Vec3(-2, 1e-6, 0)});
+    world.createBody({.shape = boxShape(Vec3(1.0, 1e-6, 1.0)), .mass = 1.0, .position = Vec3(-4, 0.5, 0)});
+    for (int frame = 0; frame < 120; ++frame) {
+        world.step(kDt);
+        ASSERT_TRUE(world.isFinite()) << "frame " << frame;
+    }
+    for (const Body& b : world.bodies())
+        if (b.invMass > 0.0) EXPECT_GT(b.x.y(), -0.05);  // nothing ended below the ground
+}
+
 }  // namespace
 }  // namespace substep
