@@ -8,10 +8,13 @@
 #include <Eigen/LU>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 
 namespace substep {
 namespace {
+
+using Clock = std::chrono::steady_clock;
 
 /// Joint frame [a, b, c] from an axis and an optional normal, in one body's user frame. A
 /// missing normal is the same fixed perpendicular of the axis on both sides, so equal axes on
@@ -169,8 +172,20 @@ void World::step(double dt) {
         if (settings_.repairDistance > 0.0 && settings_.repairAngle > 0.0) repairLargeViolations(h);
     }
 
+    // Each stage's time goes to its bucket when measuring (a clock read per stage).
+    stepTimes_ = {};
+    const bool measure = settings_.measureTime;
+    auto mark = measure ? Clock::now() : Clock::time_point{};
+    const auto lap = [&](double& bucket) {
+        if (!measure) return;
+        const auto now = Clock::now();
+        bucket += std::chrono::duration<double, std::milli>(now - mark).count();
+        mark = now;
+    };
+
     // Algorithm 2: pairs once per frame, their contacts on the current poses every substep.
     collectContactPairs(dt);
+    lap(stepTimes_.broadphase);
     for (int s = 0; s < substeps; ++s) {
         // λ is zeroed before each substep's solve (paper 3.3.1); motors advance their target.
         for (Joint& joint : joints_) {
@@ -179,10 +194,15 @@ void World::step(double dt) {
                 joint.target = wrapAngle(joint.target + h * joint.targetVelocity);
         }
         integrate(h);
+        lap(stepTimes_.integrate);
         if (!contactPairs_.empty()) findContacts();
+        lap(stepTimes_.narrowphase);
         for (int i = 0; i < settings_.iterations; ++i) solvePositions(h);
+        lap(stepTimes_.solve);
         deriveVelocities(h);
+        lap(stepTimes_.integrate);
         if (anyDamping_ || !contacts_.empty()) solveVelocities(h);
+        lap(stepTimes_.velocities);
     }
 }
 

@@ -34,6 +34,19 @@ struct WorldSettings {
     /// The narrowphase also reports points this far apart (m), so that a point that a
     /// correction elsewhere pushes into contact later in the substep is still held.
     double contactMargin = 0.002;
+    /// Time the stages of every step (World::stepTimes): a clock read per stage and substep,
+    /// so off unless something shows the breakdown (the viewer does).
+    bool measureTime = false;
+};
+
+/// Where the last step's time went (ms), when WorldSettings::measureTime is on.
+struct StepTimes {
+    double broadphase = 0.0;   ///< collecting the frame's pairs
+    double narrowphase = 0.0;  ///< the contacts of every substep
+    double solve = 0.0;        ///< position solve: joints and contacts
+    double velocities = 0.0;   ///< the velocity pass: damping, friction, restitution
+    double integrate = 0.0;    ///< integration and velocity derivation
+    double total() const { return broadphase + narrowphase + solve + velocities + integrate; }
 };
 
 /// Energies as DESIGN.md defines them (J).
@@ -73,6 +86,8 @@ public:
     void setSettings(const WorldSettings& settings) { settings_ = settings; }
     /// Substep length of the last step (0 before the first).
     double lastSubstep() const { return lastSubstep_; }
+    /// The last step's time by stage; zeros unless WorldSettings::measureTime is on.
+    const StepTimes& stepTimes() const { return stepTimes_; }
 
     JointReadout jointReadout(JointId id) const;
     Energies energies() const;
@@ -121,6 +136,7 @@ private:
     int collidingBodies_ = 0;  ///< bodies with a shape that collides: below 2, no broadphase
     uint32_t nextGeneration_ = 1;
     double lastSubstep_ = 0.0;
+    StepTimes stepTimes_;
     bool anyDamping_ = false;
     bool repairPending_ = false;
 };

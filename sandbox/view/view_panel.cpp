@@ -95,6 +95,11 @@ PanelRequests ViewPanel::draw(ViewSession& session, const FrameTimes& times, con
 
     ImGui::Separator();
     ImGui::Text("physics %.2f ms   render %.2f ms", session.lastStepMs(), times.renderMs);
+    const StepTimes& stages = session.world().stepTimes();
+    ImGui::Text("  collision %.2f (broad %.2f, narrow %.2f)", stages.broadphase + stages.narrowphase,
+                stages.broadphase, stages.narrowphase);
+    ImGui::Text("  solve %.2f   velocity pass %.2f", stages.solve, stages.velocities);
+    ImGui::Text("  integrate %.2f", stages.integrate);
     ImGui::Text("frame %.1f ms (%.0f fps)", times.frameMs, times.frameMs > 0.0 ? 1000.0 / times.frameMs : 0.0);
     ImGui::TextDisabled("mouse: left drag a body or orbit,");
     ImGui::TextDisabled("right/middle pan, wheel zoom");

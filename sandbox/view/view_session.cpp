@@ -53,6 +53,7 @@ void ViewSession::applyControls() {
     settings.substeps = controls_.substeps;
     settings.iterations = controls_.iterations;
     settings.gravity.y() = controls_.gravityY;
+    settings.measureTime = true;  // the panel's stage breakdown
     instance_.world.setSettings(settings);
 }
 

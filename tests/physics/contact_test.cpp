@@ -310,5 +310,21 @@ TEST(ContactTest, DegenerateAndExtremeContactsStayFinite) {
         if (b.invMass > 0.0) EXPECT_GT(b.x.y(), -0.05);  // nothing ended below the ground
 }
 
+// The stage breakdown is kept only when asked for, and then accounts for every stage.
+TEST(ContactTest, StepTimesAreKeptOnlyWhenMeasuring) {
+    for (bool measure : {false, true}) {
+        World world({.gravity = Vec3(0, -kG, 0), .substeps = 20, .measureTime = measure});
+        addGround(world);
+        world.createBody({.shape = boxShape(Vec3::Constant(0.5)), .mass = 1.0, .position = Vec3(0, 0.3, 0)});
+        world.step(kDt);
+        const StepTimes& t = world.stepTimes();
+        for (double stage : {t.broadphase, t.narrowphase, t.solve, t.velocities, t.integrate}) {
+            EXPECT_TRUE(std::isfinite(stage));
+            if (measure) EXPECT_GE(stage, 0.0);
+            else EXPECT_EQ(stage, 0.0);
+        }
+    }
+}
+
 }  // namespace
 }  // namespace substep
