@@ -2,6 +2,7 @@
 
 #include "view/glfw_context.h"
 #include "view/orbit_camera.h"
+#include "view/scene_file_watch.h"
 #include "view/view_panel.h"
 #include "view/view_session.h"
 
@@ -137,6 +138,8 @@ ViewAppResult runViewApp(SceneSource source, const ViewAppOptions& options) {
     FrameTimes times;
     ViewAppResult result;
 
+    SceneFileWatch fileWatch;
+    fileWatch.watch(session.source().builtin ? "" : session.source().label);
     Clock::time_point last = Clock::now();
     for (long long frame = 0; !context.shouldClose(); ++frame) {
         const Clock::time_point frameStart = Clock::now();
@@ -162,6 +165,15 @@ ViewAppResult runViewApp(SceneSource source, const ViewAppOptions& options) {
                 loadError.clear();
             } catch (const std::exception& error) {
                 loadError = error.what();
+            }
+            fileWatch.watch(session.source().builtin ? "" : session.source().label);
+        } else if (fileWatch.changed()) {
+            // The scene's file was saved: reload it, keeping the camera where the user put it.
+            try {
+                session.load(resolveScene(session.source().label));
+                loadError.clear();
+            } catch (const std::exception& error) {
+                loadError = error.what();  // a half-edited file: keep the last good scene
             }
         }
         if (requests.restart) session.restart();

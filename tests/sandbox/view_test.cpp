@@ -8,11 +8,15 @@
 #include "render/png_codec.h"
 #include "scene_source.h"
 #include "view/orbit_camera.h"
+#include "view/scene_file_watch.h"
 #include "view/view_session.h"
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <cstdlib>
 #include <set>
 
@@ -189,6 +193,33 @@ TEST(BodyDraggerTest, PullsTheBodyUnderTheCursorAndLetsGo) {
     EXPECT_EQ(world.joints().size(), joints);  // the slot stays, the joint is gone
     session.restart();                          // a restart while held would forget it too
     EXPECT_FALSE(session.dragging());
+}
+
+// A saved scene file is noticed once, a built-in scene (no path) never, and a file that is
+// briefly missing (saved by rename) is not taken for a change.
+TEST(SceneFileWatchTest, NoticesEachSaveOnce) {
+    namespace fs = std::filesystem;
+    const fs::path file = fs::temp_directory_path() / "substep_watch_test.json";
+    { std::ofstream(file) << "{}"; }
+    const auto now = std::chrono::steady_clock::now();
+    const auto later = [&](int steps) { return now + steps * view::SceneFileWatch::interval; };
+    view::SceneFileWatch watch;
+    watch.watch(file.string());
+    EXPECT_FALSE(watch.changed(later(1)));
+    fs::last_write_time(file, fs::last_write_time(file) + std::chrono::seconds(5));
+    EXPECT_FALSE(watch.changed(later(1)));  // asked again within the interval: not looked at
+    EXPECT_TRUE(watch.changed(later(2)));
+    EXPECT_FALSE(watch.changed(later(3)));  // the same save is reported once
+    fs::remove(file);
+    EXPECT_FALSE(watch.changed(later(4)));
+    { std::ofstream(file) << "{ }"; }
+    fs::last_write_time(file, fs::last_write_time(file) + std::chrono::seconds(10));
+    EXPECT_TRUE(watch.changed(later(5)));
+    fs::remove(file);
+
+    view::SceneFileWatch builtin;
+    builtin.watch("");
+    EXPECT_FALSE(builtin.changed(later(10)));
 }
 
 }  // namespace
