@@ -86,6 +86,19 @@ PanelRequests ViewPanel::draw(ViewSession& session, const FrameTimes& times, con
     ImGui::SameLine();
     requests.drawingChanged |= ImGui::Checkbox("contacts", &controls.drawing.contacts);
 
+    // Per-joint compliance (the attachment's α), live; a restart brings back the scene's.
+    if (!session.namedJoints().empty() && ImGui::CollapsingHeader("joint compliance (m/N)")) {
+        constexpr size_t kMaxListed = 64;  // chains of 100 links list their first 64
+        size_t listed = 0;
+        for (const auto& [name, id] : session.namedJoints()) {
+            if (listed++ == kMaxListed) break;
+            float compliance = static_cast<float>(session.world().joint(id).compliance);
+            if (ImGui::SliderFloat(name.c_str(), &compliance, 0.0f, 1.0f, "%.2e", ImGuiSliderFlags_Logarithmic)) {
+                session.setJointCompliance(id, compliance);
+            }
+        }
+    }
+
     // Measures.
     ImGui::Separator();
     ImGui::TextUnformatted("total energy (J)");

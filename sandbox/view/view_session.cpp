@@ -48,6 +48,10 @@ void ViewSession::rebuild() {
     sample();
 }
 
+void ViewSession::setJointCompliance(JointId id, double compliance) {
+    if (instance_.world.isValid(id) && compliance >= 0.0) instance_.world.joint(id).compliance = compliance;
+}
+
 void ViewSession::applyControls() {
     WorldSettings settings = instance_.world.settings();
     settings.substeps = controls_.substeps;

@@ -13,6 +13,8 @@
 
 #include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace substep::view {
 
@@ -56,6 +58,11 @@ class ViewSession {
 
     /// The current state to draw, seen through `camera`.
     render::RenderScene draw(const render::Camera& camera);
+
+    /// The scene's named joints, for the panel's compliance sliders.
+    const std::vector<std::pair<std::string, JointId>>& namedJoints() const { return instance_.namedJoints; }
+    /// Sets a joint's attachment compliance α (m/N) live; a restart brings back the scene's.
+    void setJointCompliance(JointId id, double compliance);
 
     SessionControls& controls() { return controls_; }
     const SceneSource& source() const { return source_; }

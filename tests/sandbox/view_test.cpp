@@ -195,6 +195,20 @@ TEST(BodyDraggerTest, PullsTheBodyUnderTheCursorAndLetsGo) {
     EXPECT_FALSE(session.dragging());
 }
 
+// The panel's compliance sliders reach the world's joints, and a restart restores the scene's.
+TEST(ViewSessionTest, JointComplianceIsEditableLive) {
+    view::ViewSession session(resolveScene("boxes3"), 16.0f / 9.0f);
+    ASSERT_FALSE(session.namedJoints().empty());
+    const JointId id = session.namedJoints().front().second;
+    const double original = session.world().joint(id).compliance;
+    session.setJointCompliance(id, 0.05);
+    EXPECT_EQ(session.world().joint(id).compliance, 0.05);
+    session.setJointCompliance(id, -1.0);  // refused: a compliance is never negative
+    EXPECT_EQ(session.world().joint(id).compliance, 0.05);
+    session.restart();
+    EXPECT_EQ(session.world().joint(session.namedJoints().front().second).compliance, original);
+}
+
 // A saved scene file is noticed once, a built-in scene (no path) never, and a file that is
 // briefly missing (saved by rename) is not taken for a change.
 TEST(SceneFileWatchTest, NoticesEachSaveOnce) {
