@@ -307,7 +307,9 @@ TEST(ContactTest, DegenerateAndExtremeContactsStayFinite) {
         ASSERT_TRUE(world.isFinite()) << "frame " << frame;
     }
     for (const Body& b : world.bodies())
-        if (b.invMass > 0.0) EXPECT_GT(b.x.y(), -0.05);  // nothing ended below the ground
+        if (b.invMass > 0.0) {
+            EXPECT_GT(b.x.y(), -0.05);  // nothing ended below the ground
+        }
 }
 
 // The stage breakdown is kept only when asked for, and then accounts for every stage.
@@ -320,8 +322,11 @@ TEST(ContactTest, StepTimesAreKeptOnlyWhenMeasuring) {
         const StepTimes& t = world.stepTimes();
         for (double stage : {t.broadphase, t.narrowphase, t.solve, t.velocities, t.integrate}) {
             EXPECT_TRUE(std::isfinite(stage));
-            if (measure) EXPECT_GE(stage, 0.0);
-            else EXPECT_EQ(stage, 0.0);
+            if (measure) {
+                EXPECT_GE(stage, 0.0);
+            } else {
+                EXPECT_EQ(stage, 0.0);
+            }
         }
     }
 }

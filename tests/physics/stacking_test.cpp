@@ -74,7 +74,9 @@ TEST(DeterminismTest, MixedShapesRerunBitForBit) {
     }
     // The pile came to rest above the ground rather than through it.
     for (const Body& b : first.bodies())
-        if (b.invMass > 0.0) EXPECT_GT(b.x.y(), 0.0);
+        if (b.invMass > 0.0) {
+            EXPECT_GT(b.x.y(), 0.0);
+        }
 }
 
 }  // namespace

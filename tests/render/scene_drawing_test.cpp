@@ -43,7 +43,9 @@ TEST(SceneDrawing, EveryBuiltinSceneShowsEachBodyAboveTheGround) {
         for (const render::RenderInstance& instance : drawn.instances) {
             EXPECT_GE(drawn.ground->normal.dot(instance.position), drawn.ground->offset);
         }
-        if (description.camera) EXPECT_TRUE(drawn.camera.position.isApprox(description.camera->position.cast<float>()));
+        if (description.camera) {
+            EXPECT_TRUE(drawn.camera.position.isApprox(description.camera->position.cast<float>()));
+        }
     }
 }
 

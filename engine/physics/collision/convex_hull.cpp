@@ -440,10 +440,10 @@ ConvexHull buildConvexHull(std::span<const Vec3> points) {
     hull.climbSeeds.erase(std::unique(hull.climbSeeds.begin(), hull.climbSeeds.end()),
                           hull.climbSeeds.end());
     for (const HullFace& face : hull.faces) {
-        Aabb box;
+        Aabb faceBox;
         for (int i = 0; i < face.vertexCount; ++i)
-            box.grow(hull.faceVertex(face, i));
-        hull.faceBounds.push_back(box);
+            faceBox.grow(hull.faceVertex(face, i));
+        hull.faceBounds.push_back(faceBox);
     }
     for (const Vec3& v : hull.vertices) {
         hull.bounds.grow(v);
