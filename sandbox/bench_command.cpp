@@ -107,18 +107,17 @@ double median(std::vector<double> values) {
 /// Runs one scene: every repeat from a fresh build, warm-up untimed, then only world.step
 /// timed. A scene that turns non-finite stops at once; its figures are then meaningless.
 BenchResult measure(const BenchScene& scene, const BenchSettings& settings) {
-    const double dt = scene.source.description.dt;
     BenchResult result;
     for (int repeat = 0; repeat < settings.repeats && result.finite; ++repeat) {
-        SceneInstance instance = buildLabelledScene(scene.source.description, scene.source.label);
-        World& world = instance.world;
+        LiveScene live = startLabelledScene(scene.source);
+        World& world = live.world();
         std::chrono::steady_clock::duration stepTime{};
         long long contactSum = 0;
         const long long frames = scene.warmUpFrames + scene.timedFrames;
         for (long long frame = 0; frame < frames; ++frame) {
             if (const int signal = interruptSignal(); signal != 0) throw Interrupted{128 + signal};
             const auto start = std::chrono::steady_clock::now();
-            world.step(dt);
+            live.step();
             const auto end = std::chrono::steady_clock::now();
             if (frame >= scene.warmUpFrames) {
                 stepTime += end - start;

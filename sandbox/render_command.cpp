@@ -50,8 +50,8 @@ int renderFrames(const RenderOptions& options) {
     if (options.outDirectory.empty()) throw UsageError("--out: required, the folder the PNGs go to");
     const SceneSource source = resolveScene(options.scene);
     const SceneDescription& description = source.description;
-    SceneInstance scene = buildLabelledScene(description, source.label);
-    World& world = scene.world;
+    LiveScene live = startLabelledScene(source);
+    World& world = live.world();
 
     const std::unique_ptr<render::GlContext> context = render::createHeadlessContext();
     const render::GlApi gl = context->loadApi();
@@ -73,7 +73,7 @@ int renderFrames(const RenderOptions& options) {
             std::fprintf(stderr, "substep render: interrupted after %zu of %zu images\n", next, frames.size());
             return 128 + signal;
         }
-        if (frame > 0) world.step(description.dt);
+        if (frame > 0) live.step();
         if (!world.isFinite()) {
             std::fprintf(stderr,
                          "substep render: the state turned non-finite at frame %lld; %zu of %zu images "

@@ -116,8 +116,9 @@ int run(const RunOptions& options) {
     if (settings.dt) description.dt = *settings.dt;
     const double dt = description.dt;
     const long long frames = frameCount(settings, dt);
-    SceneInstance scene = buildLabelledScene(description, source.label);
-    World& world = scene.world;
+    LiveScene live = startLabelledScene(source, description);
+    SceneInstance& scene = live.instance();
+    World& world = live.world();
 
     std::unique_ptr<AtomicFile> csvFile;
     std::unique_ptr<AtomicFile> jsonFile;
@@ -148,7 +149,7 @@ int run(const RunOptions& options) {
             return 128 + signal;
         }
         const auto start = std::chrono::steady_clock::now();
-        world.step(dt);
+        live.step();
         stepTime += std::chrono::steady_clock::now() - start;
 
         // t is frame * dt, not a running sum, so it carries no accumulated rounding.

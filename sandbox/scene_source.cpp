@@ -10,7 +10,7 @@ namespace substep {
 
 SceneSource resolveScene(const std::string& argument) {
     if (const SceneEntry* entry = findBuiltinScene(argument)) {
-        return {.description = entry->build(), .label = argument, .builtin = true};
+        return {.description = entry->build(), .label = argument, .builtin = true, .entry = entry};
     }
 
     namespace fs = std::filesystem;
@@ -39,6 +39,14 @@ SceneInstance buildLabelledScene(const SceneDescription& description, const std:
         return buildScene(description);
     } catch (const std::exception& error) {
         throw std::runtime_error(label + ": " + error.what());
+    }
+}
+
+LiveScene startLabelledScene(const SceneSource& source, SceneDescription description) {
+    try {
+        return LiveScene(std::move(description), source.entry);
+    } catch (const std::exception& error) {
+        throw std::runtime_error(source.label + ": " + error.what());
     }
 }
 

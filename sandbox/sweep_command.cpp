@@ -195,9 +195,9 @@ SplitResult runSplit(const SceneSource& source, const SceneEntry* entry, const S
     SceneDescription description = source.description;
     description.substeps = split.substeps;
     description.iterations = split.iterations;
-    const double dt = description.dt;
-    SceneInstance scene = buildLabelledScene(description, source.label);
-    World& world = scene.world;
+    LiveScene live = startLabelledScene(source, description);
+    SceneInstance& scene = live.instance();
+    World& world = live.world();
     ErrorRecorder recorder(scene, errorReference(entry, world));
     recorder.sample();
 
@@ -207,7 +207,7 @@ SplitResult runSplit(const SceneSource& source, const SceneEntry* entry, const S
     for (long long frame = 1; frame <= frames; ++frame) {
         if (const int signal = interruptSignal(); signal != 0) throw Interrupted{signal};
         const Clock::time_point start = Clock::now();
-        world.step(dt);
+        live.step();
         frameMs.push_back(std::chrono::duration<double, std::milli>(Clock::now() - start).count());
         recorder.sample();
         progress.frame(frame);

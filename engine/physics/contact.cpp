@@ -289,8 +289,9 @@ void solvePushes(const PatchSystem& system, std::span<const Contact> contacts, c
 /// four spheres created inside one another flew off at 89 m/s at 20 substeps (and twice that at
 /// 40). The paper's Fig. 13 case (spheres 40 % into the ground) rises the same either way.
 double pushOut(double depth, const Body& b0, const Body& b1, const Vec3& r0, const Vec3& r1,
-               const Vec3& n, double h) {
-    if (!(depth > 0.0)) return depth;
+               const Vec3& n, const SolverContext& ctx) {
+    if (!(depth > 0.0) || !ctx.capPushOut) return depth;
+    const double h = ctx.h;
     const double approach = -(pointVelocity(b0.v, b0.omega, r0) - pointVelocity(b1.v, b1.omega, r1)).dot(n);
     return std::min(depth, h * std::max(approach, kPushOutSpeed));
 }
@@ -303,7 +304,7 @@ void solveSinglePointPositions(ContactPair& pair, Contact& c, SolverContext& ctx
     const Body& b1 = ctx.bodies[pair.body1];
     Vec3 r0 = b0.q * c.local0;
     Vec3 r1 = b1.q * c.local1;
-    const double depth = pushOut(((b1.x + r1) - (b0.x + r0)).dot(c.normal), b0, b1, r0, r1, c.normal, ctx.h);
+    const double depth = pushOut(((b1.x + r1) - (b0.x + r0)).dot(c.normal), b0, b1, r0, r1, c.normal, ctx);
     if (!(depth > 0.0)) {
         pair.lambdaNormal = c.lambdaNormal;
         return;
@@ -371,7 +372,7 @@ void solveContactPositions(ContactPair& pair, std::span<Contact> contacts, Solve
         const Vec3 r0 = b0.q * c.local0;
         const Vec3 r1 = b1.q * c.local1;
         system.addPush(c.normal, r0, r1);
-        rhs[i] = pushOut(((b1.x + r1) - (b0.x + r0)).dot(c.normal), b0, b1, r0, r1, c.normal, ctx.h);
+        rhs[i] = pushOut(((b1.x + r1) - (b0.x + r0)).dot(c.normal), b0, b1, r0, r1, c.normal, ctx);
         penetrates = penetrates || rhs[i] > 0.0;
     }
     if (!penetrates) return;

@@ -40,6 +40,9 @@ struct SolverContext {
     double repairDistance = 0.0;
     double repairAngle = 0.0;
     int repairs = 0;  ///< corrections the repair pass made
+    /// Contacts push out overlaps their bodies' approach does not explain at a capped speed
+    /// (contact.cpp, pushOut); false pushes them out whole, as plain PBD does.
+    bool capPushOut = true;
 };
 
 /// Eqs. 2-9: moves the point at world offset r0 of body i0 by `delta` relative to the point at

@@ -201,7 +201,7 @@ void World::step(double dt) {
         lap(stepTimes_.solve);
         deriveVelocities(h);
         lap(stepTimes_.integrate);
-        if (anyDamping_ || !contacts_.empty()) solveVelocities(h);
+        if (settings_.velocityPass && (anyDamping_ || !contacts_.empty())) solveVelocities(h);
         lap(stepTimes_.velocities);
     }
 }
@@ -347,7 +347,8 @@ void World::solvePositions(double h) {
                       .h = h,
                       .invH2 = 1.0 / (h * h),
                       .solver = settings_.solver,
-                      .deltas = jacobiDeltas_.data()};
+                      .deltas = jacobiDeltas_.data(),
+                      .capPushOut = settings_.velocityPass};
     // Joints first, contacts last: a substep ends with the hard inequalities met.
     for (Joint& joint : joints_)
         if (joint.alive) solveJointPositions(joint, ctx);

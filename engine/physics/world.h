@@ -37,6 +37,10 @@ struct WorldSettings {
     /// Time the stages of every step (World::stepTimes): a clock read per stage and substep,
     /// so off unless something shows the breakdown (the viewer does).
     bool measureTime = false;
+    /// The velocity pass (paper 3.6: damping, dynamic friction, restitution) after each
+    /// substep's velocity derivation. Off gives plain PBD velocities v = Δx/h, with overlaps
+    /// pushed out whole: the comparison the paper's Figs. 12 and 13 draw.
+    bool velocityPass = true;
 };
 
 /// Where the last step's time went (ms), when WorldSettings::measureTime is on.

@@ -1,6 +1,8 @@
 #pragma once
 /// The gallery of built-in scenes: one table, one builder per file in this folder.
 
+#include "scenes/scene_script.h"
+
 #include "scene/scene.h"
 
 #include <span>
@@ -25,6 +27,8 @@ struct SceneEntry {
     /// Energy drift is reported relative to this (J); 0 means the scene's weight times 1 m.
     double energyScale = 0.0;
     ChainMeasure chain;
+    /// Makes the scene's script (its per-frame hook, knobs and readouts); nullptr: none.
+    SceneScriptFactory makeScript = nullptr;
 };
 
 /// Every built-in scene, in the order `substep scenes` lists them.

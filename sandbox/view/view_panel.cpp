@@ -30,6 +30,54 @@ void plotHistory(const char* id, const PlotHistory& history, const char* format)
     ImGui::TextDisabled("range %.6g .. %.6g", lowest, highest);
 }
 
+/// The scene script's own knobs and readouts (scene_script.h), under the solver settings.
+void drawSceneControls(ViewSession& session) {
+    SceneScript* script = session.script();
+    if (script == nullptr) return;
+    ImGui::Separator();
+    ImGui::TextUnformatted("scene");
+    const std::span<SceneKnob> knobs = script->knobs();
+    for (std::size_t index = 0; index < knobs.size(); ++index) {
+        const SceneKnob& knob = knobs[index];
+        switch (knob.kind) {
+            case SceneKnob::Kind::Toggle: {
+                bool on = knob.value != 0.0;
+                if (ImGui::Checkbox(knob.label.c_str(), &on)) session.setKnob(index, on ? 1.0 : 0.0);
+                break;
+            }
+            case SceneKnob::Kind::Slider: {
+                float value = static_cast<float>(knob.value);
+                const ImGuiSliderFlags flags =
+                    ImGuiSliderFlags_AlwaysClamp | (knob.logarithmic ? ImGuiSliderFlags_Logarithmic : 0);
+                if (ImGui::SliderFloat(knob.label.c_str(), &value, static_cast<float>(knob.min),
+                                       static_cast<float>(knob.max), knob.format, flags)) {
+                    session.setKnob(index, value);
+                }
+                break;
+            }
+            case SceneKnob::Kind::Choice: {
+                const int current = static_cast<int>(knob.value);
+                if (ImGui::BeginCombo(knob.label.c_str(), knob.choices.at(static_cast<std::size_t>(current)).c_str())) {
+                    for (std::size_t choice = 0; choice < knob.choices.size(); ++choice) {
+                        if (ImGui::Selectable(knob.choices[choice].c_str(), static_cast<int>(choice) == current)) {
+                            session.setKnob(index, static_cast<double>(choice));
+                        }
+                    }
+                    ImGui::EndCombo();
+                }
+                break;
+            }
+        }
+    }
+    std::vector<SceneReadout> readouts;
+    script->readouts(session.instance(), readouts);
+    for (const SceneReadout& readout : readouts) {
+        char value[64];
+        std::snprintf(value, sizeof value, readout.format, readout.value);
+        ImGui::Text("%s: %s", readout.label.c_str(), value);
+    }
+}
+
 }  // namespace
 
 PanelRequests ViewPanel::draw(ViewSession& session, const FrameTimes& times, const std::string& loadError) {
@@ -77,6 +125,8 @@ PanelRequests ViewPanel::draw(ViewSession& session, const FrameTimes& times, con
                                                  ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
     requests.controlsChanged |=
         ImGui::SliderFloat("gravity y", &controls.gravityY, -30.0f, 30.0f, "%.2f m/s^2", ImGuiSliderFlags_AlwaysClamp);
+
+    drawSceneControls(session);
 
     // Debug layers.
     ImGui::Separator();

@@ -23,25 +23,29 @@ SessionControls controlsOf(const SceneDescription& description, const SessionCon
 
 ViewSession::ViewSession(SceneSource source, float aspect) : source_(std::move(source)), aspect_(aspect) {
     controls_ = controlsOf(source_.description, controls_);
-    rebuild();
+    rebuild(false);
 }
 
 void ViewSession::load(SceneSource source) {
     source_ = std::move(source);
     controls_ = controlsOf(source_.description, controls_);
-    rebuild();
+    rebuild(false);
 }
 
-void ViewSession::restart() { rebuild(); }
+void ViewSession::restart() { rebuild(true); }
 
-void ViewSession::rebuild() {
+void ViewSession::rebuild(bool keepScript) {
     dragger_.forget();  // its spring goes with the old world
-    instance_ = buildLabelledScene(source_.description, source_.label);
+    // A restart keeps the script, and with it the knobs the user turned.
+    if (keepScript && live_) {
+        live_->restart();
+    } else {
+        live_ = std::make_unique<LiveScene>(startLabelledScene(source_));
+    }
     applyControls();
     applyDrawingOptions();
-    frame_ = 0;
     pendingSeconds_ = 0.0;
-    finite_ = instance_.world.isFinite();
+    finite_ = live_->world().isFinite();
     lastStepMs_ = 0.0;
     energy_.clear();
     jointError_.clear();
@@ -49,16 +53,27 @@ void ViewSession::rebuild() {
 }
 
 void ViewSession::setJointCompliance(JointId id, double compliance) {
-    if (instance_.world.isValid(id) && compliance >= 0.0) instance_.world.joint(id).compliance = compliance;
+    World& world = live_->world();
+    if (world.isValid(id) && compliance >= 0.0) world.joint(id).compliance = compliance;
+}
+
+void ViewSession::setKnob(std::size_t index, double value) {
+    SceneScript* script = live_->script();
+    if (script == nullptr || index >= script->knobs().size()) return;
+    script->setKnob(live_->instance(), script->knobs()[index].name, value);
+    // A knob may switch the solver (the bunny chain's 20 x 1 against 1 x 20): the panel's
+    // sliders follow, so a restart keeps what the knob chose.
+    controls_.substeps = live_->world().settings().substeps;
+    controls_.iterations = live_->world().settings().iterations;
 }
 
 void ViewSession::applyControls() {
-    WorldSettings settings = instance_.world.settings();
+    WorldSettings settings = live_->world().settings();
     settings.substeps = controls_.substeps;
     settings.iterations = controls_.iterations;
     settings.gravity.y() = controls_.gravityY;
     settings.measureTime = true;  // the panel's stage breakdown
-    instance_.world.setSettings(settings);
+    live_->world().setSettings(settings);
 }
 
 void ViewSession::applyDrawingOptions() {
@@ -89,10 +104,9 @@ void ViewSession::advance(double wallSeconds) {
 void ViewSession::stepOnce() {
     if (!finite_) return;
     const auto start = std::chrono::steady_clock::now();
-    instance_.world.step(source_.description.dt);
+    live_->step();
     lastStepMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    ++frame_;
-    finite_ = instance_.world.isFinite();
+    finite_ = live_->world().isFinite();
     if (!finite_) {
         controls_.playing = false;
         return;
@@ -103,7 +117,7 @@ void ViewSession::stepOnce() {
 void ViewSession::sample() {
     // The plots measure the scene, not the hand pulling it: the drag spring's stretch and stored
     // energy are left out (the work it does still shows as a change of the scene's energy).
-    const World& world = instance_.world;
+    const World& world = live_->world();
     const std::optional<JointId> spring = dragger_.joint();
     double energy = world.energies().total();
     double jointError = 0.0;
@@ -123,9 +137,9 @@ void ViewSession::sample() {
 }
 
 render::RenderScene ViewSession::draw(const render::Camera& camera) {
-    render::RenderScene scene = drawing_->draw(instance_.world);
+    render::RenderScene scene = drawing_->draw(live_->world());
     scene.camera = camera;
-    if (const std::optional<render::DebugLine> spring = dragger_.line(instance_.world)) scene.lines.push_back(*spring);
+    if (const std::optional<render::DebugLine> spring = dragger_.line(live_->world())) scene.lines.push_back(*spring);
     return scene;
 }
 

@@ -50,17 +50,17 @@ class ViewSession {
     void stepOnce();
 
     /// Grabs the body under `ray` with a spring (body_dragger.h); false when none is there.
-    bool grab(const Ray& ray) { return dragger_.grab(instance_.world, ray); }
+    bool grab(const Ray& ray) { return dragger_.grab(live_->world(), ray); }
     /// Moves the held spring's end along `ray`.
-    void drag(const Ray& ray) { dragger_.drag(instance_.world, ray); }
-    void release() { dragger_.release(instance_.world); }
+    void drag(const Ray& ray) { dragger_.drag(live_->world(), ray); }
+    void release() { dragger_.release(live_->world()); }
     bool dragging() const { return dragger_.active(); }
 
     /// The current state to draw, seen through `camera`.
     render::RenderScene draw(const render::Camera& camera);
 
     /// The scene's named joints, for the panel's compliance sliders.
-    const std::vector<std::pair<std::string, JointId>>& namedJoints() const { return instance_.namedJoints; }
+    const std::vector<std::pair<std::string, JointId>>& namedJoints() const { return live_->instance().namedJoints; }
     /// Sets a joint's attachment compliance α (m/N) live; a restart brings back the scene's.
     void setJointCompliance(JointId id, double compliance);
 
@@ -68,26 +68,31 @@ class ViewSession {
     const SceneSource& source() const { return source_; }
     /// The camera the scene starts from (its own, else one framing the bodies).
     const render::Camera& startCamera() const { return drawing_->camera(); }
-    const World& world() const { return instance_.world; }
+    const World& world() const { return live_->world(); }
+    /// The scene's script (its knobs and readouts for the panel), or nullptr.
+    SceneScript* script() { return live_->script(); }
+    const SceneInstance& instance() const { return live_->instance(); }
+    /// Sets knob `index` of the script to `value` and applies it; substeps and iterations follow
+    /// when the knob changed them.
+    void setKnob(std::size_t index, double value);
 
-    long long frame() const { return frame_; }
-    double simulatedTime() const { return frame_ * source_.description.dt; }
+    long long frame() const { return live_->frame(); }
+    double simulatedTime() const { return live_->time(); }
     bool finite() const { return finite_; }
     double lastStepMs() const { return lastStepMs_; }
     const PlotHistory& energyHistory() const { return energy_; }
     const PlotHistory& jointErrorHistory() const { return jointError_; }
 
   private:
-    void rebuild();
+    void rebuild(bool keepScript);
     void sample();
 
     SceneSource source_;
     float aspect_;
     SessionControls controls_;
-    SceneInstance instance_;
+    std::unique_ptr<LiveScene> live_;
     std::unique_ptr<SceneDrawing> drawing_;
     BodyDragger dragger_;
-    long long frame_ = 0;
     double pendingSeconds_ = 0.0;  ///< simulated time owed to real time, less than one dt
     bool finite_ = true;
     double lastStepMs_ = 0.0;

@@ -1,0 +1,78 @@
+#pragma once
+/// What a built-in scene does beyond its bodies and joints: a hook before every frame (a rope
+/// end turned, a robot's target moved) and the knobs and readouts of its own panel. Scripts know
+/// nothing of ImGui: the viewer draws their knobs, and tests and commands set them by name, so
+/// a scene behaves the same in the window, headless and under test.
+
+#include "scene/scene.h"
+
+#include <cstddef>
+#include <memory>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace substep {
+
+/// One setting of a scene that is worth turning live.
+struct SceneKnob {
+    enum class Kind : unsigned char {
+        Toggle,  ///< value 0 or 1
+        Slider,  ///< value in [min, max]
+        Choice,  ///< value the index of one of `choices`
+    };
+    std::string name;   ///< stable identifier, snake_case (tests and commands use it)
+    std::string label;  ///< what the panel shows
+    Kind kind = Kind::Slider;
+    double value = 0.0;
+    double min = 0.0;
+    double max = 1.0;
+    std::vector<std::string> choices;  ///< Choice only
+    const char* format = "%.3g";       ///< Slider only: printf format of the value
+    bool logarithmic = false;          ///< Slider only
+};
+
+/// A live value the panel shows under the knobs.
+struct SceneReadout {
+    std::string label;
+    double value = 0.0;
+    const char* format = "%.4g";
+};
+
+class SceneScript {
+  public:
+    virtual ~SceneScript() = default;
+
+    /// After the scene is built, and again after every rebuild (a restart): puts the knobs'
+    /// current values into the new world. Solver settings (substeps, iterations) are the
+    /// caller's and are left alone here.
+    virtual void start(SceneInstance& /*scene*/) {}
+    /// Before each frame's step; `time` is the simulated time at the frame's start (s).
+    virtual void beforeFrame(SceneInstance& /*scene*/, double /*time*/, double /*dt*/) {}
+    /// Knob `index` changed while the scene runs: apply it (this may change solver settings).
+    virtual void knobChanged(SceneInstance& /*scene*/, std::size_t /*index*/) {}
+    /// Appends the values worth watching.
+    virtual void readouts(const SceneInstance& /*scene*/, std::vector<SceneReadout>& /*out*/) const {}
+
+    std::span<SceneKnob> knobs() { return knobs_; }
+    std::span<const SceneKnob> knobs() const { return knobs_; }
+    /// The knob called `name`, or nullptr.
+    SceneKnob* findKnob(std::string_view name);
+    /// Sets knob `name` (clamped to its range) and applies it; false when there is no such knob.
+    bool setKnob(SceneInstance& scene, std::string_view name, double value);
+
+  protected:
+    /// Declares a knob (in the constructor); returns its index.
+    std::size_t addKnob(SceneKnob knob);
+    double knob(std::size_t index) const { return knobs_[index].value; }
+    bool toggled(std::size_t index) const { return knobs_[index].value != 0.0; }
+
+  private:
+    std::vector<SceneKnob> knobs_;
+};
+
+/// Makes a scene's script; a SceneEntry holds one for scenes that have a script.
+using SceneScriptFactory = std::unique_ptr<SceneScript> (*)();
+
+}  // namespace substep
