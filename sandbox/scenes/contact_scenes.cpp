@@ -4,18 +4,6 @@
 #include "scenes/scenes.h"
 
 namespace substep::scenes {
-namespace {
-
-/// A static ground plane through the origin, facing up.
-void addGroundPlane(SceneDescription& scene, double friction, double restitution = 0.0) {
-    scene.bodies.push_back({"ground", BodyDef{.shape = planeShape(Vec3::UnitY(), 0.0),
-                                              .type = BodyType::Static,
-                                              .staticFriction = friction,
-                                              .dynamicFriction = friction,
-                                              .restitution = restitution}});
-}
-
-}  // namespace
 
 /// stack10: 10 unit cubes of 1 kg on a ground plane, friction 0.5. Error measure: the top
 /// cube's sideways drift.

@@ -7,8 +7,11 @@
 namespace substep {
 namespace {
 
-/// The gallery, in listing order. Add a scene here and in scenes.h; nothing else registers it.
-constexpr std::array kScenes{
+/// The gallery, in listing order (DESIGN.md's, then the benchmark scenes). Add a scene here and
+/// in scenes.h; nothing else registers it. Made on first use: the gallery scenes' entries come
+/// from their own files.
+const auto& sceneTable() {
+    static const std::array kScenes{
     SceneEntry{.name = "boxes3",
                .description = "Fig. 4: three boxes on springs (compliance 0.01 m/N)",
                .build = scenes::boxes3,
@@ -23,11 +26,18 @@ constexpr std::array kScenes{
     SceneEntry{.name = "mass_ratio",
                .description = "Fig. 6: 1 g boxes holding 1 kg boxes, compliances 0.01, 0.001, 0",
                .build = scenes::massRatio},
+    scenes::jointTypesEntry(),
     // Table 1 gives 0.07, 0.09 and 0.2 ms for its three pendulum scenes; this one holds all three.
     SceneEntry{.name = "pendula",
                .description = "Fig. 8: double, triple and closed-loop pendulum",
                .build = scenes::pendula,
                .paperMsPerFrame = 0.07 + 0.09 + 0.2},
+    scenes::bunnyChainEntry(),
+    scenes::cradleEntry(),
+    scenes::marblesOnWireEntry(),
+    scenes::coinEntry(),
+    scenes::robotArmEntry(),
+    scenes::twistedRopeEntry(),
     // PEERS.md measures pendulum3's energy error against m g L with m = 1 kg, L = 1 m, g = 10.
     SceneEntry{.name = "pendulum3",
                .description = "Benchmark: triple pendulum released horizontal (PEERS.md)",
@@ -53,14 +63,16 @@ constexpr std::array kScenes{
     SceneEntry{.name = "spheres1000",
                .description = "Benchmark: 1000 spheres dropped into a walled box (PEERS.md)",
                .build = scenes::spheres1000},
-};
+    };
+    return kScenes;
+}
 
 }  // namespace
 
-std::span<const SceneEntry> builtinScenes() { return kScenes; }
+std::span<const SceneEntry> builtinScenes() { return sceneTable(); }
 
 const SceneEntry* findBuiltinScene(std::string_view name) {
-    for (const SceneEntry& entry : kScenes)
+    for (const SceneEntry& entry : sceneTable())
         if (entry.name == name) return &entry;
     return nullptr;
 }

@@ -2,6 +2,8 @@
 /// Builders of the built-in scenes, one per file in this folder; scene_registry.cpp lists them.
 /// Each uses the paper's parameters where the paper gives them (gravity 10, Table 1 substeps).
 
+#include "scenes/scene_registry.h"
+
 #include "scene/scene.h"
 
 namespace substep::scenes {
@@ -17,6 +19,16 @@ SceneDescription rope100();    ///< PEERS.md rope100: 100 capsules released hori
 SceneDescription stack10();    ///< PEERS.md stack10: 10 unit cubes stacked on the ground
 SceneDescription pyramid10();  ///< a pyramid of 10 rows of unit cubes (55 boxes)
 SceneDescription spheres1000();  ///< PEERS.md spheres1000: 1000 spheres dropped into a box
+
+// The paper's gallery: each file defines its scene's whole entry (name, description, Table 1
+// figure, builder and script), so a gallery scene lives in one file.
+SceneEntry jointTypesEntry();     ///< Fig. 7 (joint_types.cpp)
+SceneEntry bunnyChainEntry();     ///< Figs. 10-11 (bunny_chain.cpp)
+SceneEntry cradleEntry();         ///< Fig. 12 (cradle.cpp)
+SceneEntry marblesOnWireEntry();  ///< Fig. 13 (marbles_on_wire.cpp)
+SceneEntry coinEntry();           ///< Fig. 15 (coin.cpp)
+SceneEntry robotArmEntry();       ///< Fig. 17 (robot_arm.cpp)
+SceneEntry twistedRopeEntry();    ///< Fig. 18 (twisted_rope.cpp)
 
 /// The paper's gravity (its demos use 10 m/s²).
 inline const Vec3 kPaperGravity(0.0, -10.0, 0.0);
@@ -43,6 +55,15 @@ inline size_t addStaticBox(SceneDescription& scene, std::string name, const Vec3
                                                      .position = position,
                                                      .collide = false}});
     return scene.bodies.size() - 1;
+}
+
+/// Adds a static ground plane through the origin, facing up, named "ground".
+inline void addGroundPlane(SceneDescription& scene, double friction, double restitution = 0.0) {
+    scene.bodies.push_back({"ground", BodyDef{.shape = planeShape(Vec3::UnitY(), 0.0),
+                                              .type = BodyType::Static,
+                                              .staticFriction = friction,
+                                              .dynamicFriction = friction,
+                                              .restitution = restitution}});
 }
 
 /// Adds a joint between two named bodies ("" for the world).
