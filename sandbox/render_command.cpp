@@ -2,6 +2,7 @@
 
 #include "atomic_file.h"
 #include "command_options.h"
+#include "knob_settings.h"
 #include "scene_drawing.h"
 #include "scene_source.h"
 
@@ -52,6 +53,7 @@ int renderFrames(const RenderOptions& options) {
     const SceneDescription& description = source.description;
     LiveScene live = startLabelledScene(source);
     World& world = live.world();
+    applyKnobSettings(live, parseKnobSettings(options.knobs), source.label);
 
     const std::unique_ptr<render::GlContext> context = render::createHeadlessContext();
     const render::GlApi gl = context->loadApi();
@@ -150,6 +152,8 @@ CLI::App* addRenderCommand(CLI::App& app, RenderOptions& options) {
         ->type_name("DIR")
         ->required();
     command->add_option("--size", options.size, "Image size in pixels (default 1280x720)")->type_name("WxH");
+    command->add_option("--set", options.knobs, "Turn a scene knob, e.g. --set velocity_pass=0 (repeatable)")
+        ->type_name("NAME=VALUE");
     return command;
 }
 

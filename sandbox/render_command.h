@@ -17,6 +17,7 @@ struct RenderOptions {
     std::string frames;
     std::string outDirectory;
     std::string size = "1280x720";
+    std::vector<std::string> knobs;  ///< --set NAME=VALUE, in order
 };
 
 /// Accepted values: frame numbers up to kMaxRenderFrame, at most kMaxRenderImages images,

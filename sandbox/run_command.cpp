@@ -3,6 +3,7 @@
 #include "atomic_file.h"
 #include "command_options.h"
 #include "csv_writer.h"
+#include "knob_settings.h"
 #include "scene_source.h"
 #include "state_columns.h"
 
@@ -109,6 +110,7 @@ void printSummary(const SceneSource& source, const RunSummary& summary, double d
 int run(const RunOptions& options) {
     // Check every input before any output exists: a bad option or scene leaves no file behind.
     const RunSettings settings = checkOptions(options);
+    const std::vector<KnobSetting> knobs = parseKnobSettings(options.knobs);
     SceneSource source = resolveScene(options.scene);
     SceneDescription& description = source.description;
     if (settings.substeps) description.substeps = *settings.substeps;
@@ -119,6 +121,12 @@ int run(const RunOptions& options) {
     LiveScene live = startLabelledScene(source, description);
     SceneInstance& scene = live.instance();
     World& world = live.world();
+    applyKnobSettings(live, knobs, source.label);
+    // --substeps and --iterations win over a knob that switches the solver.
+    WorldSettings solver = world.settings();
+    if (settings.substeps) solver.substeps = *settings.substeps;
+    if (settings.iterations) solver.iterations = *settings.iterations;
+    world.setSettings(solver);
 
     std::unique_ptr<AtomicFile> csvFile;
     std::unique_ptr<AtomicFile> jsonFile;
@@ -203,6 +211,8 @@ CLI::App* addRunCommand(CLI::App& app, RunOptions& options) {
         ->type_name("S");
     command->add_option("--csv", options.csvPath, "Write a row per frame, row 0 the initial state")
         ->type_name("F");
+    command->add_option("--set", options.knobs, "Turn a scene knob, e.g. --set velocity_pass=0 (repeatable)")
+        ->type_name("NAME=VALUE");
     command->add_option("--json", options.jsonPath, "Write the summary as JSON")->type_name("F");
     return command;
 }

@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 
 #include <string>
+#include <vector>
 
 namespace substep {
 
@@ -20,6 +21,7 @@ struct RunOptions {
     std::string dt;
     std::string csvPath;
     std::string jsonPath;
+    std::vector<std::string> knobs;  ///< --set NAME=VALUE, in order
 };
 
 /// Accepted ranges (DESIGN.md for substeps and iterations; frames is a sanity bound).
