@@ -21,6 +21,7 @@ double shapeRadius(const Shape& shape) {
         case ShapeType::Sphere: return shape.radius;
         case ShapeType::Box: return shape.size.norm() / 2.0;
         case ShapeType::Capsule: return shape.radius + shape.length / 2.0;
+        case ShapeType::Cylinder: return std::hypot(shape.radius, shape.length / 2.0);
         case ShapeType::Mesh:
         case ShapeType::Heightfield:
         case ShapeType::Spline:
@@ -51,18 +52,20 @@ float gridSpacingFor(double size) {
     return static_cast<float>(std::pow(10.0, std::floor(std::log10(std::max(size, 0.1)))));
 }
 
-void addArrow(render::RenderScene& scene, const render::Vec3f& from, const render::Vec3f& to,
-              const render::Colour& colour) {
-    scene.lines.push_back({from, to, colour});
-    const render::Vec3f shaft = to - from;
-    const float length = shaft.norm();
-    if (length < 1e-6f) return;
-    // Two short barbs in a plane containing the shaft.
-    const render::Vec3f direction = shaft / length;
-    const render::Vec3f side = direction.unitOrthogonal();
-    for (const float sign : {1.0f, -1.0f}) {
-        scene.lines.push_back({to, to - 0.2f * length * direction + sign * 0.08f * length * side, colour});
+/// Colours of the debug layers: joint axes a, b, c red, green, blue as in every DCC tool.
+render::Colour debugColour(const DebugSegment& segment) {
+    switch (segment.layer) {
+        case DebugLayer::JointLink: return {0.95f, 0.85f, 0.30f};
+        case DebugLayer::JointFrame: {
+            const render::Colour axes[3] = {{0.9f, 0.2f, 0.2f}, {0.2f, 0.8f, 0.2f}, {0.25f, 0.4f, 1.0f}};
+            return axes[std::min<int>(segment.part, 2)];
+        }
+        case DebugLayer::JointLimit: return {0.35f, 0.85f, 0.95f};
+        case DebugLayer::JointForce: return {0.85f, 0.30f, 0.85f};
+        case DebugLayer::JointTorque: return {0.95f, 0.55f, 0.15f};
+        case DebugLayer::Contact: return {1.0f, 0.35f, 0.2f};
     }
+    return {1.0f, 1.0f, 1.0f};
 }
 
 }  // namespace
@@ -140,6 +143,8 @@ SceneDrawing::SceneDrawing(const SceneDescription& description, const World& wor
     }
     forceScale_ = heaviestWeight > 0.0 ? static_cast<float>(0.1 * radius / heaviestWeight) : 0.0f;
     longestArrow_ = static_cast<float>(std::min(0.25 * radius, 3.0 * medianSize));
+    // Torques: the heaviest weight at the scene's size, drawn as long as its weight's arrow.
+    torqueScale_ = heaviestWeight > 0.0 ? forceScale_ / static_cast<float>(radius) : 0.0f;
 }
 
 render::RenderScene SceneDrawing::draw(const World& world) {
@@ -147,8 +152,7 @@ render::RenderScene SceneDrawing::draw(const World& world) {
     scene.camera = camera_;
     scene.ground = ground_;
     addBodies(world, scene);
-    addJoints(world, scene);
-    addContacts(world, scene);
+    addDebugLines(world, scene);
     return scene;
 }
 
@@ -221,6 +225,11 @@ void SceneDrawing::addBodies(const World& world, render::RenderScene& scene) {
                 instance.dimensions = render::Vec3f(static_cast<float>(shape.radius),
                                                     static_cast<float>(shape.length), 0.0f);
                 break;
+            case ShapeType::Cylinder:
+                instance.kind = render::ShapeKind::Cylinder;
+                instance.dimensions = render::Vec3f(static_cast<float>(shape.radius),
+                                                    static_cast<float>(shape.length), 0.0f);
+                break;
             case ShapeType::Mesh:
             case ShapeType::Heightfield:
             case ShapeType::Spline:
@@ -234,56 +243,23 @@ void SceneDrawing::addBodies(const World& world, render::RenderScene& scene) {
     }
 }
 
-void SceneDrawing::addJoints(const World& world, render::RenderScene& scene) const {
-    const auto bodies = world.bodies();
-    const double h = world.lastSubstep();
-    for (const Joint& joint : world.joints()) {
-        if (!joint.alive) continue;
-        const Body& body0 = bodies[joint.body0];
-        const Body& body1 = bodies[joint.body1];
-        const render::Vec3f anchor0 = toFloat(body0.pointToWorld(joint.anchor0));
-        const render::Vec3f anchor1 = toFloat(body1.pointToWorld(joint.anchor1));
-        // The link between the anchors: a spring's stretch, a rope's slack, a joint's error.
-        scene.lines.push_back({anchor0, anchor1, {0.95f, 0.85f, 0.30f}});
-        if (options_.jointFrames) {
-            const std::pair<const Body*, std::pair<Quat, render::Vec3f>> frames[2] = {
-                {&body0, {joint.frame0, anchor0}}, {&body1, {joint.frame1, anchor1}}};
-            for (const auto& [body, frame] : frames) {
-                const Eigen::Matrix3d axes = (body->q * frame.first).toRotationMatrix();
-                const render::Colour colours[3] = {{0.9f, 0.2f, 0.2f}, {0.2f, 0.8f, 0.2f}, {0.25f, 0.4f, 1.0f}};
-                for (int axis = 0; axis < 3; ++axis) {
-                    scene.lines.push_back({frame.second,
-                                           frame.second + markerLength_ * toFloat(axes.col(axis)),
-                                           colours[axis]});
-                }
-            }
-        }
-    }
-    // Forces after every frame, so overlays of one kind stay together in the list.
-    if (!options_.jointForces || h <= 0.0 || forceScale_ <= 0.0f) return;
-    for (const Joint& joint : world.joints()) {
-        if (!joint.alive) continue;
-        // Force on body 1 (a correction is the motion of body 0 along the impulse): λ/h² (Eq. 10).
-        const render::Vec3f anchor1 = toFloat(bodies[joint.body1].pointToWorld(joint.anchor1));
-        const render::Vec3f arrow = forceScale_ * toFloat(-joint.linearImpulse / (h * h));
-        const float length = arrow.norm();
-        if (length > 1e-4f) {
-            addArrow(scene, anchor1, anchor1 + arrow * std::min(1.0f, longestArrow_ / length), {0.85f, 0.30f, 0.85f});
-        }
-    }
-}
-
-void SceneDrawing::addContacts(const World& world, render::RenderScene& scene) const {
-    if (!options_.contacts) return;
-    const auto bodies = world.bodies();
-    const auto contacts = world.contacts();
-    for (const ContactPair& pair : world.contactPairs()) {
-        for (uint32_t i = pair.first; i < pair.first + pair.count && i < contacts.size(); ++i) {
-            const Contact& contact = contacts[i];
-            const render::Vec3f point = toFloat(bodies[pair.body1].pointToWorld(contact.local1));
-            addArrow(scene, point, point + markerLength_ * toFloat(contact.normal), {1.0f, 0.35f, 0.2f});
-        }
-    }
+void SceneDrawing::addDebugLines(const World& world, render::RenderScene& scene) {
+    uint32_t layers = 0;
+    // A joint's link always shows: its length is the spring's stretch or the joint's error.
+    layers |= debugLayerBit(DebugLayer::JointLink);
+    if (options_.jointFrames) layers |= debugLayerBit(DebugLayer::JointFrame) | debugLayerBit(DebugLayer::JointLimit);
+    if (options_.jointForces) layers |= debugLayerBit(DebugLayer::JointForce);
+    if (options_.jointTorques) layers |= debugLayerBit(DebugLayer::JointTorque);
+    if (options_.contacts) layers |= debugLayerBit(DebugLayer::Contact);
+    const DebugDrawOptions options{.layers = layers,
+                                   .markerLength = markerLength_,
+                                   .forceScale = forceScale_,
+                                   .torqueScale = torqueScale_,
+                                   .longestArrow = longestArrow_};
+    debugList_.clear();
+    drawWorld(world, options, debugList_);
+    for (const DebugSegment& segment : debugList_.segments)
+        scene.lines.push_back({toFloat(segment.from), toFloat(segment.to), debugColour(segment)});
 }
 
 }  // namespace substep

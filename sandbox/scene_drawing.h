@@ -1,9 +1,10 @@
 #pragma once
 /// A physics World as a RenderScene: every body's shape in its colour, the ground (the scene's
-/// plane, or a reference floor under the bodies), and debug lines for joint frames, joint forces
-/// and contact points (World::contacts()). What stays fixed over a rendering (camera, ground, colours, force scale) is
+/// plane, or a reference floor under the bodies), and the physics core's debug draw list
+/// (physics/debug_draw.h: joint links, frames, limits, forces and torques, contacts) as lines. What stays fixed over a rendering (camera, ground, colours, force scale) is
 /// decided once from the initial state, so frames of one scene line up.
 
+#include "physics/debug_draw.h"
 #include "render/render_scene.h"
 #include "scene/scene.h"
 
@@ -14,8 +15,9 @@ namespace substep {
 
 /// Which debug overlays to draw.
 struct DrawingOptions {
-    bool jointFrames = true;  ///< each joint's axes on both bodies (a red, b green, c blue)
+    bool jointFrames = true;  ///< each joint's axes on both bodies (a red, b green, c blue) and its limits
     bool jointForces = true;  ///< the joint's force on body 1, scaled to the scene
+    bool jointTorques = false;  ///< the joint's torque on body 1 (the right-hand rule's axis)
     /// Contact points with their normals: off by default, since a pile of bodies turns them
     /// into a thicket that hides the scene (the viewer offers them as a toggle).
     bool contacts = false;
@@ -35,8 +37,8 @@ class SceneDrawing {
 
   private:
     void addBodies(const World& world, render::RenderScene& scene);
-    void addJoints(const World& world, render::RenderScene& scene) const;
-    void addContacts(const World& world, render::RenderScene& scene) const;
+    /// The physics core's draw list (physics/debug_draw.h) of the layers the options select.
+    void addDebugLines(const World& world, render::RenderScene& scene);
     std::shared_ptr<const render::MeshData> meshFor(const Shape& shape);
 
     DrawingOptions options_;
@@ -44,7 +46,9 @@ class SceneDrawing {
     std::optional<render::Ground> ground_;
     float markerLength_ = 0.1f;  ///< joint frame axes and contact normals (m)
     float forceScale_ = 0.0f;    ///< m per N
+    float torqueScale_ = 0.0f;   ///< m per N m
     float longestArrow_ = 1.0f;  ///< force arrows are clipped to this (m)
+    DebugDrawList debugList_;    ///< kept across frames for its storage
     /// Render meshes built from shape data, by the address of that data (shared between bodies).
     std::map<const void*, std::shared_ptr<const render::MeshData>> meshes_;
 };

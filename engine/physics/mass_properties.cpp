@@ -50,6 +50,14 @@ MassProperties capsuleMassProperties(double radius, double length, double densit
             .inertia = Vec3(transverse, axial, transverse).asDiagonal()};
 }
 
+MassProperties cylinderMassProperties(double radius, double length, double density) {
+    const double r2 = radius * radius;
+    const double mass = density * kPi * r2 * length;
+    const double axial = 0.5 * mass * r2;
+    const double transverse = mass * (3.0 * r2 + length * length) / 12.0;
+    return {.mass = mass, .inertia = Vec3(transverse, axial, transverse).asDiagonal()};
+}
+
 MassProperties meshMassProperties(const TriangleMesh& mesh, double density) {
     if (mesh.vertices.empty() || mesh.triangles.empty()) return {};
 
@@ -111,6 +119,8 @@ MassProperties shapeMassProperties(const Shape& shape, double density) {
             return boxMassProperties(shape.size, density);
         case ShapeType::Capsule:
             return capsuleMassProperties(shape.radius, shape.length, density);
+        case ShapeType::Cylinder:
+            return cylinderMassProperties(shape.radius, shape.length, density);
         case ShapeType::Mesh: {
             // A convex mesh collides as its hull, so it weighs as its hull too (a dent in the
             // mesh is filled); the hull is built here if the shape was made without one.

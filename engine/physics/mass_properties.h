@@ -25,6 +25,8 @@ MassProperties sphereMassProperties(double radius, double density);
 MassProperties boxMassProperties(const Vec3& size, double density);
 /// Capsule with its segment along local y: a cylinder of `length` and two hemispherical caps.
 MassProperties capsuleMassProperties(double radius, double length, double density);
+/// Solid cylinder with its axis along local y: axial m r²/2, transverse m (3r² + l²)/12.
+MassProperties cylinderMassProperties(double radius, double length, double density);
 /// Closed triangle mesh of uniform density (Blow and Binstock's method: signed tetrahedra
 /// against one apex give volume, first and second moments in one pass). A mesh whose triangles
 /// wind inside out gives a negative volume: it is flipped, so either winding works. A mesh that

@@ -32,6 +32,7 @@ using GlProcLoader = GlProcAddress (*)(const char* name, void* user);
     X(PFNGLCULLFACEPROC, CullFace)                                                \
     X(PFNGLPOLYGONOFFSETPROC, PolygonOffset)                                      \
     X(PFNGLVIEWPORTPROC, Viewport)                                                \
+    X(PFNGLSCISSORPROC, Scissor)                                                  \
     X(PFNGLCLEARCOLORPROC, ClearColor)                                            \
     X(PFNGLCLEARDEPTHPROC, ClearDepth)                                            \
     X(PFNGLCLEARPROC, Clear)                                                      \

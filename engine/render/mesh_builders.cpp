@@ -94,6 +94,29 @@ MeshData capsuleMesh(float radius, float length, int rings, int segments) {
     return mesh;
 }
 
+MeshData unitCylinderMesh(int segments) {
+    MeshData mesh;
+    // The side: two rings with horizontal normals (the revolve's normal angle 0).
+    revolve(mesh, {Vec3f(1.0f, 0.5f, 0.0f), Vec3f(1.0f, -0.5f, 0.0f)}, segments);
+    // Each face a fan around its centre, with its own vertices so the rim edge stays sharp.
+    for (const float side : {1.0f, -1.0f}) {
+        const Vec3f normal(0.0f, side, 0.0f);
+        const uint32_t centre = addVertex(mesh, Vec3f(0.0f, 0.5f * side, 0.0f), normal);
+        for (int s = 0; s < segments; ++s) {
+            const float phi = 2.0f * kPi * static_cast<float>(s) / static_cast<float>(segments);
+            addVertex(mesh, Vec3f(std::cos(phi), 0.5f * side, -std::sin(phi)), normal);
+        }
+        for (int s = 0; s < segments; ++s) {
+            const uint32_t a = centre + 1 + static_cast<uint32_t>(s);
+            const uint32_t b = centre + 1 + static_cast<uint32_t>((s + 1) % segments);
+            // Counter-clockwise seen from outside: phi grows counter-clockwise seen from +y.
+            if (side > 0.0f) mesh.indices.insert(mesh.indices.end(), {centre, a, b});
+            else mesh.indices.insert(mesh.indices.end(), {centre, b, a});
+        }
+    }
+    return mesh;
+}
+
 MeshData flatShadedMesh(std::span<const Vec3f> points, std::span<const uint32_t> triangles) {
     MeshData mesh;
     for (std::size_t t = 0; t + 2 < triangles.size(); t += 3) {

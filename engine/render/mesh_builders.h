@@ -16,6 +16,9 @@ MeshData unitSphereMesh(int rings = 24, int segments = 48);
 MeshData unitBoxMesh();
 /// Capsule along y: a cylinder of `length` between two hemispheres of `radius`.
 MeshData capsuleMesh(float radius, float length, int rings = 12, int segments = 48);
+/// Cylinder of radius 1 along y from y = −0.5 to 0.5, smooth side and flat faces; instances
+/// scale it by (radius, length, radius), so one mesh serves every cylinder.
+MeshData unitCylinderMesh(int segments = 64);
 /// A triangle mesh with flat normals (each triangle gets its own three vertices, so edges of a
 /// faceted hull stay crisp). `triangles` holds three indices into `points` per triangle.
 MeshData flatShadedMesh(std::span<const Vec3f> points, std::span<const uint32_t> triangles);

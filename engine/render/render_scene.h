@@ -20,6 +20,7 @@ enum class ShapeKind {
     Sphere,   ///< dimensions.x() = radius
     Box,      ///< dimensions = full extents
     Capsule,  ///< dimensions.x() = radius, dimensions.y() = length between cap centres (along y)
+    Cylinder, ///< dimensions.x() = radius, dimensions.y() = length between the flat faces (along y)
     Mesh,     ///< `mesh` in the instance's own frame (triangle meshes, heightfields, tubes)
 };
 

@@ -22,6 +22,7 @@ float instanceRadius(const RenderInstance& instance, float meshRadius) {
         case ShapeKind::Sphere: return instance.dimensions.x();
         case ShapeKind::Box: return instance.dimensions.norm() / 2.0f;
         case ShapeKind::Capsule: return instance.dimensions.x() + instance.dimensions.y() / 2.0f;
+        case ShapeKind::Cylinder: return std::hypot(instance.dimensions.x(), instance.dimensions.y() / 2.0f);
         case ShapeKind::Mesh: return meshRadius;
     }
     return 0.0f;
@@ -32,6 +33,8 @@ Vec3f instanceScale(const RenderInstance& instance) {
     switch (instance.kind) {
         case ShapeKind::Sphere: return Vec3f::Constant(instance.dimensions.x());
         case ShapeKind::Box: return instance.dimensions;
+        case ShapeKind::Cylinder:
+            return Vec3f(instance.dimensions.x(), instance.dimensions.y(), instance.dimensions.x());
         default: return Vec3f::Ones();
     }
 }
@@ -119,7 +122,8 @@ Renderer::~Renderer() {
 GpuMesh& Renderer::meshFor(const RenderInstance& instance, MeshKey& key) {
     switch (instance.kind) {
         case ShapeKind::Sphere:
-        case ShapeKind::Box: key = {instance.kind, 0.0f, 0.0f, nullptr}; break;
+        case ShapeKind::Box:
+        case ShapeKind::Cylinder: key = {instance.kind, 0.0f, 0.0f, nullptr}; break;
         case ShapeKind::Capsule: key = {instance.kind, instance.dimensions.x(), instance.dimensions.y(), nullptr}; break;
         case ShapeKind::Mesh: key = {instance.kind, 0.0f, 0.0f, instance.mesh.get()}; break;
     }
@@ -129,6 +133,7 @@ GpuMesh& Renderer::meshFor(const RenderInstance& instance, MeshKey& key) {
         switch (instance.kind) {
             case ShapeKind::Sphere: cached.mesh = std::make_unique<GpuMesh>(gl_, unitSphereMesh()); break;
             case ShapeKind::Box: cached.mesh = std::make_unique<GpuMesh>(gl_, unitBoxMesh()); break;
+            case ShapeKind::Cylinder: cached.mesh = std::make_unique<GpuMesh>(gl_, unitCylinderMesh()); break;
             case ShapeKind::Capsule:
                 cached.mesh = std::make_unique<GpuMesh>(gl_, capsuleMesh(instance.dimensions.x(), instance.dimensions.y()));
                 break;
@@ -167,7 +172,7 @@ Renderer::Bounds Renderer::batchInstances(const RenderScene& scene) {
     // Meshes no instance uses any more are freed; the shared primitives stay.
     for (auto it = meshes_.begin(); it != meshes_.end();) {
         const ShapeKind kind = std::get<0>(it->first);
-        const bool shared = kind == ShapeKind::Sphere || kind == ShapeKind::Box;
+        const bool shared = kind == ShapeKind::Sphere || kind == ShapeKind::Box || kind == ShapeKind::Cylinder;
         if (!it->second.used && !shared) {
             it = meshes_.erase(it);
         } else {
@@ -316,10 +321,14 @@ void Renderer::render(const RenderScene& scene, const RenderTarget& target) {
                                  lookAt(camera.position, camera.target, camera.up);
 
     gl_.BindFramebuffer(GL_FRAMEBUFFER, target.framebuffer);
-    gl_.Viewport(0, 0, target.size.width, target.size.height);
+    gl_.Viewport(target.originX, target.originY, target.size.width, target.size.height);
+    // The clear is scissored to the target's area: a part of a window leaves the rest as drawn.
+    gl_.Enable(GL_SCISSOR_TEST);
+    gl_.Scissor(target.originX, target.originY, target.size.width, target.size.height);
     gl_.ClearColor(0.0f, 0.0f, 0.0f, 1.0f);
     gl_.ClearDepth(1.0);
     gl_.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    gl_.Disable(GL_SCISSOR_TEST);
     drawSky(scene, viewProjection);
 
     gl_.ActiveTexture(GL_TEXTURE0);

@@ -34,7 +34,8 @@ class Renderer {
     Renderer(const Renderer&) = delete;
     Renderer& operator=(const Renderer&) = delete;
 
-    /// Draws `scene` into `target`, covering every pixel. Throws std::runtime_error on a GL error.
+    /// Draws `scene` into `target`, covering every pixel of its area. Throws std::runtime_error on a
+    /// GL error.
     void render(const RenderScene& scene, const RenderTarget& target);
 
   private:

@@ -15,7 +15,8 @@
 ///   substeps, iterations   integers in [1, 10000] and [1, 1000]
 ///   coordinates            positions, anchors, camera points, plane offset, max_distance,
 ///                          prismatic limits and target_offset: |x| <= 1e6 m (sanity)
-///   sizes                  sphere/capsule radius, box size: (0, 1e4] m; capsule length [0, 1e4] m
+///   sizes                  sphere/capsule/cylinder radius, box size, cylinder length: (0, 1e4] m;
+///                          capsule length [0, 1e4] m
 ///   mass                   (0, 1e9] kg; density (0, 1e6] kg/m³; density x volume <= 1e9 kg
 ///   speeds                 velocity, angular_velocity, target_velocity: |v| <= 1e5 per component
 ///   compliances            compliance, limit_, drive_, twist_compliance: [0, 1e9] (sanity)
@@ -667,6 +668,8 @@ double shapeVolume(const Shape& shape) {
         case ShapeType::Capsule:
             return kPi * shape.radius * shape.radius * shape.length +
                    4.0 / 3.0 * kPi * std::pow(shape.radius, 3);
+        case ShapeType::Cylinder:
+            return kPi * shape.radius * shape.radius * shape.length;
         case ShapeType::Mesh:  // a closed mesh's volume (a convex one's hull)
             return shapeMassProperties(shape, 1.0).mass;
         default:
@@ -800,7 +803,7 @@ Shape parseHeightfieldShape(const Validator& v, const ObjectReader& obj, const N
 
 Shape parseShape(const Validator& v, const Node& node, bool isStatic) {
     const ObjectReader obj(v, node);
-    const Node typeNode = obj.require("type", " (sphere, box, capsule or plane)");
+    const Node typeNode = obj.require("type", " (sphere, box, capsule, cylinder or plane)");
     const std::string type = v.string(typeNode);
 
     if (type == "mesh") return parseMeshShape(v, obj, typeNode, isStatic);
@@ -822,6 +825,13 @@ Shape parseShape(const Validator& v, const Node& node, bool isStatic) {
                                        nonNegativeUpTo(kMaxSize));
         return capsuleShape(radius, length);
     }
+    if (type == "cylinder") {
+        obj.allowOnly({"type", "radius", "length"});
+        const double radius = v.number(obj.require("radius"), positiveUpTo(kMaxSize));
+        const double length = v.number(obj.require("length", " (between the flat faces)"),
+                                       positiveUpTo(kMaxSize));
+        return cylinderShape(radius, length);
+    }
     if (type == "plane") {
         if (!isStatic) {
             v.fail(typeNode.path, "a plane must be on a static body (add \"static\": true)");
@@ -835,7 +845,7 @@ Shape parseShape(const Validator& v, const Node& node, bool isStatic) {
     }
     v.fail(typeNode.path,
            "unknown shape type " + jsonQuoted(type) +
-               " (expected sphere, box, capsule, plane, mesh, heightfield or spline)");
+               " (expected sphere, box, capsule, cylinder, plane, mesh, heightfield or spline)");
 }
 
 SceneBody parseBody(const Validator& v, const Node& node,

@@ -5,4 +5,5 @@ target_sources(substep_physics PRIVATE
   collision/collide_capsule.cpp
   collision/collide_box.cpp
   collision/collide_box_box.cpp
+  collision/collide_cylinder.cpp
 )

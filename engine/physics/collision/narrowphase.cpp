@@ -6,6 +6,7 @@
 #include "physics/collision/narrowphase.h"
 
 #include "physics/collision/collide_convex.h"
+#include "physics/collision/collide_cylinder.h"
 #include "physics/collision/collide_curved.h"
 #include "physics/collision/collide_primitives.h"
 
@@ -77,9 +78,12 @@ constexpr PairEntry kPairs[] = {
     {ShapeType::Box, ShapeType::Heightfield, collideBoxHeightfield},
     {ShapeType::Sphere, ShapeType::Spline, collideSphereSpline},
     {ShapeType::Capsule, ShapeType::Spline, collideCapsuleSpline},
+    {ShapeType::Cylinder, ShapeType::Plane, collideCylinderPlane},
+    {ShapeType::Cylinder, ShapeType::Box, collideCylinderBox},
+    {ShapeType::Cylinder, ShapeType::Sphere, collideCylinderSphere},
 };
 
-constexpr int kShapeTypeCount = static_cast<int>(ShapeType::Spline) + 1;
+constexpr int kShapeTypeCount = static_cast<int>(ShapeType::Cylinder) + 1;
 
 struct Slot {
     CollideFunction function = nullptr;

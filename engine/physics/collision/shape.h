@@ -11,7 +11,7 @@
 
 namespace substep {
 
-enum class ShapeType { None, Sphere, Box, Capsule, Plane, Mesh, Heightfield, Spline };
+enum class ShapeType { None, Sphere, Box, Capsule, Plane, Mesh, Heightfield, Spline, Cylinder };
 
 // Collision data of the shapes that need more than a few numbers; each is defined in its own
 // header under collision/ and shared between bodies that use the same geometry.
@@ -29,9 +29,10 @@ struct TriangleMesh {
 /// One shape in the body's user frame (the frame its pose and joint anchors are given in).
 struct Shape {
     ShapeType type = ShapeType::None;
-    double radius = 0.0;                 ///< sphere, capsule
+    double radius = 0.0;                 ///< sphere, capsule, cylinder
     Vec3 size = Vec3::Zero();            ///< box: full extents
-    double length = 0.0;                 ///< capsule: segment between cap centres, along local y
+    double length = 0.0;                 ///< capsule: segment between cap centres; cylinder: between
+                                         ///< its flat faces; both along local y
     Vec3 normal = Vec3::UnitY();         ///< plane: n·x = offset, world coordinates
     double offset = 0.0;                 ///< plane
     std::shared_ptr<const TriangleMesh> mesh;  ///< mesh (already scaled)
@@ -49,6 +50,10 @@ inline Shape sphereShape(double radius) { return {.type = ShapeType::Sphere, .ra
 inline Shape boxShape(const Vec3& size) { return {.type = ShapeType::Box, .size = size}; }
 inline Shape capsuleShape(double radius, double length) {
     return {.type = ShapeType::Capsule, .radius = radius, .length = length};
+}
+/// A solid circular cylinder (a coin, a wheel, a can): flat faces at y = ±length/2.
+inline Shape cylinderShape(double radius, double length) {
+    return {.type = ShapeType::Cylinder, .radius = radius, .length = length};
 }
 inline Shape planeShape(const Vec3& normal, double offset) {
     return {.type = ShapeType::Plane, .normal = normal, .offset = offset};

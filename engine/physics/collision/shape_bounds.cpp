@@ -37,6 +37,10 @@ Aabb shapeLocalBounds(const Shape& shape) {
             const double r = std::abs(shape.radius);
             return centredBox(Vec3(r, r + 0.5 * std::abs(shape.length), r));
         }
+        case ShapeType::Cylinder: {
+            const double r = std::abs(shape.radius);
+            return centredBox(Vec3(r, 0.5 * std::abs(shape.length), r));
+        }
         case ShapeType::Plane:
             return infiniteBox();
         case ShapeType::Mesh:
@@ -72,6 +76,15 @@ Aabb shapeBounds(const Shape& shape, const Vec3& position, const Quat& orientati
             const Vec3 half = tip.cwiseAbs() + Vec3::Constant(std::abs(shape.radius));
             return {position - half, position + half};
         }
+        case ShapeType::Cylinder: {
+            // Along world axis i the axis u reaches ±(length/2)|u_i| and each rim circle
+            // ±radius·√(1 − u_i²): tighter than the turned local box for a tilted coin.
+            const Vec3 axis = orientation * Vec3::UnitY();
+            const Vec3 rim = (Vec3::Ones() - axis.cwiseProduct(axis)).cwiseMax(0.0).cwiseSqrt();
+            const Vec3 half =
+                (0.5 * std::abs(shape.length)) * axis.cwiseAbs() + std::abs(shape.radius) * rim;
+            return {position - half, position + half};
+        }
         default:
             return transformedBounds(shapeLocalBounds(shape), position,
                                      orientation.toRotationMatrix());
@@ -88,6 +101,8 @@ double shapeReach(const Shape& shape) {
             return std::abs(shape.radius);
         case ShapeType::Capsule:
             return 0.5 * std::abs(shape.length) + std::abs(shape.radius);
+        case ShapeType::Cylinder:  // a rim point: the farthest from the centre
+            return std::hypot(0.5 * shape.length, shape.radius);
         default: {
             // The farthest corner of the local box bounds every point of the shape.
             const Aabb local = shapeLocalBounds(shape);
