@@ -84,7 +84,7 @@ int renderFrames(const RenderOptions& options) {
             return 1;
         }
         if (frames[next] != frame) continue;
-        renderer.render(drawing.draw(world), target->target());
+        renderer.render(drawing.draw(live.instance()), target->target());
         AtomicFile file((directory / frameFileName(frame)).string());
         file.write(render::encodePng(target->readPixels()));
         file.commit();

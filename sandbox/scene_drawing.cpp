@@ -1,5 +1,6 @@
 #include "scene_drawing.h"
 
+#include "ecs/components.h"
 #include "physics/collision/heightfield.h"
 #include "physics/collision/spline_tube.h"
 #include "render/camera_framing.h"
@@ -147,6 +148,23 @@ SceneDrawing::SceneDrawing(const SceneDescription& description, const World& wor
     torqueScale_ = heaviestWeight > 0.0 ? forceScale_ / static_cast<float>(radius) : 0.0f;
 }
 
+render::RenderScene SceneDrawing::draw(const SceneInstance& scene) {
+    readMaterials(scene);
+    render::RenderScene drawn = draw(scene.world);
+    looks_.clear();
+    return drawn;
+}
+
+void SceneDrawing::readMaterials(const SceneInstance& scene) {
+    looks_.assign(scene.world.bodies().size(), Look{});
+    for (const ecs::Entity entity : scene.bodyEntities) {
+        const auto* body = scene.registry.tryGet<ecs::RigidBody>(entity);
+        const auto* material = scene.registry.tryGet<ecs::RenderMaterial>(entity);
+        if (body == nullptr || material == nullptr || !scene.world.isValid(body->id)) continue;
+        looks_[body->id.index] = {.known = true, .visible = material->visible, .colour = material->colour.cast<float>()};
+    }
+}
+
 render::RenderScene SceneDrawing::draw(const World& world) {
     render::RenderScene scene;
     scene.camera = camera_;
@@ -207,9 +225,11 @@ void SceneDrawing::addBodies(const World& world, render::RenderScene& scene) {
     for (std::size_t i = 1; i < bodies.size(); ++i) {
         const Body& body = bodies[i];
         if (!body.alive) continue;
+        const bool hasLook = i < looks_.size() && looks_[i].known;
+        if (hasLook && !looks_[i].visible) continue;
         render::RenderInstance instance{.position = toFloat(body.userPosition()),
                                         .orientation = body.userOrientation().cast<float>(),
-                                        .colour = bodyColour(i, !body.isDynamic())};
+                                        .colour = hasLook ? looks_[i].colour : bodyColour(i, !body.isDynamic())};
         const Shape& shape = body.shape;
         switch (shape.type) {
             case ShapeType::Sphere:

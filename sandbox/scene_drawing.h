@@ -30,13 +30,18 @@ class SceneDrawing {
     SceneDrawing(const SceneDescription& description, const World& world, float aspect,
                  const DrawingOptions& options = {});
 
-    /// The world's current state to draw.
+    /// The world's current state to draw, each body in the palette colour of its index.
     render::RenderScene draw(const World& world);
+    /// The scene's current state to draw, each body in the colour of its RenderMaterial and
+    /// hidden when that says so (the ECS layer's look of the body).
+    render::RenderScene draw(const SceneInstance& scene);
 
     const render::Camera& camera() const { return camera_; }
 
   private:
     void addBodies(const World& world, render::RenderScene& scene);
+    /// Fills looks_ from the scene's RenderMaterial components, by world body index.
+    void readMaterials(const SceneInstance& scene);
     /// The physics core's draw list (physics/debug_draw.h) of the layers the options select.
     void addDebugLines(const World& world, render::RenderScene& scene);
     std::shared_ptr<const render::MeshData> meshFor(const Shape& shape);
@@ -49,6 +54,13 @@ class SceneDrawing {
     float torqueScale_ = 0.0f;   ///< m per N m
     float longestArrow_ = 1.0f;  ///< force arrows are clipped to this (m)
     DebugDrawList debugList_;    ///< kept across frames for its storage
+    /// Per world body index, its material when drawn from a SceneInstance; empty otherwise.
+    struct Look {
+        bool known = false;
+        bool visible = true;
+        render::Colour colour;
+    };
+    std::vector<Look> looks_;
     /// Render meshes built from shape data, by the address of that data (shared between bodies).
     std::map<const void*, std::shared_ptr<const render::MeshData>> meshes_;
 };

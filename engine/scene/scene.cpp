@@ -54,7 +54,7 @@ SceneInstance buildScene(const SceneDescription& description) {
         const ecs::Entity entity = registry.create();
         ecs::emplaceBody(registry, entity, body.def);
         registry.emplace<ecs::RenderMaterial>(
-            entity, ecs::RenderMaterial{.colour = defaultColour(i, body.def)});
+            entity, ecs::RenderMaterial{.colour = body.colour.value_or(defaultColour(i, body.def))});
         instance.bodyEntities.push_back(entity);
         if (body.name.empty()) continue;
         // "world" would be ambiguous in joints, and a repeated name would repeat CSV columns.

@@ -21,6 +21,7 @@ namespace substep {
 struct SceneBody {
     std::string name;  ///< may be empty: unnamed bodies get no output columns
     BodyDef def;
+    std::optional<Vec3> colour;  ///< linear RGB in [0, 1]; none: a palette colour by index
 };
 
 struct SceneJoint {
