@@ -87,7 +87,8 @@ SceneDescription buildBunnyChain() {
     }
     addStaticBox(scene, "ceiling", Vec3(1.0, 0.1, 1.0), ceiling + Vec3(0.0, 0.05, 0.0));
     addGroundPlane(scene, 0.5);
-    scene.camera = SceneCamera{.position = Vec3(0.0, 12.0, 26.0), .target = Vec3(0.0, 10.5, 0.0)};
+    // Looking down the chain from beside the ceiling: the top bunnies large, the rest receding.
+    scene.camera = SceneCamera{.position = Vec3(2.0, 22.2, 3.2), .target = Vec3(0.0, 18.0, 0.0), .fov = 1.0};
     return scene;
 }
 
