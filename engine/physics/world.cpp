@@ -127,7 +127,6 @@ JointId World::createJoint(const JointDef& def) {
     joint.collide = def.collide;
     joint.alive = true;
     joint.generation = nextGeneration_++;
-    anyDamping_ = anyDamping_ || def.linearDamping > 0.0 || def.angularDamping > 0.0;
     repairPending_ = true;
     jointsChanged_ = true;
 
@@ -171,6 +170,12 @@ void World::step(double dt) {
         repairPending_ = false;
         if (settings_.repairDistance > 0.0 && settings_.repairAngle > 0.0) repairLargeViolations(h);
     }
+
+    // Damping may be set on a live joint (world.joint(id)), so whether any joint damps is asked
+    // once a frame rather than remembered from creation.
+    anyDamping_ = std::any_of(joints_.begin(), joints_.end(), [](const Joint& joint) {
+        return joint.alive && (joint.linearDamping > 0.0 || joint.angularDamping > 0.0);
+    });
 
     // Each stage's time goes to its bucket when measuring (a clock read per stage).
     stepTimes_ = {};
