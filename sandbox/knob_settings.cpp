@@ -42,13 +42,22 @@ std::vector<KnobSetting> parseKnobSettings(const std::vector<std::string>& texts
 }
 
 void applyKnobSettings(LiveScene& scene, const std::vector<KnobSetting>& settings, const std::string& label) {
-    for (const KnobSetting& setting : settings) {
-        SceneScript* script = scene.script();
-        if (script == nullptr || !script->setKnob(scene.instance(), setting.name, setting.value)) {
-            throw UsageError("--set " + setting.name + ": " + label + " has no such knob (its knobs: " +
-                             knobList(script) + ")");
+    if (settings.empty()) return;
+    const auto setAll = [&] {
+        for (const KnobSetting& setting : settings) {
+            SceneScript* script = scene.script();
+            if (script == nullptr || !script->setKnob(scene.instance(), setting.name, setting.value)) {
+                throw UsageError("--set " + setting.name + ": " + label + " has no such knob (its knobs: " +
+                                 knobList(script) + ")");
+            }
         }
-    }
+    };
+    // Knobs of the starting state (a release angle, a throw) act through the script's start(),
+    // others (the solver split) when changed: set them, start afresh from them as the window's
+    // restart does, and set them again.
+    setAll();
+    scene.restart();
+    setAll();
 }
 
 }  // namespace substep

@@ -20,7 +20,9 @@ struct KnobSetting {
 std::vector<KnobSetting> parseKnobSettings(const std::vector<std::string>& texts);
 
 /// Sets every knob on `scene`'s script, in order (a Toggle takes 0 or 1, a Choice the index of
-/// its option, a Slider is clamped to its range). Throws UsageError naming --set and `label`
+/// its option, a Slider is clamped to its range), then restarts the scene from them and sets
+/// them again, so knobs of the initial state take effect as well as the others. Call it before
+/// the first frame. Throws UsageError naming --set and `label`
 /// when the scene has no script or no knob of that name, listing the knobs it has.
 void applyKnobSettings(LiveScene& scene, const std::vector<KnobSetting>& settings, const std::string& label);
 

@@ -161,6 +161,35 @@ TEST_F(SubstepCommand, UnknownSceneExits2PointingToTheList) {
     EXPECT_TRUE(workEntries().empty());
 }
 
+// --set turns a scene's knob before the first frame: the cradle without its velocity pass is
+// plain PBD, whose hit passes on only half the striker's speed (paper Fig. 12), so its CSV differs.
+TEST_F(SubstepCommand, SetTurnsASceneKnob) {
+    ASSERT_EQ(substep("run cradle --frames 60 --csv pass.csv").exitCode, 0);
+    const Result plain = substep("run cradle --frames 60 --set velocity_pass=0 --csv plain.csv");
+    ASSERT_EQ(plain.exitCode, 0) << plain.err;
+    EXPECT_NE(readFile(work() / "pass.csv"), readFile(work() / "plain.csv"));
+    // A knob that switches the solver shows in the summary; --substeps still wins over it.
+    EXPECT_NE(substep("run bunny_chain --frames 1 --set solver=4").out.find("1 substeps x 20 iterations"),
+              std::string::npos);
+    EXPECT_NE(substep("run bunny_chain --frames 1 --set solver=4 --substeps 3").out.find("3 substeps x 20"),
+              std::string::npos);
+}
+
+TEST_F(SubstepCommand, BadSetExits2NamingTheKnobsAndWritesNothing) {
+    Result result = substep("run cradle --set no_such_knob=1 --csv out.csv");
+    EXPECT_EQ(result.exitCode, 2);
+    EXPECT_NE(result.err.find("velocity_pass"), std::string::npos) << "lists the scene's knobs: " << result.err;
+    result = substep("run cradle --set velocity_pass --csv out.csv");
+    EXPECT_EQ(result.exitCode, 2);
+    EXPECT_NE(result.err.find("NAME=VALUE"), std::string::npos) << result.err;
+    result = substep("run cradle --set velocity_pass=yes --csv out.csv");
+    EXPECT_EQ(result.exitCode, 2);
+    result = substep("run " + kHang + " --set velocity_pass=0 --csv out.csv");
+    EXPECT_EQ(result.exitCode, 2);
+    EXPECT_NE(result.err.find("none"), std::string::npos) << "a scene file has no knobs: " << result.err;
+    EXPECT_TRUE(workEntries().empty());
+}
+
 TEST_F(SubstepCommand, FramesWithSecondsIsAUsageError) {
     const Result result = substep("run " + kHang + " --frames 10 --seconds 1 --csv out.csv");
     EXPECT_EQ(result.exitCode, 2);
