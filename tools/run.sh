@@ -2,7 +2,7 @@
 # Builds Substep and runs its main job (the README's first command).
 #   With a display ($DISPLAY set): the interactive window, `substep view [SCENE]`.
 #   Without one, or while the window is not built: the gallery, every built-in scene rendered
-#   headless (EGL, OSMesa as fallback) to build/gallery/SCENE/frame_NNNNN.png at a telling frame.
+#   headless (EGL, OSMesa as fallback) to build/gallery/SCENE.png at a telling frame.
 # Arguments go to `substep view` (a scene name or file). SUBSTEP_SIZE=WxH sets the image size.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -22,31 +22,12 @@ if [ -n "${DISPLAY:-}" ]; then
   echo "run.sh: the interactive viewer could not run; rendering the gallery instead"
 fi
 
-# The frame that shows what a scene is about (60 frames = 1 s at the usual dt); scenes not
-# listed get frame 60.
-telling_frame() {
-  case "$1" in
-    pendula | pendulum3) echo 45 ;;   # mid-swing
-    rope100) echo 50 ;;               # the rope falling, curled
-    chain100) echo 120 ;;
-    *) echo 60 ;;
-  esac
-}
-
 gallery=build/gallery
 size="${SUBSTEP_SIZE:-1280x720}"
-mkdir -p "$gallery"
 echo
-echo "Substep gallery, rendered headless at $size (build/bin/substep render SCENE --frames LIST --out DIR):"
+echo "Substep gallery, rendered headless at $size (build/bin/substep render SCENE --frames N --out DIR):"
 failed=0
-while read -r name _; do
-  frame=$(telling_frame "$name")
-  if "$substep" render "$name" --frames "$frame" --out "$gallery/$name" --size "$size" >/dev/null; then
-    printf '  %-12s %s\n' "$name" "$gallery/$name/frame_$(printf '%05d' "$frame").png"
-  else
-    failed=1
-  fi
-done < <("$substep" scenes)
+tools/render_gallery.sh "$gallery" "$size" || failed=1
 echo
 echo "Images are in $(pwd)/$gallery"
 exit "$failed"
