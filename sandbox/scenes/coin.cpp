@@ -19,7 +19,6 @@
 
 #include "scenes/scenes.h"
 
-#include "ecs/components.h"
 
 #include <algorithm>
 #include <cmath>
@@ -55,7 +54,8 @@ SceneDescription buildCoin() {
                                             .position = Vec3(0.0, kCoinRadius, 0.0),
                                             .orientation = Quat(Eigen::AngleAxisd(0.5 * std::numbers::pi, Vec3::UnitZ())),
                                             .staticFriction = kDefaultFriction,
-                                            .dynamicFriction = kDefaultFriction}});
+                                            .dynamicFriction = kDefaultFriction},
+                            Vec3(0.83, 0.69, 0.22)});  // brass
     scene.camera = SceneCamera{.position = Vec3(0.045, 0.04, 0.075), .target = Vec3(0.0, 0.004, 0.0), .fov = 0.55};
     return scene;
 }
@@ -121,9 +121,6 @@ class CoinScript : public SceneScript {
     void start(SceneInstance& scene) override {
         coin_ = namedBody(scene, "coin");
         table_ = namedBody(scene, "table");
-        if (!scene.bodyEntities.empty())
-            if (auto* look = scene.registry.tryGet<ecs::RenderMaterial>(scene.bodyEntities.back()))
-                look->colour = Vec3(0.83, 0.69, 0.22);  // brass
         applyFriction(scene);
         place(scene);
     }

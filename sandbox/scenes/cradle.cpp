@@ -11,7 +11,6 @@
 
 #include "scenes/scenes.h"
 
-#include "ecs/components.h"
 
 #include <algorithm>
 #include <array>
@@ -42,9 +41,6 @@ double strikerStartX() {
     return rowX(kRowSize - 1) + 2.0 * kMarbleRadius + kStrikerGap;
 }
 
-/// The striker's place in the description: after the ground and the row.
-constexpr size_t kStrikerIndex = 1 + kRowSize;
-
 std::string rowName(int i) {
     return "marble" + std::to_string(i);
 }
@@ -63,7 +59,7 @@ SceneDescription buildCradle() {
     for (int i = 0; i < kRowSize; ++i)
         scene.bodies.push_back({rowName(i), marble(Vec3(rowX(i), kMarbleRadius, 0.0))});
     // The striker's velocity is set by the script (its speed knob).
-    scene.bodies.push_back({"striker", marble(Vec3(strikerStartX(), kMarbleRadius, 0.0))});
+    scene.bodies.push_back({"striker", marble(Vec3(strikerStartX(), kMarbleRadius, 0.0)), Vec3(0.85, 0.12, 0.10)});  // the paper's red
     scene.camera =
         SceneCamera{.position = Vec3(0.0, 0.55, 1.9), .target = Vec3(0.0, 0.1, 0.0), .fov = 0.8};
     return scene;
@@ -100,11 +96,6 @@ class CradleScript : public SceneScript {
         for (int i = 0; i < kRowSize; ++i)
             row_[i] = namedBody(scene, rowName(i));
         striker_ = namedBody(scene, "striker");
-        // The paper's red striker.
-        if (kStrikerIndex < scene.bodyEntities.size())
-            if (auto* look =
-                    scene.registry.tryGet<ecs::RenderMaterial>(scene.bodyEntities[kStrikerIndex]))
-                look->colour = Vec3(0.85, 0.12, 0.10);
         applyVelocityPass(scene);
         applyRestitution(scene);
         launch(scene);

@@ -6,6 +6,7 @@
 
 #include "physics/collision/heightfield.h"
 #include "physics/collision/spline_tube.h"
+#include "ecs/components.h"
 #include "render/render_math.h"
 #include "scenes/scene_registry.h"
 
@@ -159,6 +160,34 @@ TEST(SceneDrawing, ContactsAreArrowsAlongTheirNormalsWhenAskedFor) {
     // Off by default.
     SceneDrawing plain(description, scene.world, 1.0f);
     EXPECT_EQ(plain.draw(scene.world).lines.size(), scene.world.joints().size() * 7);
+}
+
+}  // namespace
+}  // namespace substep
+
+namespace substep {
+namespace {
+
+// Drawn from a SceneInstance, bodies take the ECS look: a description's colour, a material
+// changed at run time, a hidden body left out.
+TEST(SceneDrawing, SceneInstanceBodiesWearTheirRenderMaterial) {
+    SceneDescription description;
+    description.bodies.push_back({"red", BodyDef{.shape = sphereShape(0.1), .mass = 1.0}, Vec3(1.0, 0.0, 0.0)});
+    description.bodies.push_back({"plain", BodyDef{.shape = sphereShape(0.1), .mass = 1.0, .position = Vec3(1.0, 0.0, 0.0)}});
+    SceneInstance scene = buildScene(description);
+    SceneDrawing drawing(description, scene.world, 1.0f);
+
+    render::RenderScene drawn = drawing.draw(scene);
+    ASSERT_EQ(drawn.instances.size(), 2u);
+    EXPECT_TRUE(drawn.instances[0].colour.isApprox(render::Colour(1.0f, 0.0f, 0.0f)));
+    EXPECT_TRUE(drawn.instances[1].colour.isApprox(
+        scene.registry.get<ecs::RenderMaterial>(scene.bodyEntities[1]).colour.cast<float>()));
+
+    scene.registry.get<ecs::RenderMaterial>(scene.bodyEntities[1]).colour = Vec3(0.0, 0.0, 1.0);
+    scene.registry.get<ecs::RenderMaterial>(scene.bodyEntities[0]).visible = false;
+    drawn = drawing.draw(scene);
+    ASSERT_EQ(drawn.instances.size(), 1u);
+    EXPECT_TRUE(drawn.instances[0].colour.isApprox(render::Colour(0.0f, 0.0f, 1.0f)));
 }
 
 }  // namespace
