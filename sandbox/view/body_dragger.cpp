@@ -35,6 +35,13 @@ std::optional<double> rayBoxEntry(const Vec3& origin, const Vec3& direction, con
     return enter;
 }
 
+/// A body the cursor moves directly rather than through a spring: static (it has no mass to pull)
+/// and out of the collision pipeline (a colliding static body sits in the broadphase's static
+/// tree, which is not updated when it moves). The world's own anchor body has no shape.
+bool movesDirectly(const Body& body) {
+    return !body.isDynamic() && !body.collide && body.shape.type != ShapeType::None;
+}
+
 }  // namespace
 
 Ray cursorRay(const render::Camera& camera, float x, float y, float width, float height) {
@@ -50,14 +57,14 @@ Ray cursorRay(const render::Camera& camera, float x, float y, float width, float
 }
 
 bool BodyDragger::grab(World& world, const Ray& ray) {
-    if (joint_) release(world);
+    if (active()) release(world);
     std::optional<BodyId> hitBody;
     Vec3 hitLocal = Vec3::Zero();
     double nearest = std::numeric_limits<double>::infinity();
     const std::span<const Body> bodies = world.bodies();
     for (std::size_t index = 0; index < bodies.size(); ++index) {
         const Body& body = bodies[index];
-        if (!body.alive || !body.isDynamic()) continue;
+        if (!body.alive || !(body.isDynamic() || movesDirectly(body))) continue;
         // The ray in the body's own frame (the frame its shape is given in), tested against the
         // shape's bounds there.
         const Quat userToWorld = body.q * body.userRotation;
@@ -76,30 +83,45 @@ bool BodyDragger::grab(World& world, const Ray& ray) {
 
     planePoint_ = ray.origin + nearest * ray.direction;
     planeNormal_ = ray.direction;
+    const Body& body = world.body(*hitBody);
+    if (!body.isDynamic()) {
+        staticBody_ = *hitBody;
+        staticGrabOffset_ = body.x - planePoint_;
+        return true;
+    }
     JointDef def;
     def.type = JointType::Distance;
     def.body1 = *hitBody;
     def.anchor0 = planePoint_;
     def.anchor1 = hitLocal;
-    def.compliance = 1.0 / (kStiffnessPerKilogram * world.body(*hitBody).mass);
+    def.compliance = 1.0 / (kStiffnessPerKilogram * body.mass);
     def.linearDamping = kDamping;
     joint_ = world.createJoint(def);
     return true;
 }
 
 void BodyDragger::drag(World& world, const Ray& ray) {
-    if (!joint_ || !world.isValid(*joint_)) return;
+    if (!active()) return;
     const double facing = ray.direction.dot(planeNormal_);
     if (std::abs(facing) < 1e-6) return;  // the ray runs along the plane: keep the last point
     const double distance = (planePoint_ - ray.origin).dot(planeNormal_) / facing;
     if (distance <= 0.0) return;  // the plane is behind the camera
-    // The world's anchor is a world point (the world body's frame is the world's).
-    world.joint(*joint_).anchor0 = ray.origin + distance * ray.direction;
+    const Vec3 cursor = ray.origin + distance * ray.direction;
+    if (joint_ && world.isValid(*joint_)) {
+        // The world's anchor is a world point (the world body's frame is the world's).
+        world.joint(*joint_).anchor0 = cursor;
+    } else if (staticBody_ && world.isValid(*staticBody_)) {
+        // Moved, not pushed: the previous pose goes along, so the body is still at rest where it
+        // is put, and only the joints attached to it feel the move (they pull their bodies along).
+        Body& body = world.body(*staticBody_);
+        body.x = cursor + staticGrabOffset_;
+        body.xPrev = body.x;
+    }
 }
 
 void BodyDragger::release(World& world) {
     if (joint_ && world.isValid(*joint_)) world.destroyJoint(*joint_);
-    joint_.reset();
+    forget();
 }
 
 std::optional<render::DebugLine> BodyDragger::line(const World& world) const {

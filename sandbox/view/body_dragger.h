@@ -3,6 +3,11 @@
 /// the spring joins a point of the body to a point of the world that follows the cursor across
 /// a plane facing the camera. Going through the solver like any joint, the pull stays stable
 /// however far or fast the cursor moves, and the body keeps its dynamics while held.
+///
+/// A static body that does not collide (a ceiling, a mount, a robot arm's target) is moved
+/// directly instead: it follows the cursor across the same plane, and the joints attached to it
+/// pull their bodies along. A static body that collides stays put: the broadphase files it in
+/// its static tree once, so moving it would leave its collisions behind.
 
 #include "physics/world.h"
 #include "render/render_scene.h"
@@ -22,24 +27,33 @@ Ray cursorRay(const render::Camera& camera, float x, float y, float width, float
 
 class BodyDragger {
   public:
-    /// Grabs the nearest dynamic body the ray hits (its shape's local bounding box, exact for
-    /// boxes) with a spring at the hit point. Returns false, doing nothing, when none is hit.
+    /// Grabs the nearest body the ray hits (its shape's local bounding box, exact for boxes): a
+    /// dynamic one with a spring at the hit point, a static non-colliding one by that point.
+    /// Returns false, doing nothing, when none is hit.
     bool grab(World& world, const Ray& ray);
-    /// Moves the spring's world end to where the ray meets the drag plane.
+    /// Moves the spring's world end, or the held static body, to where the ray meets the drag
+    /// plane.
     void drag(World& world, const Ray& ray);
-    /// Removes the spring.
+    /// Removes the spring, or lets the static body stay where it was put.
     void release(World& world);
-    /// Forgets the spring without touching a world: for when the world itself was replaced.
-    void forget() { joint_.reset(); }
-    bool active() const { return joint_.has_value(); }
-    /// The spring, while held.
+    /// Forgets what is held without touching a world: for when the world itself was replaced.
+    void forget() {
+        joint_.reset();
+        staticBody_.reset();
+    }
+    bool active() const { return joint_.has_value() || staticBody_.has_value(); }
+    /// The spring, while a dynamic body is held.
     std::optional<JointId> joint() const { return joint_; }
+    /// The static body, while one is held.
+    std::optional<BodyId> staticBody() const { return staticBody_; }
 
     /// The spring as a line from the cursor's point to the body, when held.
     std::optional<render::DebugLine> line(const World& world) const;
 
   private:
     std::optional<JointId> joint_;
+    std::optional<BodyId> staticBody_;
+    Vec3 staticGrabOffset_ = Vec3::Zero();  ///< from the grab point to the static body's x
     Vec3 planePoint_ = Vec3::Zero();   ///< the drag plane passes through the grab point...
     Vec3 planeNormal_ = Vec3::UnitZ();  ///< ...facing the ray it was grabbed along
 };

@@ -4,7 +4,7 @@
 #include "view/orbit_camera.h"
 #include "view/scene_file_watch.h"
 #include "view/view_panel.h"
-#include "view/view_session.h"
+#include "view/compare_session.h"
 
 #include "render/renderer.h"
 
@@ -65,23 +65,26 @@ class ImGuiLayer {
     }
 };
 
-/// The mouse, where the panel does not want it: a left press on a body grabs it with a spring
-/// and drags it until released; elsewhere a left drag orbits the camera.
-void steerMouse(OrbitCamera& camera, ViewSession& session) {
+/// The mouse, where the panel does not want it: a left press on a body grabs it in the run under
+/// the cursor and drags it until released; elsewhere a left drag orbits the camera.
+void steerMouse(OrbitCamera& camera, CompareSession& session) {
     const ImGuiIO& io = ImGui::GetIO();
-    const auto ray = [&] {
-        return cursorRay(camera.camera(), io.MousePos.x, io.MousePos.y, io.DisplaySize.x, io.DisplaySize.y);
+    // The ray through the cursor in the view of run `index`, which fills its part of the window.
+    const auto ray = [&](std::size_t index) {
+        const CompareSession::Part part = session.part(index, io.DisplaySize.x);
+        return cursorRay(camera.camera(), io.MousePos.x - part.left, io.MousePos.y, part.width, io.DisplaySize.y);
     };
-    if (session.dragging()) {
+    if (const std::optional<std::size_t> held = session.dragging()) {
         if (io.MouseDown[ImGuiMouseButton_Left]) {
-            session.drag(ray());
+            session.run(*held).drag(ray(*held));
         } else {
-            session.release();
+            session.run(*held).release();
         }
         return;
     }
     if (io.WantCaptureMouse) return;
-    if (ImGui::IsMouseClicked(ImGuiMouseButton_Left) && session.grab(ray())) return;
+    const std::size_t under = session.runAt(io.MousePos.x, io.DisplaySize.x);
+    if (ImGui::IsMouseClicked(ImGuiMouseButton_Left) && session.run(under).grab(ray(under))) return;
     if (io.MouseDown[ImGuiMouseButton_Left]) {
         camera.orbit(io.MouseDelta.x, io.MouseDelta.y);
     } else if (io.MouseDown[ImGuiMouseButton_Right] || io.MouseDown[ImGuiMouseButton_Middle]) {
@@ -92,9 +95,9 @@ void steerMouse(OrbitCamera& camera, ViewSession& session) {
 
 /// Space, S and R do what the panel's play, step and restart buttons do, unless a text box
 /// has the keyboard.
-void readShortcuts(SessionControls& controls, PanelRequests& requests) {
+void readShortcuts(Playback& playback, PanelRequests& requests) {
     if (ImGui::GetIO().WantCaptureKeyboard) return;
-    if (ImGui::IsKeyPressed(GLFW_KEY_SPACE, false)) controls.playing = !controls.playing;
+    if (ImGui::IsKeyPressed(GLFW_KEY_SPACE, false)) playback.playing = !playback.playing;
     if (ImGui::IsKeyPressed(GLFW_KEY_S)) requests.step = true;
     if (ImGui::IsKeyPressed(GLFW_KEY_R, false)) requests.restart = true;
 }
@@ -131,7 +134,8 @@ ViewAppResult runViewApp(SceneSource source, const ViewAppOptions& options) {
 
     const render::PixelSize startSize = context.framebufferSize();
     const float aspect = static_cast<float>(startSize.width) / static_cast<float>(std::max(startSize.height, 1));
-    ViewSession session(std::move(source), aspect);
+    CompareSession session(std::move(source), aspect);
+    if (options.compare) session.compare(options.compare);
     OrbitCamera camera(session.startCamera());
     ViewPanel panel;
     std::string loadError;
@@ -151,13 +155,13 @@ ViewAppResult runViewApp(SceneSource source, const ViewAppOptions& options) {
 
         // Scripted runs step exactly one frame each, so what they show does not depend on speed.
         if (scripted) {
-            if (session.controls().playing) session.stepOnce();
+            if (session.playback().playing) session.stepOnce();
         } else {
             session.advance(wallSeconds);
         }
 
         PanelRequests requests = panel.draw(session, times, loadError);
-        readShortcuts(session.controls(), requests);
+        readShortcuts(session.playback(), requests);
         if (requests.loadScene) {
             try {
                 session.load(resolveScene(*requests.loadScene));
@@ -176,6 +180,8 @@ ViewAppResult runViewApp(SceneSource source, const ViewAppOptions& options) {
                 loadError = error.what();  // a half-edited file: keep the last good scene
             }
         }
+        // Compare mode starts both runs afresh; the camera stays where the user put it.
+        if (requests.compare) session.compare(*requests.compare ? std::optional(session.splits()) : std::nullopt);
         if (requests.restart) session.restart();
         if (requests.controlsChanged) session.applyControls();
         if (requests.drawingChanged) session.applyDrawingOptions();
@@ -184,7 +190,9 @@ ViewAppResult runViewApp(SceneSource source, const ViewAppOptions& options) {
         const render::PixelSize size = context.framebufferSize();
         if (size.width > 0 && size.height > 0) {  // minimised: nothing to draw into
             const Clock::time_point renderStart = Clock::now();
-            renderer.render(session.draw(camera.camera()), render::RenderTarget{0, size});
+            for (std::size_t index = 0; index < session.runCount(); ++index) {
+                renderer.render(session.run(index).draw(camera.camera()), session.target(index, size));
+            }
             times.renderMs = millisecondsSince(renderStart);
             imgui.render();
             if (scripted && options.captureLastFrame && frame + 1 == options.frames) {
@@ -197,7 +205,9 @@ ViewAppResult runViewApp(SceneSource source, const ViewAppOptions& options) {
         times.frameMs = millisecondsSince(frameStart);
         if (scripted && frame + 1 >= options.frames) break;
     }
-    result.finite = session.finite();
+    for (std::size_t index = 0; index < session.runCount(); ++index) {
+        result.finite = result.finite && session.run(index).finite();
+    }
     return result;
 }
 

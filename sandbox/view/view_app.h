@@ -1,9 +1,11 @@
 #pragma once
-/// The interactive viewer's frame loop: a GLFW window with Dear ImGui, the session stepped and
-/// drawn by the renderer into the window's default framebuffer every frame; where the panel does
-/// not take the mouse, it drags bodies (body_dragger.h) and steers the orbit camera.
+/// The interactive viewer's frame loop: a GLFW window with Dear ImGui, the runs (one, or two in
+/// compare mode: compare_session.h) stepped and drawn by the renderer into their parts of the
+/// window's default framebuffer every frame; where the panel does not take the mouse, it drags
+/// bodies (body_dragger.h) in the run under the cursor and steers the orbit camera they share.
 
 #include "scene_source.h"
+#include "view/compare_session.h"
 
 #include "render/image.h"
 
@@ -19,6 +21,8 @@ struct ViewAppOptions {
     /// until the window is closed.
     long long frames = 0;
     bool captureLastFrame = false;  ///< keep the last frame's pixels (scripted runs)
+    /// Start in compare mode with these (left, right) solver settings.
+    std::optional<CompareSplits> compare;
 };
 
 struct ViewAppResult {

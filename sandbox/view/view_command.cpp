@@ -29,6 +29,14 @@ int runView(const ViewOptions& options) {
     if (!options.screenshot.empty() && options.frames == 0) {
         throw UsageError("--screenshot: needs --frames N, the frame whose window is saved");
     }
+    std::optional<CompareSplits> compare;
+    if (options.compare) {
+        compare = options.compare->empty() ? kPaperCompareSplits : parseCompareSplits(*options.compare);
+        if (!compare) {
+            throw UsageError("--compare: expected SUBSTEPSxITERATIONS,SUBSTEPSxITERATIONS with counts from 1 to 1000, "
+                             "e.g. 20x1,1x20; got '" + *options.compare + "'");
+        }
+    }
     SceneSource source = resolveScene(options.scene.empty() ? defaultViewScene() : options.scene);
     if (!hasDisplay()) {
         std::fprintf(stderr,
@@ -47,6 +55,7 @@ int runView(const ViewOptions& options) {
     appOptions.height = height;
     appOptions.frames = options.frames;
     appOptions.captureLastFrame = screenshot != nullptr;
+    appOptions.compare = compare;
     const std::string label = source.label;
     const ViewAppResult result = runViewApp(std::move(source), appOptions);
 
@@ -79,6 +88,12 @@ CLI::App* addViewCommand(CLI::App& app, ViewOptions& options) {
         ->check(CLI::Range(1LL, kMaxRenderFrame));
     command->add_option("--screenshot", options.screenshot, "Save the window's last frame as a PNG (needs --frames)")
         ->type_name("F.png");
+    command
+        ->add_option("--compare", options.compare,
+                     "Run the scene twice side by side with these solver settings (default 20x1,1x20, the "
+                     "paper's Fig. 10)")
+        ->expected(0, 1)
+        ->type_name("SxI,SxI");
     command->add_option("--size", options.size, "Window size in pixels (default 1280x720)")->type_name("WxH");
     return command;
 }

@@ -1,12 +1,14 @@
 #pragma once
-/// `substep view [SCENE] [--frames N --screenshot F.png] [--size WxH]` and `substep` alone: the
-/// interactive window (DESIGN.md's command contract). Without a display it says so, points to
+/// `substep view [SCENE] [--compare [SxI,SxI]] [--frames N --screenshot F.png] [--size WxH]` and
+/// `substep` alone: the interactive window (DESIGN.md's command contract). --compare opens it in
+/// compare mode (compare_session.h). Without a display it says so, points to
 /// `substep render`, and exits 2. With --frames it runs N frames as fast as it can (one scene dt
 /// each, no waiting for real time), optionally saves the window as a PNG, and exits: the
 /// scripted form the tests run under Xvfb.
 
 #include <CLI/CLI.hpp>
 
+#include <optional>
 #include <string>
 
 namespace substep::view {
@@ -17,6 +19,9 @@ struct ViewOptions {
     long long frames = 0;  ///< 0: interactive, until the window is closed
     std::string screenshot;
     std::string size = "1280x720";
+    /// Set: compare mode, with "SUBSTEPSxITERATIONS,SUBSTEPSxITERATIONS" or, empty, the paper's
+    /// 20x1,1x20.
+    std::optional<std::string> compare;
 };
 
 /// The scene `substep` alone opens.

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
 
 namespace substep::view {
 
@@ -14,7 +15,7 @@ namespace {
 
 /// A plot of `history` with its latest value and range written over it. The range is padded so a
 /// constant quantity draws as a flat line mid-plot rather than at an edge.
-void plotHistory(const char* id, const PlotHistory& history, const char* format) {
+void plotHistory(const char* id, const PlotHistory& history, const char* format, float height = 70.0f) {
     auto [lowest, highest] = history.range();
     // Padded so a constant quantity draws as a flat line mid-plot: a float range of zero width
     // (or one lost in rounding, 1e-6 around 20 J) draws nothing at all.
@@ -26,13 +27,14 @@ void plotHistory(const char* id, const PlotHistory& history, const char* format)
     const bool full = history.count() == static_cast<std::size_t>(history.size());
     const int count = full ? history.size() : static_cast<int>(history.count());
     ImGui::PlotLines(id, history.data(), count, full ? history.offset() : 0, overlay, lowest - pad, highest + pad,
-                     ImVec2(ImGui::GetContentRegionAvail().x, 70.0f));
+                     ImVec2(ImGui::GetContentRegionAvail().x, height));
     ImGui::TextDisabled("range %.6g .. %.6g", lowest, highest);
 }
 
-/// The scene script's own knobs and readouts (scene_script.h), under the solver settings.
-void drawSceneControls(ViewSession& session) {
-    SceneScript* script = session.script();
+/// The scene script's own knobs (scene_script.h), under the solver settings: shown once, set in
+/// every run.
+void drawSceneKnobs(CompareSession& session) {
+    SceneScript* script = session.first().script();
     if (script == nullptr) return;
     ImGui::Separator();
     ImGui::TextUnformatted("scene");
@@ -69,22 +71,93 @@ void drawSceneControls(ViewSession& session) {
             }
         }
     }
+}
+
+/// The scene script's readouts of one run.
+void drawSceneReadouts(ViewSession& run) {
+    SceneScript* script = run.script();
+    if (script == nullptr) return;
     std::vector<SceneReadout> readouts;
-    script->readouts(session.instance(), readouts);
+    script->readouts(run.instance(), readouts);
     for (const SceneReadout& readout : readouts) {
         char value[64];
         std::snprintf(value, sizeof value, readout.format, readout.value);
-        ImGui::Text("%s: %s", readout.label.c_str(), value);
+        ImGui::TextWrapped("%s: %s", readout.label.c_str(), value);
     }
 }
 
-}  // namespace
+/// "20 x 1": a run's substeps x iterations.
+std::string splitLabel(const SessionControls& controls) {
+    return std::to_string(controls.substeps) + " x " + std::to_string(controls.iterations);
+}
 
-PanelRequests ViewPanel::draw(ViewSession& session, const FrameTimes& times, const std::string& loadError) {
+/// One run's measures: its error plots (paper Fig. 10 and 11), its script's readouts and its
+/// physics time with the step's stages.
+void drawRunMeasures(ViewSession& run, bool compact) {
+    const float plotHeight = compact ? 45.0f : 70.0f;
+    if (!run.finite()) ImGui::TextColored(ImVec4(1.0f, 0.3f, 0.3f, 1.0f), "non-finite: restart");
+    ImGui::TextUnformatted("total energy (J)");
+    plotHistory("##energy", run.energyHistory(), "%.5g J", plotHeight);
+    ImGui::TextUnformatted("largest joint error (m)");
+    plotHistory("##joint_error", run.jointErrorHistory(), "%.3g m", plotHeight);
+    if (const PlotHistory* elongation = run.chainElongationHistory()) {
+        ImGui::TextUnformatted("chain elongation (L-L0)/L0");
+        plotHistory("##elongation", *elongation, "%.3g", plotHeight);
+    }
+    drawSceneReadouts(run);
+    const StepTimes& stages = run.world().stepTimes();
+    if (compact) {
+        ImGui::Text("physics %.2f ms/frame (solve %.2f)", run.lastStepMs(), stages.solve);
+        return;
+    }
+    ImGui::Text("physics %.2f ms/frame", run.lastStepMs());
+    ImGui::Text("  collision %.2f (broad %.2f, narrow %.2f)", stages.broadphase + stages.narrowphase,
+                stages.broadphase, stages.narrowphase);
+    ImGui::Text("  solve %.2f   velocity pass %.2f", stages.solve, stages.velocities);
+    ImGui::Text("  integrate %.2f", stages.integrate);
+}
+
+/// In compare mode each run's measures sit in its own half of the window, at the bottom right
+/// (the panel keeps the top left), under a line that splits the halves: each half then reads as
+/// one side of the paper's Fig. 10, and a screenshot says which run is which.
+void drawRunOverlays(CompareSession& session) {
+    if (!session.comparing()) return;
+    const ImVec2 display = ImGui::GetIO().DisplaySize;
+    for (std::size_t index = 0; index < session.runCount(); ++index) {
+        const CompareSession::Part part = session.part(index, display.x);
+        if (index > 0) {
+            ImGui::GetBackgroundDrawList()->AddLine(ImVec2(part.left, 0.0f), ImVec2(part.left, display.y),
+                                                    IM_COL32(20, 20, 24, 255), 3.0f);
+        }
+        ViewSession& run = session.run(index);
+        ImGui::SetNextWindowPos(ImVec2(part.left + part.width - 10.0f, display.y - 10.0f), ImGuiCond_Always,
+                                ImVec2(1.0f, 1.0f));
+        ImGui::SetNextWindowSize(ImVec2(std::min(300.0f, part.width - 20.0f), 0.0f), ImGuiCond_Always);
+        ImGui::SetNextWindowBgAlpha(0.75f);
+        char name[32];
+        std::snprintf(name, sizeof name, "##run%zu", index);
+        ImGui::Begin(name, nullptr,
+                     ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoSavedSettings |
+                         ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav);
+        ImGui::Text("%s: %s (substeps x iterations)", index == 0 ? "left" : "right", splitLabel(run.controls()).c_str());
+        drawRunMeasures(run, true);
+        ImGui::End();
+    }
+}}  // namespace
+
+PanelRequests ViewPanel::draw(CompareSession& session, const FrameTimes& times, const std::string& loadError) {
     PanelRequests requests;
-    SessionControls& controls = session.controls();
+    Playback& playback = session.playback();
+    ViewSession& first = session.first();
+    SessionControls& shared = first.controls();  // gravity and the debug layers: every run's
+    const bool comparing = session.comparing();
+    drawRunOverlays(session);
     ImGui::SetNextWindowPos(ImVec2(10.0f, 10.0f), ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowSize(ImVec2(360.0f, 0.0f), ImGuiCond_FirstUseEver);
+    if (shownComparing_ != comparing) {
+        // Fit the height to what the mode shows (the measures move out in compare mode).
+        ImGui::SetNextWindowSize(ImVec2(360.0f, 0.0f), ImGuiCond_Always);
+        shownComparing_ = comparing;
+    }
     ImGui::Begin("Substep");
 
     // Scene: the built-ins in a combo, any scene file by path.
@@ -106,64 +179,79 @@ PanelRequests ViewPanel::draw(ViewSession& session, const FrameTimes& times, con
 
     // Time.
     ImGui::Separator();
-    if (ImGui::Button(controls.playing ? "pause" : "play")) controls.playing = !controls.playing;
+    if (ImGui::Button(playback.playing ? "pause" : "play")) playback.playing = !playback.playing;
     ImGui::SameLine();
     if (ImGui::Button("step")) requests.step = true;
     ImGui::SameLine();
     if (ImGui::Button("restart")) requests.restart = true;
     ImGui::SameLine();
     ImGui::TextDisabled("(space, S, R)");
-    ImGui::Text("frame %lld   t = %.3f s", session.frame(), session.simulatedTime());
-    if (!session.finite()) ImGui::TextColored(ImVec4(1.0f, 0.3f, 0.3f, 1.0f), "state turned non-finite: restart");
-    ImGui::SliderFloat("time scale", &controls.timeScale, 0.05f, 4.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
+    ImGui::Text("frame %lld   t = %.3f s", first.frame(), first.simulatedTime());
+    ImGui::SliderFloat("time scale", &playback.timeScale, 0.05f, 4.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
 
-    // Solver.
+    // Solver: one column per run, each with its own substeps and iterations.
     ImGui::Separator();
-    requests.controlsChanged |= ImGui::SliderInt("substeps", &controls.substeps, 1, 200, "%d",
-                                                 ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
-    requests.controlsChanged |= ImGui::SliderInt("iterations", &controls.iterations, 1, 50, "%d",
-                                                 ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
+    bool compare = comparing;
+    if (ImGui::Checkbox("compare side by side", &compare)) requests.compare = compare;
+    if (ImGui::IsItemHovered()) {
+        ImGui::SetTooltip("The same scene twice with different solver settings, stepped in lockstep\n"
+                          "(paper Fig. 10: 20 substeps x 1 iteration against 1 x 20)");
+    }
+    const int runs = static_cast<int>(session.runCount());
+    if (ImGui::BeginTable("solver", runs)) {
+        for (int index = 0; index < runs; ++index) {
+            ImGui::TableNextColumn();
+            ImGui::PushID(index);
+            SessionControls& controls = session.run(static_cast<std::size_t>(index)).controls();
+            if (comparing) ImGui::TextUnformatted(index == 0 ? "left" : "right");
+            ImGui::PushItemWidth(comparing ? -1.0f : ImGui::GetContentRegionAvail().x * 0.6f);
+            requests.controlsChanged |= ImGui::SliderInt(comparing ? "##substeps" : "substeps", &controls.substeps, 1,
+                                                         200, comparing ? "%d substeps" : "%d",
+                                                         ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
+            requests.controlsChanged |= ImGui::SliderInt(comparing ? "##iterations" : "iterations", &controls.iterations,
+                                                         1, 50, comparing ? "%d iterations" : "%d",
+                                                         ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
+            ImGui::PopItemWidth();
+            ImGui::PopID();
+        }
+        ImGui::EndTable();
+    }
     requests.controlsChanged |=
-        ImGui::SliderFloat("gravity y", &controls.gravityY, -30.0f, 30.0f, "%.2f m/s^2", ImGuiSliderFlags_AlwaysClamp);
+        ImGui::SliderFloat("gravity y", &shared.gravityY, -30.0f, 30.0f, "%.2f m/s^2", ImGuiSliderFlags_AlwaysClamp);
 
-    drawSceneControls(session);
+    drawSceneKnobs(session);
 
     // Debug layers.
     ImGui::Separator();
-    requests.drawingChanged |= ImGui::Checkbox("joints", &controls.drawing.jointFrames);
+    requests.drawingChanged |= ImGui::Checkbox("joints", &shared.drawing.jointFrames);
     ImGui::SameLine();
-    requests.drawingChanged |= ImGui::Checkbox("forces", &controls.drawing.jointForces);
+    requests.drawingChanged |= ImGui::Checkbox("forces", &shared.drawing.jointForces);
     ImGui::SameLine();
-    requests.drawingChanged |= ImGui::Checkbox("contacts", &controls.drawing.contacts);
+    requests.drawingChanged |= ImGui::Checkbox("contacts", &shared.drawing.contacts);
 
-    // Per-joint compliance (the attachment's α), live; a restart brings back the scene's.
-    if (!session.namedJoints().empty() && ImGui::CollapsingHeader("joint compliance (m/N)")) {
+    // Per-joint compliance (the attachment's α), live in every run; a restart brings back the
+    // scene's.
+    if (!first.namedJoints().empty() && ImGui::CollapsingHeader("joint compliance (m/N)")) {
         constexpr size_t kMaxListed = 64;  // chains of 100 links list their first 64
         size_t listed = 0;
-        for (const auto& [name, id] : session.namedJoints()) {
+        for (const auto& [name, id] : first.namedJoints()) {
             if (listed++ == kMaxListed) break;
-            float compliance = static_cast<float>(session.world().joint(id).compliance);
+            float compliance = static_cast<float>(first.world().joint(id).compliance);
             if (ImGui::SliderFloat(name.c_str(), &compliance, 0.0f, 1.0f, "%.2e", ImGuiSliderFlags_Logarithmic)) {
                 session.setJointCompliance(id, compliance);
             }
         }
     }
 
-    // Measures.
-    ImGui::Separator();
-    ImGui::TextUnformatted("total energy (J)");
-    plotHistory("##energy", session.energyHistory(), "%.5g J");
-    ImGui::TextUnformatted("largest joint error (m)");
-    plotHistory("##joint_error", session.jointErrorHistory(), "%.3g m");
+    // Measures; in compare mode each run's are drawn in its half of the window instead.
+    if (!comparing) {
+        ImGui::Separator();
+        drawRunMeasures(first, false);
+    }
 
     ImGui::Separator();
-    ImGui::Text("physics %.2f ms   render %.2f ms", session.lastStepMs(), times.renderMs);
-    const StepTimes& stages = session.world().stepTimes();
-    ImGui::Text("  collision %.2f (broad %.2f, narrow %.2f)", stages.broadphase + stages.narrowphase,
-                stages.broadphase, stages.narrowphase);
-    ImGui::Text("  solve %.2f   velocity pass %.2f", stages.solve, stages.velocities);
-    ImGui::Text("  integrate %.2f", stages.integrate);
-    ImGui::Text("frame %.1f ms (%.0f fps)", times.frameMs, times.frameMs > 0.0 ? 1000.0 / times.frameMs : 0.0);
+    ImGui::Text("render %.2f ms   frame %.1f ms (%.0f fps)", times.renderMs, times.frameMs,
+                times.frameMs > 0.0 ? 1000.0 / times.frameMs : 0.0);
     ImGui::TextDisabled("mouse: left drag a body or orbit,");
     ImGui::TextDisabled("right/middle pan, wheel zoom");
     ImGui::End();

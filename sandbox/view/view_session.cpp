@@ -7,10 +7,6 @@ namespace substep::view {
 
 namespace {
 
-/// Frames one advance() may step. A scene slower than real time then runs slow but the window
-/// stays responsive, instead of owing ever more steps (the "spiral of death").
-constexpr int kMaxFramesPerAdvance = 4;
-
 SessionControls controlsOf(const SceneDescription& description, const SessionControls& kept) {
     SessionControls controls = kept;
     controls.substeps = description.substeps;
@@ -44,11 +40,16 @@ void ViewSession::rebuild(bool keepScript) {
     }
     applyControls();
     applyDrawingOptions();
-    pendingSeconds_ = 0.0;
+    chainMeasure_.reset();
+    if (source_.entry != nullptr && !source_.entry->chain.endBody.empty()) {
+        chainMeasure_ = std::make_unique<ErrorRecorder>(live_->instance(),
+                                                        errorReference(source_.entry, live_->world()));
+    }
     finite_ = live_->world().isFinite();
     lastStepMs_ = 0.0;
     energy_.clear();
     jointError_.clear();
+    chainElongation_.clear();
     sample();
 }
 
@@ -83,35 +84,13 @@ void ViewSession::applyDrawingOptions() {
     drawing_ = std::make_unique<SceneDrawing>(source_.description, initial.world, aspect_, controls_.drawing);
 }
 
-void ViewSession::advance(double wallSeconds) {
-    if (!controls_.playing || !finite_) {
-        pendingSeconds_ = 0.0;
-        return;
-    }
-    const double dt = source_.description.dt;
-    pendingSeconds_ += wallSeconds * controls_.timeScale;
-    int frames = 0;
-    while (pendingSeconds_ >= dt && frames < kMaxFramesPerAdvance && finite_) {
-        stepOnce();
-        pendingSeconds_ -= dt;
-        ++frames;
-    }
-    // What could not be stepped now is dropped, not carried: the scene runs slow, then catches
-    // nothing up in a burst.
-    if (frames == kMaxFramesPerAdvance) pendingSeconds_ = 0.0;
-}
-
 void ViewSession::stepOnce() {
     if (!finite_) return;
     const auto start = std::chrono::steady_clock::now();
     live_->step();
     lastStepMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     finite_ = live_->world().isFinite();
-    if (!finite_) {
-        controls_.playing = false;
-        return;
-    }
-    sample();
+    if (finite_) sample();
 }
 
 void ViewSession::sample() {
@@ -134,10 +113,14 @@ void ViewSession::sample() {
     }
     energy_.push(static_cast<float>(energy));
     jointError_.push(static_cast<float>(jointError));
+    if (chainMeasure_) {
+        chainMeasure_->sample();
+        chainElongation_.push(static_cast<float>(chainMeasure_->measures().chainElongation.value_or(0.0)));
+    }
 }
 
 render::RenderScene ViewSession::draw(const render::Camera& camera) {
-    render::RenderScene scene = drawing_->draw(live_->world());
+    render::RenderScene scene = drawing_->draw(live_->instance());
     scene.camera = camera;
     if (const std::optional<render::DebugLine> spring = dragger_.line(live_->world())) scene.lines.push_back(*spring);
     return scene;

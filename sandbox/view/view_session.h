@@ -1,8 +1,10 @@
 #pragma once
-/// What the viewer shows and steers: one scene's world, stepped in real time (or a frame at a
-/// time), with the settings the panel edits and the histories it plots. Knows nothing of windows
-/// or ImGui, so the scripted run and the interactive loop step it the same way.
+/// One run of a scene in the viewer: its world, stepped a frame at a time, with the settings the
+/// panel edits and the histories it plots. Knows nothing of windows or ImGui, so the scripted
+/// run and the interactive loop step it the same way. The viewer shows one run, or two in
+/// compare mode (compare_session.h, which also paces them in real time).
 
+#include "error_measures.h"
 #include "scene_drawing.h"
 #include "scene_source.h"
 #include "view/body_dragger.h"
@@ -18,10 +20,9 @@
 
 namespace substep::view {
 
-/// The settings the panel edits. Substeps, iterations and gravity start from the scene's.
+/// The settings of one run the panel edits. Substeps, iterations and gravity start from the
+/// scene's.
 struct SessionControls {
-    bool playing = true;
-    float timeScale = 1.0f;  ///< simulated seconds per wall second
     int substeps = 20;
     int iterations = 1;
     float gravityY = -10.0f;  ///< m/s²; x and z stay the scene's
@@ -33,7 +34,7 @@ class ViewSession {
     /// Builds `source`'s scene; `aspect` frames its camera. Throws what buildLabelledScene throws.
     ViewSession(SceneSource source, float aspect);
 
-    /// Replaces the scene and resets the controls to its settings (keeping play state and layers).
+    /// Replaces the scene and resets the controls to its settings (keeping the debug layers).
     void load(SceneSource source);
     /// Rebuilds the current scene from its initial state, keeping the controls.
     void restart();
@@ -42,16 +43,13 @@ class ViewSession {
     /// Redoes the overlays after a change of controls().drawing.
     void applyDrawingOptions();
 
-    /// Real time: steps as many frames of the scene's dt as `wallSeconds` x time scale covers,
-    /// at most a few per call so a slow scene slows down instead of freezing the window.
-    /// Does nothing while paused or once the state turned non-finite.
-    void advance(double wallSeconds);
-    /// One frame of the scene's dt, paused or not.
+    /// One frame of the scene's dt; does nothing once the state turned non-finite.
     void stepOnce();
 
-    /// Grabs the body under `ray` with a spring (body_dragger.h); false when none is there.
+    /// Grabs the body under `ray` (body_dragger.h): a dynamic one with a spring, a static
+    /// non-colliding one directly. False when none is there.
     bool grab(const Ray& ray) { return dragger_.grab(live_->world(), ray); }
-    /// Moves the held spring's end along `ray`.
+    /// Moves the held spring's end, or the held static body, along `ray`.
     void drag(const Ray& ray) { dragger_.drag(live_->world(), ray); }
     void release() { dragger_.release(live_->world()); }
     bool dragging() const { return dragger_.active(); }
@@ -65,6 +63,7 @@ class ViewSession {
     void setJointCompliance(JointId id, double compliance);
 
     SessionControls& controls() { return controls_; }
+    const SessionControls& controls() const { return controls_; }
     const SceneSource& source() const { return source_; }
     /// The camera the scene starts from (its own, else one framing the bodies).
     const render::Camera& startCamera() const { return drawing_->camera(); }
@@ -82,6 +81,9 @@ class ViewSession {
     double lastStepMs() const { return lastStepMs_; }
     const PlotHistory& energyHistory() const { return energy_; }
     const PlotHistory& jointErrorHistory() const { return jointError_; }
+    /// The chain's relative elongation (L − L0) / L0 (error_measures.h; paper Fig. 11), when the
+    /// built-in scene has a chain measure; else nullptr.
+    const PlotHistory* chainElongationHistory() const { return chainMeasure_ ? &chainElongation_ : nullptr; }
 
   private:
     void rebuild(bool keepScript);
@@ -93,11 +95,13 @@ class ViewSession {
     std::unique_ptr<LiveScene> live_;
     std::unique_ptr<SceneDrawing> drawing_;
     BodyDragger dragger_;
-    double pendingSeconds_ = 0.0;  ///< simulated time owed to real time, less than one dt
+    /// Measures the chain's elongation as `substep sweep` does; null without a chain.
+    std::unique_ptr<ErrorRecorder> chainMeasure_;
     bool finite_ = true;
     double lastStepMs_ = 0.0;
     PlotHistory energy_{600};
     PlotHistory jointError_{600};
+    PlotHistory chainElongation_{600};
 };
 
 }  // namespace substep::view

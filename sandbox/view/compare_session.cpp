@@ -1,0 +1,175 @@
+#include "view/compare_session.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+
+namespace substep::view {
+
+namespace {
+
+/// Frames one advance() may step. A scene slower than real time then runs slow but the window
+/// stays responsive, instead of owing ever more steps (the "spiral of death").
+constexpr int kMaxFramesPerAdvance = 4;
+
+/// The largest substep or iteration count compare mode takes (the panel's sliders stop lower).
+constexpr int kMaxSolverCount = 1000;
+
+/// A whole number in [1, kMaxSolverCount] filling `text` exactly.
+std::optional<int> parseCount(std::string_view text) {
+    int value = 0;
+    const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+    if (error != std::errc() || end != text.data() + text.size()) return std::nullopt;
+    if (value < 1 || value > kMaxSolverCount) return std::nullopt;
+    return value;
+}
+
+/// "SUBSTEPSxITERATIONS".
+std::optional<SolverSplit> parseSplit(std::string_view text) {
+    const std::size_t times = text.find('x');
+    if (times == std::string_view::npos) return std::nullopt;
+    const std::optional<int> substeps = parseCount(text.substr(0, times));
+    const std::optional<int> iterations = parseCount(text.substr(times + 1));
+    if (!substeps || !iterations) return std::nullopt;
+    return SolverSplit{*substeps, *iterations};
+}
+
+}  // namespace
+
+std::optional<CompareSplits> parseCompareSplits(const std::string& text) {
+    const std::size_t comma = text.find(',');
+    if (comma == std::string::npos) return std::nullopt;
+    const std::string_view whole(text);
+    const std::optional<SolverSplit> left = parseSplit(whole.substr(0, comma));
+    const std::optional<SolverSplit> right = parseSplit(whole.substr(comma + 1));
+    if (!left || !right) return std::nullopt;
+    return CompareSplits{*left, *right};
+}
+
+CompareSession::CompareSession(SceneSource source, float aspect) : aspect_(aspect) {
+    runs_.push_back(std::make_unique<ViewSession>(std::move(source), aspect_));
+}
+
+void CompareSession::compare(std::optional<CompareSplits> splits) {
+    // Copies: the runs they come from are replaced.
+    const SceneSource source = first().source();
+    const SessionControls kept = first().controls();
+    if (splits) splits_ = *splits;
+    const std::size_t count = splits ? 2 : 1;
+    runs_.clear();
+    for (std::size_t index = 0; index < count; ++index) {
+        // Each run frames its start camera for its own part of the window.
+        runs_.push_back(std::make_unique<ViewSession>(source, aspect_ / static_cast<float>(count)));
+        runs_.back()->controls().gravityY = kept.gravityY;
+        runs_.back()->controls().drawing = kept.drawing;
+    }
+    applySplits();
+    applyControls();
+    applyDrawingOptions();
+    pendingSeconds_ = 0.0;
+}
+
+void CompareSession::applySplits() {
+    if (!comparing()) return;
+    for (std::size_t index = 0; index < runs_.size(); ++index) {
+        run(index).controls().substeps = splits_[index].substeps;
+        run(index).controls().iterations = splits_[index].iterations;
+    }
+}
+
+void CompareSession::load(SceneSource source) {
+    for (const std::unique_ptr<ViewSession>& each : runs_) each->load(source);
+    // The new scene brings its own substeps and iterations; a comparison keeps what it compares.
+    applySplits();
+    applyControls();
+    pendingSeconds_ = 0.0;
+}
+
+void CompareSession::restart() {
+    for (const std::unique_ptr<ViewSession>& each : runs_) each->restart();
+    pendingSeconds_ = 0.0;
+}
+
+void CompareSession::advance(double wallSeconds) {
+    if (!playback_.playing) {
+        pendingSeconds_ = 0.0;
+        return;
+    }
+    const double dt = source().description.dt;
+    pendingSeconds_ += wallSeconds * playback_.timeScale;
+    int frames = 0;
+    while (pendingSeconds_ >= dt && frames < kMaxFramesPerAdvance && playback_.playing) {
+        stepOnce();
+        pendingSeconds_ -= dt;
+        ++frames;
+    }
+    // What could not be stepped now is dropped, not carried: the scene runs slow, then catches
+    // nothing up in a burst.
+    if (frames == kMaxFramesPerAdvance) pendingSeconds_ = 0.0;
+}
+
+void CompareSession::stepOnce() {
+    // Lockstep: every run steps the same frame before the next one starts.
+    for (const std::unique_ptr<ViewSession>& each : runs_) each->stepOnce();
+    // A run that blew up stays put while the other goes on; with none left, playing stops.
+    const bool anyFinite =
+        std::any_of(runs_.begin(), runs_.end(), [](const std::unique_ptr<ViewSession>& each) { return each->finite(); });
+    if (!anyFinite) playback_.playing = false;
+}
+
+void CompareSession::applyControls() {
+    const float gravityY = first().controls().gravityY;
+    for (std::size_t index = 0; index < runs_.size(); ++index) {
+        run(index).controls().gravityY = gravityY;
+        run(index).applyControls();
+        if (comparing()) splits_[index] = {run(index).controls().substeps, run(index).controls().iterations};
+    }
+}
+
+void CompareSession::applyDrawingOptions() {
+    const DrawingOptions drawing = first().controls().drawing;
+    for (const std::unique_ptr<ViewSession>& each : runs_) {
+        each->controls().drawing = drawing;
+        each->applyDrawingOptions();
+    }
+}
+
+void CompareSession::setKnob(std::size_t index, double value) {
+    for (const std::unique_ptr<ViewSession>& each : runs_) each->setKnob(index, value);
+    if (comparing()) {
+        applySplits();
+        applyControls();
+    }
+}
+
+void CompareSession::setJointCompliance(JointId id, double compliance) {
+    for (const std::unique_ptr<ViewSession>& each : runs_) each->setJointCompliance(id, compliance);
+}
+
+render::RenderTarget CompareSession::target(std::size_t index, render::PixelSize window) const {
+    const int count = static_cast<int>(runs_.size());
+    const int at = static_cast<int>(index);
+    const int left = window.width * at / count;
+    const int right = window.width * (at + 1) / count;
+    return {.framebuffer = 0, .size = {right - left, window.height}, .originX = left, .originY = 0};
+}
+
+CompareSession::Part CompareSession::part(std::size_t index, float width) const {
+    const float partWidth = width / static_cast<float>(runs_.size());
+    return {partWidth * static_cast<float>(index), partWidth};
+}
+
+std::size_t CompareSession::runAt(float x, float width) const {
+    if (width <= 0.0f) return 0;
+    const float slot = std::floor(x / width * static_cast<float>(runs_.size()));
+    return static_cast<std::size_t>(std::clamp(slot, 0.0f, static_cast<float>(runs_.size() - 1)));
+}
+
+std::optional<std::size_t> CompareSession::dragging() const {
+    for (std::size_t index = 0; index < runs_.size(); ++index) {
+        if (run(index).dragging()) return index;
+    }
+    return std::nullopt;
+}
+
+}  // namespace substep::view

@@ -1,0 +1,119 @@
+#pragma once
+/// The runs the viewer shows and paces in real time: one run of a scene, or in compare mode the
+/// paper's Fig. 10 — the same scene twice, side by side, with different solver settings (20
+/// substeps x 1 iteration against 1 x 20 by default). Both runs start from the same source, step
+/// the same dt in lockstep and share the play state, time scale, gravity, debug layers, script
+/// knobs and joint edits; each keeps its own substeps and iterations, its error plots and its
+/// physics time. The frame loop and the panel drive this the same way in both modes: a loop over
+/// the runs, each drawn in its own part of the window.
+
+#include "view/view_session.h"
+
+#include "render/render_target.h"
+
+#include <array>
+#include <cstddef>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace substep::view {
+
+/// One run's solver settings: substeps per frame and iterations per substep.
+struct SolverSplit {
+    int substeps = 20;
+    int iterations = 1;
+    friend bool operator==(const SolverSplit&, const SolverSplit&) = default;
+};
+
+/// The left and right runs' splits.
+using CompareSplits = std::array<SolverSplit, 2>;
+
+/// The paper's Fig. 10 comparison: 20 substeps of 1 iteration against 1 step of 20 iterations,
+/// the same solver work per frame.
+inline constexpr CompareSplits kPaperCompareSplits{{{20, 1}, {1, 20}}};
+
+/// Reads "SUBSTEPSxITERATIONS,SUBSTEPSxITERATIONS" (e.g. "20x1,1x20"), each count a whole number
+/// in [1, 1000]; nullopt when the text is not that.
+std::optional<CompareSplits> parseCompareSplits(const std::string& text);
+
+/// Shared by the runs: whether they play, and how fast against the wall clock.
+struct Playback {
+    bool playing = true;
+    float timeScale = 1.0f;  ///< simulated seconds per wall second
+};
+
+class CompareSession {
+  public:
+    /// One run of `source`; `aspect` is the window's. Throws what ViewSession throws.
+    CompareSession(SceneSource source, float aspect);
+
+    /// Compare mode on with `splits` (left, right), or off (nullopt: one run, with the scene's
+    /// own substeps and iterations). Either way the runs start again from the scene's start;
+    /// gravity and the debug layers are kept.
+    void compare(std::optional<CompareSplits> splits);
+    bool comparing() const { return runs_.size() == 2; }
+    /// The splits the runs have now (or last had, when compare mode is off).
+    const CompareSplits& splits() const { return splits_; }
+
+    /// Replaces the scene in every run. In compare mode the runs keep their splits.
+    void load(SceneSource source);
+    /// Every run from its initial state again, keeping the controls.
+    void restart();
+
+    /// Real time: steps every run by as many frames of the scene's dt as `wallSeconds` x time
+    /// scale covers, at most a few per call so a slow scene slows down instead of freezing the
+    /// window. Does nothing while paused; pauses once no run is finite any more.
+    void advance(double wallSeconds);
+    /// One frame of the scene's dt in every run (a run whose state turned non-finite stays put).
+    void stepOnce();
+
+    /// Copies the shared controls (gravity, the first run's) into every run and applies each
+    /// run's controls to its world; each run's splits() follow its substeps and iterations.
+    void applyControls();
+    /// Copies the first run's debug layers into every run and redoes the overlays.
+    void applyDrawingOptions();
+    /// Sets script knob `index` in every run. In compare mode each run keeps its own substeps and
+    /// iterations, even when the knob switches the solver: the split is what is compared.
+    void setKnob(std::size_t index, double value);
+    /// Sets a joint's compliance in every run (the runs are built alike, so ids agree).
+    void setJointCompliance(JointId id, double compliance);
+
+    Playback& playback() { return playback_; }
+    std::size_t runCount() const { return runs_.size(); }
+    ViewSession& run(std::size_t index) { return *runs_[index]; }
+    const ViewSession& run(std::size_t index) const { return *runs_[index]; }
+    /// The first run: the scene, frame and shared controls the panel shows once.
+    ViewSession& first() { return *runs_.front(); }
+    const SceneSource& source() const { return runs_.front()->source(); }
+    /// The camera the scene starts from, framed for one run's part of the window.
+    const render::Camera& startCamera() const { return runs_.front()->startCamera(); }
+
+    /// The part of a window `window` pixels large that run `index` is drawn in: side by side,
+    /// left to right, full height.
+    render::RenderTarget target(std::size_t index, render::PixelSize window) const;
+    /// The horizontal span of a window `width` wide that run `index` is drawn in (in the units
+    /// of width: ImGui's window coordinates for the mouse).
+    struct Part {
+        float left = 0.0f;
+        float width = 0.0f;
+    };
+    Part part(std::size_t index, float width) const;
+    /// The run drawn under window x coordinate `x` of a window `width` wide.
+    std::size_t runAt(float x, float width) const;
+
+    /// The run a body is held in (dragged with the mouse), if any.
+    std::optional<std::size_t> dragging() const;
+
+  private:
+    void applySplits();
+
+    float aspect_;
+    Playback playback_;
+    CompareSplits splits_ = kPaperCompareSplits;
+    std::vector<std::unique_ptr<ViewSession>> runs_;
+    double pendingSeconds_ = 0.0;  ///< simulated time owed to real time, less than one dt
+};
+
+}  // namespace substep::view
