@@ -22,7 +22,7 @@ telling_frame() {
     cradle) echo 40 ;;               # the far marble leaving, the others at rest
     coin) echo 60 ;;                 # rolling on its rim, tilted
     joint_types) echo 150 ;;         # every joint resting on its limit or target
-    twisted_rope) echo 900 ;;        # after the turns: coiled
+    twisted_rope) echo 1500 ;;       # 25 s: turned 8 times, coiled
     *) echo 60 ;;
   esac
 }
