@@ -227,6 +227,8 @@ PanelRequests ViewPanel::draw(CompareSession& session, const FrameTimes& times, 
     ImGui::SameLine();
     requests.drawingChanged |= ImGui::Checkbox("forces", &shared.drawing.jointForces);
     ImGui::SameLine();
+    requests.drawingChanged |= ImGui::Checkbox("torques", &shared.drawing.jointTorques);
+    ImGui::SameLine();
     requests.drawingChanged |= ImGui::Checkbox("contacts", &shared.drawing.contacts);
 
     // Per-joint compliance (the attachment's α), live in every run; a restart brings back the
