@@ -104,4 +104,16 @@ SceneInstance buildScene(const SceneDescription& description) {
     return instance;
 }
 
+BodyId SceneInstance::bodyNamed(std::string_view name) const {
+    for (const auto& [bodyName, id] : namedBodies)
+        if (bodyName == name) return id;
+    return {};
+}
+
+JointId SceneInstance::jointNamed(std::string_view name) const {
+    for (const auto& [jointName, id] : namedJoints)
+        if (jointName == name) return id;
+    return {};
+}
+
 }  // namespace substep

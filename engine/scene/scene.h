@@ -13,6 +13,7 @@
 
 #include <optional>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -64,6 +65,10 @@ struct SceneInstance {
     ecs::Registry registry;
     std::vector<ecs::Entity> bodyEntities;   ///< in description order
     std::vector<ecs::Entity> jointEntities;  ///< in description order
+
+    /// The id of the body or joint named `name`; a null id (World::isValid false) when none is.
+    BodyId bodyNamed(std::string_view name) const;
+    JointId jointNamed(std::string_view name) const;
 
     /// The physics system over this instance's registry and world. Made per call and cheap; do
     /// not keep it across a move of the instance.

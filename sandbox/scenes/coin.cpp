@@ -60,12 +60,6 @@ SceneDescription buildCoin() {
     return scene;
 }
 
-BodyId namedBody(const SceneInstance& scene, std::string_view name) {
-    for (const auto& [bodyName, id] : scene.namedBodies)
-        if (bodyName == name) return id;
-    return {};
-}
-
 /// Angle of the coin's face from the table (rad): 0 flat, π/2 upright.
 double coinTilt(const Body& coin) {
     const Vec3 axis = coin.userOrientation() * Vec3::UnitY();
@@ -119,8 +113,8 @@ class CoinScript : public SceneScript {
     }
 
     void start(SceneInstance& scene) override {
-        coin_ = namedBody(scene, "coin");
-        table_ = namedBody(scene, "table");
+        coin_ = scene.bodyNamed("coin");
+        table_ = scene.bodyNamed("table");
         applyFriction(scene);
         place(scene);
     }

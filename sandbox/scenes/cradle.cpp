@@ -65,12 +65,6 @@ SceneDescription buildCradle() {
     return scene;
 }
 
-BodyId namedBody(const SceneInstance& scene, std::string_view name) {
-    for (const auto& [bodyName, id] : scene.namedBodies)
-        if (bodyName == name) return id;
-    return {};
-}
-
 class CradleScript : public SceneScript {
   public:
     CradleScript() {
@@ -94,8 +88,8 @@ class CradleScript : public SceneScript {
 
     void start(SceneInstance& scene) override {
         for (int i = 0; i < kRowSize; ++i)
-            row_[i] = namedBody(scene, rowName(i));
-        striker_ = namedBody(scene, "striker");
+            row_[i] = scene.bodyNamed(rowName(i));
+        striker_ = scene.bodyNamed("striker");
         applyVelocityPass(scene);
         applyRestitution(scene);
         launch(scene);

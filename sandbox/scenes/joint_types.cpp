@@ -140,12 +140,6 @@ double twistAngle(const Joint& joint, const Body* bodies) {
     return signedAngle(n, n0.normalized(), n1.normalized());
 }
 
-JointId namedJoint(const SceneInstance& scene, std::string_view name) {
-    for (const auto& [jointName, id] : scene.namedJoints)
-        if (jointName == name) return id;
-    return {};
-}
-
 std::string rangeLabel(const char* what, double lower, double upper, const char* unit) {
     char text[96];
     std::snprintf(text, sizeof text, "%s [%s] (limits %.2f .. %.2f)", what, unit, lower, upper);
@@ -182,14 +176,14 @@ class JointTypesScript : public SceneScript {
     }
 
     void start(SceneInstance& scene) override {
-        prismaticHard_ = namedJoint(scene, "prismatic_hard_joint");
-        prismaticSoft_ = namedJoint(scene, "prismatic_soft_joint");
-        prismaticDrive_ = namedJoint(scene, "prismatic_drive_joint");
-        hingeHard_ = namedJoint(scene, "hinge_hard_joint");
-        hingeSoft_ = namedJoint(scene, "hinge_soft_joint");
-        hingeDrive_ = namedJoint(scene, "hinge_drive_joint");
-        ballHard_ = namedJoint(scene, "ball_hard_joint");
-        ballSoft_ = namedJoint(scene, "ball_soft_joint");
+        prismaticHard_ = scene.jointNamed("prismatic_hard_joint");
+        prismaticSoft_ = scene.jointNamed("prismatic_soft_joint");
+        prismaticDrive_ = scene.jointNamed("prismatic_drive_joint");
+        hingeHard_ = scene.jointNamed("hinge_hard_joint");
+        hingeSoft_ = scene.jointNamed("hinge_soft_joint");
+        hingeDrive_ = scene.jointNamed("hinge_drive_joint");
+        ballHard_ = scene.jointNamed("ball_hard_joint");
+        ballSoft_ = scene.jointNamed("ball_soft_joint");
         applyAll(scene.world, 0.0);
     }
 

@@ -155,17 +155,6 @@ SceneDescription build() {
     return scene;
 }
 
-BodyId namedBody(const SceneInstance& scene, std::string_view name) {
-    for (const auto& [bodyName, id] : scene.namedBodies)
-        if (bodyName == name) return id;
-    return {};
-}
-JointId namedJoint(const SceneInstance& scene, std::string_view name) {
-    for (const auto& [jointName, id] : scene.namedJoints)
-        if (jointName == name) return id;
-    return {};
-}
-
 class RobotArmScript : public SceneScript {
   public:
     RobotArmScript() {
@@ -184,10 +173,10 @@ class RobotArmScript : public SceneScript {
     }
 
     void start(SceneInstance& scene) override {
-        target_ = namedBody(scene, "target");
-        hand_ = namedBody(scene, "hand");
-        grip_ = namedJoint(scene, "grip");
-        for (std::size_t i = 0; i < kArmJoints.size(); ++i) joints_[i] = namedJoint(scene, kArmJoints[i].name);
+        target_ = scene.bodyNamed("target");
+        hand_ = scene.bodyNamed("hand");
+        grip_ = scene.jointNamed("grip");
+        for (std::size_t i = 0; i < kArmJoints.size(); ++i) joints_[i] = scene.jointNamed(kArmJoints[i].name);
         scene.world.joint(grip_).hasSwingLimit = toggled(orient_);
         placeTarget(scene.world, toggled(orbit_) ? orbitPoint(0.0) : knobTarget());
         gliding_ = false;
