@@ -73,8 +73,12 @@ inline void solveAngleLimit(Joint& joint, SolverContext& ctx, const Vec3& n, con
     const double phi = signedAngle(n, n0, n1);
     if (phi >= lower && phi <= upper) return;
     const double clamped = phi < lower ? lower : upper;
-    const Vec3 limitDirection = Eigen::AngleAxisd(clamped, n) * n0;
-    solveRotationPart(joint, ctx, rotationBetween(limitDirection, n1), compliance, lambda);
+    // n0 and n1 lie in the plane normal to n, so the turn from the limit's direction to n1 is
+    // about n by the excess, taken the short way round: no need to build that direction.
+    double excess = phi - clamped;
+    if (excess > M_PI) excess -= 2.0 * M_PI;
+    if (excess <= -M_PI) excess += 2.0 * M_PI;
+    solveRotationPart(joint, ctx, excess * n, compliance, lambda);
 }
 
 /// How far the angle from n0 to n1 about n lies outside [lower, upper] (rad).
