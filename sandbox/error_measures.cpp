@@ -1,5 +1,7 @@
 #include "error_measures.h"
 
+#include "ecs/components.h"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -7,7 +9,7 @@
 
 namespace substep {
 
-ErrorReference errorReference(const SceneEntry* entry, const World& world) {
+ErrorReference errorReference(const SceneEntry* entry, const SceneInstance& scene) {
     ErrorReference reference;
     if (entry != nullptr) reference.chain = entry->chain;
     if (entry != nullptr && entry->energyScale > 0.0) {
@@ -16,24 +18,23 @@ ErrorReference errorReference(const SceneEntry* entry, const World& world) {
     }
     // The weight lifted by 1 m: the energy a scene of this size trades in ordinary motion.
     double weight = 0.0;
-    for (const Body& body : world.bodies())
-        if (body.alive && body.isDynamic()) weight += body.mass * world.settings().gravity.norm();
+    const double gravity = scene.world().settings().gravity.norm();
+    for (const ecs::Entity entity : scene.bodyEntities)
+        if (const auto* body = scene.registry.tryGet<ecs::RigidBody>(entity)) weight += body->simulatedMass * gravity;
     if (weight > 0.0 && std::isfinite(weight)) reference.energyScale = weight * 1.0;
     return reference;
 }
 
 ErrorRecorder::ErrorRecorder(const SceneInstance& scene, const ErrorReference& reference)
     : scene_(scene), reference_(reference) {
-    const std::span<const Joint> joints = scene.world.joints();
-    for (std::size_t i = 0; i < joints.size(); ++i) {
-        if (joints[i].alive) {
-            joints_.push_back(
-                {.index = static_cast<uint32_t>(i), .generation = joints[i].generation});
-        }
+    // The scene's own joints, named or not (not those made later, such as the window's drag spring).
+    for (const ecs::Entity entity : scene.jointEntities) {
+        const ecs::Joint* joint = scene.registry.tryGet<ecs::Joint>(entity);
+        if (joint != nullptr && !joint->id.isNull()) joints_.push_back(entity);
     }
     if (!reference_.chain.endBody.empty()) {
-        for (const auto& [name, id] : scene.namedBodies)
-            if (name == reference_.chain.endBody) chainEnd_ = id;
+        const ecs::Entity end = scene.bodyNamed(reference_.chain.endBody);
+        if (!end.isNull()) chainEnd_ = end;
         if (!chainEnd_) {
             throw std::invalid_argument("chain measure: no body named '" +
                                         std::string(reference_.chain.endBody) + "'");
@@ -42,15 +43,16 @@ ErrorRecorder::ErrorRecorder(const SceneInstance& scene, const ErrorReference& r
 }
 
 void ErrorRecorder::sample() {
-    const World& world = scene_.world;
+    const World& world = scene_.world();
     const double energy = world.energies().total();
     if (samples_ == 0) initialEnergy_ = energy;
     lastEnergy_ = energy;
     largestEnergyChange_ = std::max(largestEnergyChange_, std::abs(energy - initialEnergy_));
 
     double sum = 0.0;
-    for (const JointId id : joints_) {
-        const double error = world.jointReadout(id).error;
+    for (const ecs::Entity joint : joints_) {
+        const ecs::Joint* component = scene_.registry.tryGet<ecs::Joint>(joint);
+        const double error = component != nullptr ? component->readout.error : 0.0;
         sum += error;
         maxJointError_ = std::max(maxJointError_, error);
     }
@@ -75,11 +77,10 @@ ErrorMeasures ErrorRecorder::measures() const {
     result.penetration = penetration_;
     if (chainEnd_) {
         // The end point's world position, from the end body's own (user) frame.
-        const Body& end = scene_.world.body(*chainEnd_);
+        const ecs::Transform& end = scene_.registry.get<ecs::Transform>(*chainEnd_);
         const ChainMeasure& chain = reference_.chain;
         const Vec3 point =
-            end.userPosition() +
-            end.userOrientation() * Vec3(chain.endPoint[0], chain.endPoint[1], chain.endPoint[2]);
+            end.position + end.rotation * Vec3(chain.endPoint[0], chain.endPoint[1], chain.endPoint[2]);
         const Vec3 anchor(chain.anchor[0], chain.anchor[1], chain.anchor[2]);
         result.chainElongation = ((point - anchor).norm() - chain.restLength) / chain.restLength;
     }

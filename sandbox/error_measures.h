@@ -21,7 +21,7 @@ struct ErrorReference {
 /// The reference for a scene: a built-in entry's energy scale and chain measure, else (entry
 /// null, or its energyScale 0) the scene's weight times 1 m, Σ m|g| over its dynamic bodies;
 /// 1 J when that is 0 too (no gravity, or nothing dynamic).
-ErrorReference errorReference(const SceneEntry* entry, const World& world);
+ErrorReference errorReference(const SceneEntry* entry, const SceneInstance& scene);
 
 /// The measures of one run. Samples are the rows `substep run --csv` writes: the initial state,
 /// then the state after each frame.
@@ -52,8 +52,8 @@ class ErrorRecorder {
   private:
     const SceneInstance& scene_;
     ErrorReference reference_;
-    std::optional<BodyId> chainEnd_;
-    std::vector<JointId> joints_;  ///< every live joint, named or not
+    std::optional<ecs::Entity> chainEnd_;
+    std::vector<ecs::Entity> joints_;  ///< the scene's joints, named or not
 
     std::size_t samples_ = 0;
     double initialEnergy_ = 0.0;

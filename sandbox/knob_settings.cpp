@@ -45,8 +45,8 @@ void applyKnobSettings(LiveScene& scene, const std::vector<KnobSetting>& setting
     if (settings.empty()) return;
     const auto setAll = [&] {
         for (const KnobSetting& setting : settings) {
-            SceneScript* script = scene.script();
-            if (script == nullptr || !script->setKnob(scene.instance(), setting.name, setting.value)) {
+            if (!scene.setKnob(setting.name, setting.value)) {
+                const SceneScript* script = scene.script();
                 throw UsageError("--set " + setting.name + ": " + label + " has no such knob (its knobs: " +
                                  knobList(script) + ")");
             }

@@ -52,7 +52,6 @@ int renderFrames(const RenderOptions& options) {
     const SceneSource source = resolveScene(options.scene);
     const SceneDescription& description = source.description;
     LiveScene live = startLabelledScene(source);
-    World& world = live.world();
     applyKnobSettings(live, parseKnobSettings(options.knobs), source.label);
 
     const std::unique_ptr<render::GlContext> context = render::createHeadlessContext();
@@ -64,7 +63,7 @@ int renderFrames(const RenderOptions& options) {
     } catch (const std::runtime_error& error) {
         throw UsageError("--size " + options.size + ": " + error.what());
     }
-    SceneDrawing drawing(description, world, static_cast<float>(width) / static_cast<float>(height));
+    SceneDrawing drawing(description, live.instance(), static_cast<float>(width) / static_cast<float>(height));
     const std::filesystem::path directory = prepareOutputDirectory(options.outDirectory);
 
     // Frame 0 is the initial state; each step advances one frame of the scene's dt.
@@ -76,7 +75,7 @@ int renderFrames(const RenderOptions& options) {
             return 128 + signal;
         }
         if (frame > 0) live.step();
-        if (!world.isFinite()) {
+        if (!live.world().isFinite()) {
             std::fprintf(stderr,
                          "substep render: the state turned non-finite at frame %lld; %zu of %zu images "
                          "written\n",

@@ -1,6 +1,7 @@
 #include "scene_drawing.h"
 
 #include "ecs/components.h"
+#include "ecs/physics_system.h"
 #include "physics/collision/heightfield.h"
 #include "physics/collision/spline_tube.h"
 #include "render/camera_framing.h"
@@ -34,17 +35,29 @@ double shapeRadius(const Shape& shape) {
     }
 }
 
-/// Bounds of every body but the world anchor and planes, on the current state.
-Eigen::AlignedBox3d bodyBounds(const World& world) {
+/// Calls visit(entity, transform, collider) for every entity with a Transform and a Collider,
+/// in the order their bodies were made (the RigidBody pool's, then any others).
+template <class Visit>
+void forEachShape(const ecs::Registry& registry, Visit&& visit) {
+    const ecs::ComponentPool<ecs::Collider>* colliders = registry.findPool<ecs::Collider>();
+    const ecs::ComponentPool<ecs::Transform>* transforms = registry.findPool<ecs::Transform>();
+    if (colliders == nullptr || transforms == nullptr) return;
+    const std::span<const ecs::Entity> entities = colliders->entities();
+    const std::span<const ecs::Collider> components = colliders->components();
+    for (std::size_t i = 0; i < components.size(); ++i)
+        if (const ecs::Transform* transform = transforms->tryGet(entities[i]))
+            visit(entities[i], *transform, components[i]);
+}
+
+/// Bounds of every shape but planes, on the current state.
+Eigen::AlignedBox3d bodyBounds(const ecs::Registry& registry) {
     Eigen::AlignedBox3d box;
-    const auto bodies = world.bodies();
-    for (std::size_t i = 1; i < bodies.size(); ++i) {
-        const Body& body = bodies[i];
-        if (!body.alive || body.shape.type == ShapeType::Plane) continue;
-        const double radius = shapeRadius(body.shape);
-        box.extend(body.userPosition() - Vec3::Constant(radius));
-        box.extend(body.userPosition() + Vec3::Constant(radius));
-    }
+    forEachShape(registry, [&](ecs::Entity, const ecs::Transform& transform, const ecs::Collider& collider) {
+        if (collider.shape.type == ShapeType::Plane) return;
+        const double radius = shapeRadius(collider.shape);
+        box.extend(transform.position - Vec3::Constant(radius));
+        box.extend(transform.position + Vec3::Constant(radius));
+    });
     return box;
 }
 
@@ -88,10 +101,11 @@ render::Colour bodyColour(std::size_t index, bool isStatic) {
     return {c[0], c[1], c[2]};
 }
 
-SceneDrawing::SceneDrawing(const SceneDescription& description, const World& world, float aspect,
+SceneDrawing::SceneDrawing(const SceneDescription& description, SceneInstance& sceneInstance, float aspect,
                            const DrawingOptions& options)
     : options_(options) {
-    const Eigen::AlignedBox3d box = bodyBounds(world);
+    const ecs::Registry& registry = sceneInstance.registry;
+    const Eigen::AlignedBox3d box = bodyBounds(registry);
     const Vec3 centre = box.isEmpty() ? Vec3(Vec3::Zero()) : Vec3(box.center());
     const double radius = box.isEmpty() ? 1.0 : std::max(box.diagonal().norm() / 2.0, 0.05);
 
@@ -106,13 +120,11 @@ SceneDrawing::SceneDrawing(const SceneDescription& description, const World& wor
 
     // The scene's own plane is the ground; without one a reference floor sits at y = 0, or under
     // the lowest body if something starts below that.
-    for (const Body& body : world.bodies()) {
-        if (body.alive && body.shape.type == ShapeType::Plane) {
-            ground_ = render::Ground{.normal = toFloat(body.shape.normal.normalized()),
-                                     .offset = static_cast<float>(body.shape.offset)};
-            break;
-        }
-    }
+    forEachShape(registry, [&](ecs::Entity, const ecs::Transform&, const ecs::Collider& collider) {
+        if (ground_ || collider.shape.type != ShapeType::Plane) return;
+        ground_ = render::Ground{.normal = toFloat(collider.shape.normal.normalized()),
+                                 .offset = static_cast<float>(collider.shape.offset)};
+    });
     if (!ground_) {
         const double lowest = box.isEmpty() ? 0.0 : box.min().y();
         ground_ = render::Ground{.normal = render::Vec3f::UnitY(),
@@ -123,11 +135,10 @@ SceneDrawing::SceneDrawing(const SceneDescription& description, const World& wor
     // Overlays are sized to the bodies as well as to the scene, so a rope of thin capsules is not
     // buried under its own joint frames: the median body's size caps them.
     std::vector<double> bodySizes;
-    for (const Body& body : world.bodies()) {
-        if (body.alive && body.shape.type != ShapeType::Plane && shapeRadius(body.shape) > 0.0) {
-            bodySizes.push_back(shapeRadius(body.shape));
-        }
-    }
+    forEachShape(registry, [&](ecs::Entity, const ecs::Transform&, const ecs::Collider& collider) {
+        if (collider.shape.type != ShapeType::Plane && shapeRadius(collider.shape) > 0.0)
+            bodySizes.push_back(shapeRadius(collider.shape));
+    });
     double medianSize = radius;
     if (!bodySizes.empty()) {
         std::nth_element(bodySizes.begin(), bodySizes.begin() + bodySizes.size() / 2, bodySizes.end());
@@ -137,41 +148,39 @@ SceneDrawing::SceneDrawing(const SceneDescription& description, const World& wor
     // Forces: the heaviest moving body's weight is drawn a tenth of the scene's size long, and no
     // arrow is longer than a quarter of it (a whipping pendulum pulls many times its weight).
     double heaviestWeight = 0.0;
-    for (const Body& body : world.bodies()) {
-        if (body.alive && body.isDynamic()) {
-            heaviestWeight = std::max(heaviestWeight, body.mass * world.settings().gravity.norm());
-        }
-    }
+    const double gravity = sceneInstance.physics().settings().gravity.norm();
+    sceneInstance.registry.view<ecs::RigidBody>().each([&](const ecs::RigidBody& body) {
+        heaviestWeight = std::max(heaviestWeight, body.simulatedMass * gravity);
+    });
     forceScale_ = heaviestWeight > 0.0 ? static_cast<float>(0.1 * radius / heaviestWeight) : 0.0f;
     longestArrow_ = static_cast<float>(std::min(0.25 * radius, 3.0 * medianSize));
     // Torques: the heaviest weight at the scene's size, drawn as long as its weight's arrow.
     torqueScale_ = heaviestWeight > 0.0 ? forceScale_ / static_cast<float>(radius) : 0.0f;
 }
 
-render::RenderScene SceneDrawing::draw(const SceneInstance& scene) {
-    readMaterials(scene);
-    render::RenderScene drawn = draw(scene.world);
-    looks_.clear();
-    return drawn;
-}
-
-void SceneDrawing::readMaterials(const SceneInstance& scene) {
-    looks_.assign(scene.world.bodies().size(), Look{});
-    for (const ecs::Entity entity : scene.bodyEntities) {
-        const auto* body = scene.registry.tryGet<ecs::RigidBody>(entity);
-        const auto* material = scene.registry.tryGet<ecs::RenderMaterial>(entity);
-        if (body == nullptr || material == nullptr || !scene.world.isValid(body->id)) continue;
-        looks_[body->id.index] = {.known = true, .visible = material->visible, .colour = material->colour.cast<float>()};
-    }
-}
-
-render::RenderScene SceneDrawing::draw(const World& world) {
+render::RenderScene SceneDrawing::draw(SceneInstance& sceneInstance) {
     render::RenderScene scene;
     scene.camera = camera_;
     scene.ground = ground_;
-    addBodies(world, scene);
-    addDebugLines(world, scene);
+    addBodies(sceneInstance.registry, scene);
+    addDebugLines(sceneInstance.physics(), scene);
     return scene;
+}
+
+std::shared_ptr<const render::MeshData> SceneDrawing::meshFor(const std::shared_ptr<const TriangleMesh>& source) {
+    if (const auto found = meshes_.find(source.get()); found != meshes_.end()) return found->second;
+    std::vector<render::Vec3f> points;
+    points.reserve(source->vertices.size());
+    for (const Vec3& v : source->vertices) points.push_back(toFloat(v));
+    std::vector<uint32_t> triangles;
+    triangles.reserve(source->triangles.size() * 3);
+    for (const auto& t : source->triangles) {
+        triangles.insert(triangles.end(), {static_cast<uint32_t>(t[0]), static_cast<uint32_t>(t[1]),
+                                           static_cast<uint32_t>(t[2])});
+    }
+    auto mesh = std::make_shared<render::MeshData>(render::flatShadedMesh(points, triangles));
+    meshes_.emplace(source.get(), mesh);
+    return mesh;
 }
 
 std::shared_ptr<const render::MeshData> SceneDrawing::meshFor(const Shape& shape) {
@@ -180,21 +189,11 @@ std::shared_ptr<const render::MeshData> SceneDrawing::meshFor(const Shape& shape
     if (shape.type == ShapeType::Spline) source = shape.spline.get();
     if (shape.type == ShapeType::Heightfield) source = shape.heightfield.get();
     if (source == nullptr) return nullptr;
+    if (shape.type == ShapeType::Mesh) return meshFor(shape.mesh);
     if (const auto found = meshes_.find(source); found != meshes_.end()) return found->second;
 
     auto mesh = std::make_shared<render::MeshData>();
-    if (shape.type == ShapeType::Mesh) {
-        std::vector<render::Vec3f> points;
-        points.reserve(shape.mesh->vertices.size());
-        for (const Vec3& v : shape.mesh->vertices) points.push_back(toFloat(v));
-        std::vector<uint32_t> triangles;
-        triangles.reserve(shape.mesh->triangles.size() * 3);
-        for (const auto& t : shape.mesh->triangles) {
-            triangles.insert(triangles.end(), {static_cast<uint32_t>(t[0]), static_cast<uint32_t>(t[1]),
-                                               static_cast<uint32_t>(t[2])});
-        }
-        *mesh = render::flatShadedMesh(points, triangles);
-    } else if (shape.type == ShapeType::Heightfield) {
+    if (shape.type == ShapeType::Heightfield) {
         const HeightfieldData& field = *shape.heightfield;
         const std::vector<float> heights(field.heights.begin(), field.heights.end());
         *mesh = render::heightfieldMesh(
@@ -220,17 +219,25 @@ std::shared_ptr<const render::MeshData> SceneDrawing::meshFor(const Shape& shape
     return mesh;
 }
 
-void SceneDrawing::addBodies(const World& world, render::RenderScene& scene) {
-    const auto bodies = world.bodies();
-    for (std::size_t i = 1; i < bodies.size(); ++i) {
-        const Body& body = bodies[i];
-        if (!body.alive) continue;
-        const bool hasLook = i < looks_.size() && looks_[i].known;
-        if (hasLook && !looks_[i].visible) continue;
-        render::RenderInstance instance{.position = toFloat(body.userPosition()),
-                                        .orientation = body.userOrientation().cast<float>(),
-                                        .colour = hasLook ? looks_[i].colour : bodyColour(i, !body.isDynamic())};
-        const Shape& shape = body.shape;
+void SceneDrawing::addBodies(const ecs::Registry& registry, render::RenderScene& scene) {
+    forEachShape(registry, [&](ecs::Entity entity, const ecs::Transform& transform, const ecs::Collider& collider) {
+        const ecs::RenderMaterial* material = registry.tryGet<ecs::RenderMaterial>(entity);
+        if (material != nullptr && !material->visible) return;
+        const ecs::RigidBody* rigidBody = registry.tryGet<ecs::RigidBody>(entity);
+        const bool isStatic = rigidBody == nullptr || rigidBody->type == BodyType::Static;
+        render::RenderInstance instance{
+            .position = toFloat(transform.position),
+            .orientation = transform.rotation.cast<float>(),
+            .colour = material != nullptr ? render::Colour(material->colour.cast<float>())
+                                          : bodyColour(entity.index + 1, isStatic)};
+        // A material's own mesh is a finer look than the collision shape: it wins.
+        if (material != nullptr && material->mesh) {
+            instance.kind = render::ShapeKind::Mesh;
+            instance.mesh = meshFor(material->mesh);
+            scene.instances.push_back(std::move(instance));
+            return;
+        }
+        const Shape& shape = collider.shape;
         switch (shape.type) {
             case ShapeType::Sphere:
                 instance.kind = render::ShapeKind::Sphere;
@@ -255,15 +262,15 @@ void SceneDrawing::addBodies(const World& world, render::RenderScene& scene) {
             case ShapeType::Spline:
                 instance.kind = render::ShapeKind::Mesh;
                 instance.mesh = meshFor(shape);
-                if (!instance.mesh) continue;
+                if (!instance.mesh) return;
                 break;
-            default: continue;  // planes are the ground; shapeless bodies have nothing to show
+            default: return;  // planes are the ground; shapeless bodies have nothing to show
         }
         scene.instances.push_back(std::move(instance));
-    }
+    });
 }
 
-void SceneDrawing::addDebugLines(const World& world, render::RenderScene& scene) {
+void SceneDrawing::addDebugLines(const ecs::PhysicsSystem& physics, render::RenderScene& scene) {
     uint32_t layers = 0;
     // A joint's link always shows: its length is the spring's stretch or the joint's error.
     layers |= debugLayerBit(DebugLayer::JointLink);
@@ -277,7 +284,7 @@ void SceneDrawing::addDebugLines(const World& world, render::RenderScene& scene)
                                    .torqueScale = torqueScale_,
                                    .longestArrow = longestArrow_};
     debugList_.clear();
-    drawWorld(world, options, debugList_);
+    physics.debugDraw(options, debugList_);
     for (const DebugSegment& segment : debugList_.segments)
         scene.lines.push_back({toFloat(segment.from), toFloat(segment.to), debugColour(segment)});
 }

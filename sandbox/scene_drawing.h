@@ -1,8 +1,11 @@
 #pragma once
-/// A physics World as a RenderScene: every body's shape in its colour, the ground (the scene's
-/// plane, or a reference floor under the bodies), and the physics core's debug draw list
-/// (physics/debug_draw.h: joint links, frames, limits, forces and torques, contacts) as lines. What stays fixed over a rendering (camera, ground, colours, force scale) is
-/// decided once from the initial state, so frames of one scene line up.
+/// The render system: a scene's entities as a RenderScene. Every entity with a Transform and a
+/// Collider (or a RenderMaterial mesh) is drawn at its Transform in its RenderMaterial's colour;
+/// the ground is the scene's plane, or a reference floor under the bodies; the physics core's
+/// debug draw list (physics/debug_draw.h: joint links, frames, limits, forces and torques,
+/// contacts), which the physics system hands out, becomes lines. It reads components only: what
+/// the physics system wrote back after the last step. What stays fixed over a rendering (camera,
+/// ground, force scale) is decided once from the initial state, so frames of one scene line up.
 
 #include "physics/debug_draw.h"
 #include "render/render_scene.h"
@@ -25,26 +28,24 @@ struct DrawingOptions {
 
 class SceneDrawing {
   public:
-    /// Fixes the camera (the scene's own, else one that frames the bodies of `world` for an image
+    /// Fixes the camera (the scene's own, else one that frames the bodies of `scene` for an image
     /// of the given aspect ratio), the ground and the scales of the overlays.
-    SceneDrawing(const SceneDescription& description, const World& world, float aspect,
+    SceneDrawing(const SceneDescription& description, SceneInstance& scene, float aspect,
                  const DrawingOptions& options = {});
 
-    /// The world's current state to draw, each body in the palette colour of its index.
-    render::RenderScene draw(const World& world);
-    /// The scene's current state to draw, each body in the colour of its RenderMaterial and
-    /// hidden when that says so (the ECS layer's look of the body).
-    render::RenderScene draw(const SceneInstance& scene);
+    /// The scene's current state to draw: each entity with a Transform and a shape (its
+    /// Collider's, or its RenderMaterial's mesh, which wins) in its RenderMaterial's colour
+    /// (a palette colour by entity without one), hidden when the material says so.
+    render::RenderScene draw(SceneInstance& scene);
 
     const render::Camera& camera() const { return camera_; }
 
   private:
-    void addBodies(const World& world, render::RenderScene& scene);
-    /// Fills looks_ from the scene's RenderMaterial components, by world body index.
-    void readMaterials(const SceneInstance& scene);
+    void addBodies(const ecs::Registry& registry, render::RenderScene& scene);
     /// The physics core's draw list (physics/debug_draw.h) of the layers the options select.
-    void addDebugLines(const World& world, render::RenderScene& scene);
+    void addDebugLines(const ecs::PhysicsSystem& physics, render::RenderScene& scene);
     std::shared_ptr<const render::MeshData> meshFor(const Shape& shape);
+    std::shared_ptr<const render::MeshData> meshFor(const std::shared_ptr<const TriangleMesh>& mesh);
 
     DrawingOptions options_;
     render::Camera camera_;
@@ -54,13 +55,6 @@ class SceneDrawing {
     float torqueScale_ = 0.0f;   ///< m per N m
     float longestArrow_ = 1.0f;  ///< force arrows are clipped to this (m)
     DebugDrawList debugList_;    ///< kept across frames for its storage
-    /// Per world body index, its material when drawn from a SceneInstance; empty otherwise.
-    struct Look {
-        bool known = false;
-        bool visible = true;
-        render::Colour colour;
-    };
-    std::vector<Look> looks_;
     /// Render meshes built from shape data, by the address of that data (shared between bodies).
     std::map<const void*, std::shared_ptr<const render::MeshData>> meshes_;
 };

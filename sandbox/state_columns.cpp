@@ -1,5 +1,7 @@
 #include "state_columns.h"
 
+#include "ecs/components.h"
+
 #include <array>
 #include <string_view>
 
@@ -13,9 +15,22 @@ constexpr std::array<std::string_view, 13> kBodyColumns = {"x",  "y",  "z",  "qw
                                                            "vx", "vy", "vz", "wx", "wy", "wz"};
 constexpr std::array<std::string_view, 3> kJointColumns = {"force", "torque", "error"};
 
+/// The named entities among `entities` (description order), with their names.
+template <class Visit>
+void forEachNamed(const SceneInstance& scene, const std::vector<ecs::Entity>& entities, Visit&& visit) {
+    for (const ecs::Entity entity : entities)
+        if (const ecs::Name* name = scene.registry.tryGet<ecs::Name>(entity)) visit(entity, name->value);
+}
+
+std::size_t namedCount(const SceneInstance& scene, const std::vector<ecs::Entity>& entities) {
+    std::size_t count = 0;
+    forEachNamed(scene, entities, [&](ecs::Entity, const std::string&) { ++count; });
+    return count;
+}
+
 std::size_t sampledColumnCount(const SceneInstance& scene) {
-    return kWorldColumns.size() - 1 + kBodyColumns.size() * scene.namedBodies.size() +
-           kJointColumns.size() * scene.namedJoints.size();
+    return kWorldColumns.size() - 1 + kBodyColumns.size() * namedCount(scene, scene.bodyEntities) +
+           kJointColumns.size() * namedCount(scene, scene.jointEntities);
 }
 
 }  // namespace
@@ -25,22 +40,20 @@ std::vector<std::string> stateColumnNames(const SceneInstance& scene) {
     names.reserve(sampledColumnCount(scene) + 1);
     for (const std::string_view column : kWorldColumns)
         names.emplace_back(column);
-    for (const auto& [name, id] : scene.namedBodies) {
-        for (const std::string_view column : kBodyColumns) {
-            names.push_back(name + "." + std::string(column));
-        }
-    }
-    for (const auto& [name, id] : scene.namedJoints) {
-        for (const std::string_view column : kJointColumns) {
-            names.push_back(name + "." + std::string(column));
-        }
-    }
+    forEachNamed(scene, scene.bodyEntities, [&](ecs::Entity, const std::string& name) {
+        for (const std::string_view column : kBodyColumns) names.push_back(name + "." + std::string(column));
+    });
+    forEachNamed(scene, scene.jointEntities, [&](ecs::Entity, const std::string& name) {
+        for (const std::string_view column : kJointColumns) names.push_back(name + "." + std::string(column));
+    });
     return names;
 }
 
 void sampleState(const SceneInstance& scene, double t, std::vector<double>& values) {
     values.resize(sampledColumnCount(scene));
-    const World& world = scene.world;
+    // Energies and the largest joint error are measures of the whole world; everything per body
+    // and per joint is read from the components the physics system wrote after the last step.
+    const World& world = scene.world();
     const Energies energies = world.energies();
     auto out = values.begin();
     *out++ = t;
@@ -51,23 +64,26 @@ void sampleState(const SceneInstance& scene, double t, std::vector<double>& valu
     *out++ = world.maxJointError();
 
     // Poses of the user frame (the one scene files and anchors use), not the principal frame.
-    for (const auto& [name, id] : scene.namedBodies) {
-        const Body& body = world.body(id);
-        const Vec3 position = body.userPosition();
-        const Quat orientation = body.userOrientation();
+    const ecs::Registry& registry = scene.registry;
+    forEachNamed(scene, scene.bodyEntities, [&](ecs::Entity entity, const std::string&) {
+        const ecs::Transform& transform = registry.get<ecs::Transform>(entity);
+        const ecs::RigidBody& body = registry.get<ecs::RigidBody>(entity);
+        const Vec3& position = transform.position;
+        const Quat& orientation = transform.rotation;
         for (const double value :
              {position.x(), position.y(), position.z(), orientation.w(), orientation.x(),
-              orientation.y(), orientation.z(), body.v.x(), body.v.y(), body.v.z(), body.omega.x(),
-              body.omega.y(), body.omega.z()}) {
+              orientation.y(), orientation.z(), body.velocity.x(), body.velocity.y(),
+              body.velocity.z(), body.angularVelocity.x(), body.angularVelocity.y(),
+              body.angularVelocity.z()}) {
             *out++ = value;
         }
-    }
-    for (const auto& [name, id] : scene.namedJoints) {
-        const JointReadout readout = world.jointReadout(id);
+    });
+    forEachNamed(scene, scene.jointEntities, [&](ecs::Entity entity, const std::string&) {
+        const JointReadout& readout = registry.get<ecs::Joint>(entity).readout;
         *out++ = readout.force;
         *out++ = readout.torque;
         *out++ = readout.error;
-    }
+    });
 }
 
 }  // namespace substep

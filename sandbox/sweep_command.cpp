@@ -197,8 +197,8 @@ SplitResult runSplit(const SceneSource& source, const SceneEntry* entry, const S
     description.iterations = split.iterations;
     LiveScene live = startLabelledScene(source, description);
     SceneInstance& scene = live.instance();
-    World& world = live.world();
-    ErrorRecorder recorder(scene, errorReference(entry, world));
+    const World& world = live.world();
+    ErrorRecorder recorder(scene, errorReference(entry, scene));
     recorder.sample();
 
     SplitResult result{.split = split};
@@ -206,9 +206,7 @@ SplitResult runSplit(const SceneSource& source, const SceneEntry* entry, const S
     frameMs.reserve(static_cast<std::size_t>(frames));
     for (long long frame = 1; frame <= frames; ++frame) {
         if (const int signal = interruptSignal(); signal != 0) throw Interrupted{signal};
-        const Clock::time_point start = Clock::now();
-        live.step();
-        frameMs.push_back(std::chrono::duration<double, std::milli>(Clock::now() - start).count());
+        frameMs.push_back(std::chrono::duration<double, std::milli>(live.step()).count());
         recorder.sample();
         progress.frame(frame);
         if (!world.isFinite()) {

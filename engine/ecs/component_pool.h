@@ -71,8 +71,21 @@ class ComponentPool final : public SparseSet {
     std::span<T> components() { return components_; }
     std::span<const T> components() const { return components_; }
 
+    /// Records that the entity's component was changed in place (Registry::patch), for the
+    /// systems that mirror it elsewhere (the physics system into the world). An entity may be
+    /// listed more than once; readers treat the list as a set.
+    void markChanged(Entity entity) { changed_.push_back(entity); }
+    /// The entities marked since the last takeChanged(), in the order they were marked; the
+    /// list is handed over and the pool's own emptied (its storage kept in `out`).
+    void takeChanged(std::vector<Entity>& out) {
+        out.clear();
+        out.swap(changed_);
+    }
+    bool anyChanged() const { return !changed_.empty(); }
+
   private:
     std::vector<T> components_;
+    std::vector<Entity> changed_;
 };
 
 }  // namespace substep::ecs

@@ -1,4 +1,5 @@
-/// PhysicsSystem: components -> world objects, world state -> Transform.
+/// PhysicsSystem: components -> world objects, patched components -> world changes, world state
+/// -> components.
 
 #include "ecs/physics_system.h"
 
@@ -22,9 +23,39 @@ std::optional<BodyId> jointSideBody(const Registry& registry, Entity side) {
     return rigidBody->id;
 }
 
+/// The patched entities of T's pool (empty without a pool), taken out of it.
+template <class T>
+void takeChanged(Registry& registry, std::vector<Entity>& out) {
+    out.clear();
+    if (ComponentPool<T>* pool = registry.findPool<T>()) pool->takeChanged(out);
+}
+
+/// Whether any component of T was patched since the last sync.
+template <class T>
+bool anyPatched(Registry& registry) {
+    const ComponentPool<T>* pool = registry.findPool<T>();
+    return pool != nullptr && pool->anyChanged();
+}
+
+/// Writes a body's simulated state into its components.
+void writeBody(const Body& body, RigidBody& rigidBody, Transform* transform) {
+    rigidBody.velocity = body.v;
+    rigidBody.angularVelocity = body.omega;
+    rigidBody.centreOfMass = body.x;
+    if (transform != nullptr) {
+        transform->position = body.userPosition();
+        transform->rotation = body.userOrientation();
+    }
+}
+
 }  // namespace
 
 void PhysicsSystem::sync() {
+    createNewObjects();
+    applyChanges();
+}
+
+void PhysicsSystem::createNewObjects() {
     Registry& registry = *registry_;
     World& world = *world_;
 
@@ -40,6 +71,9 @@ void PhysicsSystem::sync() {
             if (transform == nullptr) continue;
             rigidBody.id = world.createBody(
                 toBodyDef(*transform, rigidBody, registry.tryGet<Collider>(entities[i])));
+            const Body& body = world.body(rigidBody.id);
+            rigidBody.centreOfMass = body.x;
+            rigidBody.simulatedMass = body.isDynamic() ? body.mass : 0.0;
         }
     }
 
@@ -57,23 +91,80 @@ void PhysicsSystem::sync() {
     }
 }
 
-void PhysicsSystem::step(double dt) {
-    sync();
-    world_->step(dt);
-    writeTransforms();
+void PhysicsSystem::applyChanges() {
+    Registry& registry = *registry_;
+    World& world = *world_;
+    // Most steps of most scenes change nothing: they pay four tests.
+    if (!anyPatched<Transform>(registry) && !anyPatched<RigidBody>(registry) &&
+        !anyPatched<Collider>(registry) && !anyPatched<Joint>(registry))
+        return;
+    std::vector<Entity> changed;
+
+    // Poses before velocities: a script that places a body and sets it moving gets both.
+    takeChanged<Transform>(registry, changed);
+    for (const Entity entity : changed) {
+        const RigidBody* rigidBody = registry.tryGet<RigidBody>(entity);
+        const Transform* transform = registry.tryGet<Transform>(entity);
+        if (rigidBody == nullptr || transform == nullptr || !world.isValid(rigidBody->id)) continue;
+        world.setBodyPose(rigidBody->id, transform->position, transform->rotation);
+        // The Transform reads back as the world has it (the same pose, within rounding), as it
+        // does after every step. Velocities are left alone: a patch of them may follow.
+        const Body& body = world.body(rigidBody->id);
+        Transform& moved = *registry.tryGet<Transform>(entity);
+        moved.position = body.userPosition();
+        moved.rotation = body.userOrientation();
+        registry.tryGet<RigidBody>(entity)->centreOfMass = body.x;
+    }
+    takeChanged<RigidBody>(registry, changed);
+    for (const Entity entity : changed) {
+        const RigidBody* rigidBody = registry.tryGet<RigidBody>(entity);
+        if (rigidBody == nullptr || !world.isValid(rigidBody->id)) continue;
+        world.setBodyVelocity(rigidBody->id, rigidBody->velocity, rigidBody->angularVelocity);
+    }
+    takeChanged<Collider>(registry, changed);
+    for (const Entity entity : changed) {
+        const RigidBody* rigidBody = registry.tryGet<RigidBody>(entity);
+        const Collider* collider = registry.tryGet<Collider>(entity);
+        if (rigidBody == nullptr || collider == nullptr || !world.isValid(rigidBody->id)) continue;
+        world.setBodySurface(rigidBody->id, collider->staticFriction, collider->dynamicFriction,
+                             collider->restitution, collider->collide);
+    }
+    takeChanged<Joint>(registry, changed);
+    for (const Entity entity : changed) {
+        const Joint* joint = registry.tryGet<Joint>(entity);
+        if (joint == nullptr || !world.isValid(joint->id)) continue;
+        world.updateJoint(joint->id, joint->def);
+    }
 }
 
-void PhysicsSystem::writeTransforms() {
+std::chrono::steady_clock::duration PhysicsSystem::step(double dt) {
+    sync();
+    const auto start = std::chrono::steady_clock::now();
+    world_->step(dt);
+    const auto elapsed = std::chrono::steady_clock::now() - start;
+    writeBack();
+    return elapsed;
+}
+
+void PhysicsSystem::writeBack() {
     const World& world = *world_;
-    registry_->view<RigidBody, Transform>().each(
-        [&](const RigidBody& rigidBody, Transform& transform) {
-            if (!world.isValid(rigidBody.id)) return;
+    if (ComponentPool<RigidBody>* rigidBodies = registry_->findPool<RigidBody>()) {
+        const std::span<const Entity> entities = rigidBodies->entities();
+        const std::span<RigidBody> components = rigidBodies->components();
+        ComponentPool<Transform>* transforms = registry_->findPool<Transform>();
+        for (std::size_t i = 0; i < components.size(); ++i) {
+            RigidBody& rigidBody = components[i];
+            if (!world.isValid(rigidBody.id)) continue;
             const Body& body = world.body(rigidBody.id);
-            // A static body never moves: its Transform stays exactly what it was created from.
-            if (!body.isDynamic()) return;
-            transform.position = body.userPosition();
-            transform.rotation = body.userOrientation();
-        });
+            // Static bodies are written too: what a reader sees is the world's pose of the
+            // body's user frame, the same bits a dynamic body's pose has.
+            writeBody(body, rigidBody, transforms != nullptr ? transforms->tryGet(entities[i]) : nullptr);
+        }
+    }
+    if (ComponentPool<Joint>* joints = registry_->findPool<Joint>()) {
+        for (Joint& joint : joints->components())
+            joint.readout = world.isValid(joint.id) ? world.jointReadout(joint.id) : JointReadout{};
+    }
 }
 
 void PhysicsSystem::destroy(Entity entity) {
@@ -91,6 +182,7 @@ void PhysicsSystem::destroy(Entity entity) {
             if (owners[i] != entity && joint.body0 != entity && joint.body1 != entity) continue;
             world.destroyJoint(joint.id);
             joint.id = {};
+            joint.readout = {};
         }
     }
     if (RigidBody* rigidBody = registry.tryGet<RigidBody>(entity)) {

@@ -1,5 +1,12 @@
 #pragma once
-/// The physics system: builds the XPBD world from components and writes the simulation back.
+/// The physics system: the one place where the engine layer meets the XPBD world.
+///
+/// It creates a world object for every new component (RigidBody with Transform, Joint),
+/// applies the components changed through Registry::patch before each step, steps the world,
+/// writes back what the simulation made of them (Transform; RigidBody's velocities and centre of
+/// mass; Joint's readout), and destroys the world objects of destroyed entities. The sandbox
+/// (commands, window, scene scripts, drawing, dragging) goes through it and the components; it
+/// never changes the World itself.
 ///
 /// It holds no state of its own, only references to a registry and a world, so it is cheap to
 /// make wherever it is needed (SceneInstance::physics() makes one on demand). That keeps a
@@ -8,13 +15,15 @@
 /// turns components into BodyDef/JointDef and keeps the returned ids in the components.
 ///
 /// Entities with physics components must be destroyed through destroy(), not Registry::destroy,
-/// so their world bodies and joints go with them. (An automatic cleanup pass would need the
-/// system to remember which world objects it made, i.e. state that must follow moves; one
-/// explicit call is simpler and does its work at once.)
+/// so their world bodies and joints go with them.
 
 #include "ecs/entity.h"
 #include "ecs/registry.h"
+#include "physics/debug_draw.h"
 #include "physics/world.h"
+
+#include <chrono>
+#include <vector>
 
 namespace substep::ecs {
 
@@ -23,20 +32,27 @@ class PhysicsSystem {
     /// Binds the system to a registry and a world; both must outlive it.
     PhysicsSystem(Registry& registry, World& world) : registry_(&registry), world_(&world) {}
 
-    /// Creates the world objects that components ask for and do not have yet. First bodies, for
-    /// every entity with RigidBody and Transform (Collider optional) whose RigidBody::id is null,
-    /// in the RigidBody pool's dense order (the order the components were added, as long as none
-    /// was removed); then joints, for every Joint with a null id whose body entities are the
-    /// world (null) or have their bodies, in the Joint pool's dense order. A Joint whose body
-    /// entity has been destroyed stays dormant.
+    /// Brings the world up to date with the components:
+    /// - creates bodies for RigidBody + Transform entities (Collider optional) whose id is null,
+    ///   in the RigidBody pool's dense order (the order the components were added, as long as
+    ///   none was removed), filling RigidBody::centreOfMass and simulatedMass; then joints, for
+    ///   every Joint with a null id whose body entities are the world (null) or have their
+    ///   bodies, in the Joint pool's dense order. A Joint whose body entity has been destroyed
+    ///   stays dormant;
+    /// - applies the patched components, in the order they were patched: Transform moves the
+    ///   body, RigidBody sets its velocities, Collider its friction, restitution and collide flag,
+    ///   Joint the joint's parameters (World::updateJoint). A Collider's shape and a RigidBody's
+    ///   type and mass are fixed at creation: to change them, destroy the entity and make another.
     void sync();
 
-    /// sync(), then one world step of dt, then writeTransforms().
-    void step(double dt);
+    /// sync(), one world step of dt, writeBack(). Returns the time of the world's step alone
+    /// (what `bench`, `run` and `sweep` report), without the system's own work.
+    std::chrono::steady_clock::duration step(double dt);
 
-    /// Sets each simulated body's Transform to the pose of its user frame (for a caller that
-    /// steps the world itself). Static bodies keep the Transform they were created from.
-    void writeTransforms();
+    /// Writes the world's state into the components: each body's Transform (the pose of its user
+    /// frame), velocities and centre of mass, and each joint's readout. buildScene calls it once
+    /// after creating a scene, so components read the initial state as the world has it.
+    void writeBack();
 
     /// Destroys the entity, its world body (with every world joint attached to that body), the
     /// world joint of its Joint component, and the world joints of Joint components that name
@@ -44,10 +60,26 @@ class PhysicsSystem {
     /// entities are ignored.
     void destroy(Entity entity);
 
+    /// The solver settings (substeps, iterations, gravity, velocity pass, ...).
+    const WorldSettings& settings() const { return world_->settings(); }
+    void setSettings(const WorldSettings& settings) { world_->setSettings(settings); }
+    /// Asks the next step to repair large joint violations first (after a script or a knob has
+    /// moved limits or targets far from the current pose; WorldSettings::repairDistance).
+    void requestRepair() { world_->requestRepair(); }
+
+    /// The physics core's debug draw list of the current state (physics/debug_draw.h).
+    void debugDraw(const DebugDrawOptions& options, DebugDrawList& list) const {
+        drawWorld(*world_, options, list);
+    }
+
     Registry& registry() const { return *registry_; }
-    World& world() const { return *world_; }
+    /// Read-only: global measures (energies, penetration, step times) for the sandbox's readouts.
+    const World& world() const { return *world_; }
 
   private:
+    void createNewObjects();
+    void applyChanges();
+
     Registry* registry_;
     World* world_;
 };

@@ -99,6 +99,20 @@ class Registry {
         return pool->get(entity);
     }
 
+    /// Changes the entity's component T in place through `change(T&)` and records the change,
+    /// so that a system mirroring T (the physics system: Transform, RigidBody, Collider, Joint)
+    /// applies it before its next step. A component written directly through get() is not seen
+    /// by such systems. Precondition: has<T>(entity). Returns the component.
+    template <class T, class Change>
+    T& patch(Entity entity, Change&& change) {
+        ComponentPool<T>* pool = findPool<T>();
+        assert(pool != nullptr);
+        T& component = pool->get(entity);
+        std::forward<Change>(change)(component);
+        pool->markChanged(entity);
+        return component;
+    }
+
     /// The entity's component T, or nullptr (also for invalid entities).
     template <class T>
     T* tryGet(Entity entity) {

@@ -2,6 +2,7 @@
 
 #include "physics/collision/narrowphase.h"
 #include "physics/collision/shape_bounds.h"
+#include "physics/joints/joint_frame.h"
 #include "physics/joints/joint_parts.h"
 #include "physics/joints/joint_solver.h"
 
@@ -16,22 +17,8 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-/// Joint frame [a, b, c] from an axis and an optional normal, in one body's user frame. A
-/// missing normal is the same fixed perpendicular of the axis on both sides, so equal axes on
-/// equally oriented bodies give angle 0.
 /// Whether a body takes part in collision detection.
 bool collides(const Body& b) { return b.alive && b.collide && b.shape.type != ShapeType::None; }
-
-Quat jointFrame(const Vec3& axis, const std::optional<Vec3>& normal) {
-    const Vec3 a = axis.normalized();
-    Vec3 b = normal ? (*normal - normal->dot(a) * a) : anyPerpendicular(a);
-    b = b.norm() > kDirectionEpsilon ? b.normalized() : anyPerpendicular(a);
-    Mat3 frame;
-    frame.col(0) = a;
-    frame.col(1) = b;
-    frame.col(2) = a.cross(b);
-    return Quat(frame).normalized();
-}
 
 /// One Newton step of the implicit gyroscopic update (Catto, "Numerical Methods", GDC 2015):
 /// ω' = ω − J⁻¹ h ω × Iω with J = I + h ([ω]× I − [Iω]×), all in the principal frame.
@@ -95,36 +82,7 @@ JointId World::createJoint(const JointDef& def) {
     joint.type = def.type;
     joint.body0 = def.body0.isNull() ? 0 : def.body0.index;
     joint.body1 = def.body1.isNull() ? 0 : def.body1.index;
-    // Anchors and frames go from each body's user frame into its principal frame; the world's
-    // are already in world coordinates.
-    const Body& b0 = bodies_[joint.body0];
-    const Body& b1 = bodies_[joint.body1];
-    joint.anchor0 = b0.userRotation * def.anchor0 + b0.userOrigin;
-    joint.anchor1 = b1.userRotation * def.anchor1 + b1.userOrigin;
-    joint.frame0 = (b0.userRotation * jointFrame(def.axis0, def.normal0)).normalized();
-    joint.frame1 = (b1.userRotation * jointFrame(def.axis1, def.normal1)).normalized();
-    joint.compliance = def.compliance;
-    joint.maxDistance = def.maxDistance;
-    joint.hasLimits = def.limits.has_value();
-    if (def.limits) joint.limits = *def.limits;
-    joint.limitCompliance = def.limitCompliance;
-    joint.driveCompliance = def.driveCompliance;
-    if (def.targetVelocity) {
-        joint.drive = Joint::Drive::Velocity;
-        joint.targetVelocity = *def.targetVelocity;
-        joint.target = def.type == JointType::Hinge ? hingeAngle(joint, bodies_.data()) : 0.0;
-    } else if (def.targetAngle || def.targetOffset) {
-        joint.drive = Joint::Drive::Position;
-        joint.target = def.targetAngle ? *def.targetAngle : *def.targetOffset;
-    }
-    joint.hasSwingLimit = def.swingLimit.has_value();
-    joint.swingLimit = def.swingLimit.value_or(0.0);
-    joint.hasTwistLimits = def.twistLimits.has_value();
-    if (def.twistLimits) joint.twistLimits = *def.twistLimits;
-    joint.twistCompliance = def.twistCompliance.value_or(def.limitCompliance);
-    joint.linearDamping = def.linearDamping;
-    joint.angularDamping = def.angularDamping;
-    joint.collide = def.collide;
+    setJointParameters(joint, def);
     joint.alive = true;
     joint.generation = nextGeneration_++;
     repairPending_ = true;

@@ -75,6 +75,20 @@ public:
 
     bool isValid(BodyId id) const;
     bool isValid(JointId id) const;
+
+    /// Gives a live joint the parameters of `def` (anchors, frames, compliances, limits, drives,
+    /// damping, collide; not its bodies or type), keeping its running state: a motor keeps the
+    /// angle it has reached. Parameters set to the values they have change nothing.
+    void updateJoint(JointId id, const JointDef& def);
+    /// Moves a body's user frame to a pose (a static mount carried, a body placed); it keeps its
+    /// velocity. An orientation within rounding of the current one leaves the rotation alone.
+    void setBodyPose(BodyId id, const Vec3& position, const Quat& orientation);
+    /// Sets a dynamic body's velocity (of its centre of mass) and angular velocity; static bodies
+    /// ignore it.
+    void setBodyVelocity(BodyId id, const Vec3& velocity, const Vec3& angularVelocity);
+    /// Sets a body's friction, restitution and whether it collides.
+    void setBodySurface(BodyId id, double staticFriction, double dynamicFriction,
+                        double restitution, bool collide);
     const Body& body(BodyId id) const { return bodies_[id.index]; }
     Body& body(BodyId id) { return bodies_[id.index]; }
     const Joint& joint(JointId id) const { return joints_[id.index]; }
@@ -113,6 +127,8 @@ public:
     std::span<const Contact> contacts() const { return contacts_; }
 
 private:
+    /// Copies a definition's parameters into a joint whose bodies are set (world_edits.cpp).
+    void setJointParameters(Joint& joint, const JointDef& def);
     void repairLargeViolations(double h);
     void collectContactPairs(double dt);
     void findContacts();

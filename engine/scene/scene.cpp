@@ -35,16 +35,9 @@ Vec3 defaultColour(std::size_t bodyIndex, const BodyDef& def) {
 }  // namespace
 
 SceneInstance buildScene(const SceneDescription& description) {
-    SceneInstance instance{
-        .world = World(WorldSettings{.gravity = description.gravity,
-                                     .substeps = description.substeps,
-                                     .iterations = description.iterations}),
-        .namedBodies = {},
-        .namedJoints = {},
-        .registry = {},
-        .bodyEntities = {},
-        .jointEntities = {},
-    };
+    SceneInstance instance(World(WorldSettings{.gravity = description.gravity,
+                                               .substeps = description.substeps,
+                                               .iterations = description.iterations}));
     ecs::Registry& registry = instance.registry;
 
     // One entity per body, in order; named ones are remembered for joints.
@@ -87,33 +80,66 @@ SceneInstance buildScene(const SceneDescription& description) {
     }
 
     // The system creates every body, then every joint, each in the order added above.
-    instance.physics().sync();
+    // Components then read back the initial state as the world holds it.
+    ecs::PhysicsSystem physics = instance.physics();
+    physics.sync();
+    physics.writeBack();
 
-    for (std::size_t i = 0; i < description.bodies.size(); ++i) {
-        const std::string& name = description.bodies[i].name;
-        if (name.empty()) continue;
-        instance.namedBodies.emplace_back(
-            name, registry.get<ecs::RigidBody>(instance.bodyEntities[i]).id);
-    }
-    for (std::size_t i = 0; i < description.joints.size(); ++i) {
-        const std::string& name = description.joints[i].name;
-        if (name.empty()) continue;
-        instance.namedJoints.emplace_back(name,
-                                          registry.get<ecs::Joint>(instance.jointEntities[i]).id);
-    }
     return instance;
 }
 
-BodyId SceneInstance::bodyNamed(std::string_view name) const {
-    for (const auto& [bodyName, id] : namedBodies)
-        if (bodyName == name) return id;
-    return {};
+namespace {
+
+/// The entity among `entities` whose Name is `name`, or the null entity.
+ecs::Entity findNamed(const ecs::Registry& registry, const std::vector<ecs::Entity>& entities,
+                     std::string_view name) {
+    for (const ecs::Entity entity : entities) {
+        const ecs::Name* entityName = registry.tryGet<ecs::Name>(entity);
+        if (entityName != nullptr && entityName->value == name) return entity;
+    }
+    return ecs::kNullEntity;
 }
 
-JointId SceneInstance::jointNamed(std::string_view name) const {
-    for (const auto& [jointName, id] : namedJoints)
-        if (jointName == name) return id;
-    return {};
+}  // namespace
+
+ecs::Entity SceneInstance::bodyNamed(std::string_view name) const {
+    return findNamed(registry, bodyEntities, name);
+}
+
+ecs::Entity SceneInstance::jointNamed(std::string_view name) const {
+    return findNamed(registry, jointEntities, name);
+}
+
+BodyId SceneInstance::bodyIdNamed(std::string_view name) const {
+    const ecs::Entity entity = bodyNamed(name);
+    const ecs::RigidBody* body = entity.isNull() ? nullptr : registry.tryGet<ecs::RigidBody>(entity);
+    return body != nullptr ? body->id : BodyId{};
+}
+
+JointId SceneInstance::jointIdNamed(std::string_view name) const {
+    const ecs::Entity entity = jointNamed(name);
+    const ecs::Joint* joint = entity.isNull() ? nullptr : registry.tryGet<ecs::Joint>(entity);
+    return joint != nullptr ? joint->id : JointId{};
+}
+
+std::vector<std::pair<std::string, BodyId>> SceneInstance::namedBodyIds() const {
+    std::vector<std::pair<std::string, BodyId>> named;
+    for (const ecs::Entity entity : bodyEntities) {
+        const ecs::Name* name = registry.tryGet<ecs::Name>(entity);
+        const ecs::RigidBody* body = registry.tryGet<ecs::RigidBody>(entity);
+        if (name != nullptr && body != nullptr) named.emplace_back(name->value, body->id);
+    }
+    return named;
+}
+
+std::vector<std::pair<std::string, JointId>> SceneInstance::namedJointIds() const {
+    std::vector<std::pair<std::string, JointId>> named;
+    for (const ecs::Entity entity : jointEntities) {
+        const ecs::Name* name = registry.tryGet<ecs::Name>(entity);
+        const ecs::Joint* joint = registry.tryGet<ecs::Joint>(entity);
+        if (name != nullptr && joint != nullptr) named.emplace_back(name->value, joint->id);
+    }
+    return named;
 }
 
 }  // namespace substep

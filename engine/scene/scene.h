@@ -49,30 +49,45 @@ struct SceneDescription {
     std::optional<SceneCamera> camera;
 };
 
-/// A scene built from a description: its entities and the world the physics system made from
-/// them, with the ids of its named bodies and joints in file order.
+/// A scene built from a description: its entities and components, and the world the physics
+/// system made from them and alone changes.
 ///
 /// Returned by value and moved: nothing in it points at another member (the registry's pools
 /// are on the heap, and the physics system binding registry and world is made on demand by
 /// physics()), so a moved instance is whole.
-struct SceneInstance {
-    World world;
-    std::vector<std::pair<std::string, BodyId>> namedBodies;
-    std::vector<std::pair<std::string, JointId>> namedJoints;
-
+class SceneInstance {
+  public:
     /// One entity per body of the description (Transform, RigidBody, Collider, RenderMaterial,
     /// Name when named) and one per joint (Joint, Name when named).
     ecs::Registry registry;
     std::vector<ecs::Entity> bodyEntities;   ///< in description order
     std::vector<ecs::Entity> jointEntities;  ///< in description order
 
-    /// The id of the body or joint named `name`; a null id (World::isValid false) when none is.
-    BodyId bodyNamed(std::string_view name) const;
-    JointId jointNamed(std::string_view name) const;
+    /// The entity whose Name is `name`, or the null entity when none is. Names are unique in a
+    /// scene (the loader and buildScene check), bodies and joints alike in one namespace per kind:
+    /// bodyNamed looks among bodies, jointNamed among joints.
+    ecs::Entity bodyNamed(std::string_view name) const;
+    ecs::Entity jointNamed(std::string_view name) const;
+    /// The world id of the body or joint named `name` (null when there is none), for tests and
+    /// diagnostics that read the world.
+    BodyId bodyIdNamed(std::string_view name) const;
+    JointId jointIdNamed(std::string_view name) const;
+    /// The named bodies and joints with their world ids, in description order.
+    std::vector<std::pair<std::string, BodyId>> namedBodyIds() const;
+    std::vector<std::pair<std::string, JointId>> namedJointIds() const;
 
-    /// The physics system over this instance's registry and world. Made per call and cheap; do
-    /// not keep it across a move of the instance.
-    ecs::PhysicsSystem physics() { return ecs::PhysicsSystem(registry, world); }
+    /// The physics system over this instance's registry and world: the way to step the scene and
+    /// change its world. Made per call and cheap; do not keep it across a move of the instance.
+    ecs::PhysicsSystem physics() { return ecs::PhysicsSystem(registry, world_); }
+    /// The world, read-only: global measures (energies, penetration) and tests. Changes go through
+    /// components and physics().
+    const World& world() const { return world_; }
+
+  private:
+    friend SceneInstance buildScene(const SceneDescription& description);
+    explicit SceneInstance(World world) : world_(std::move(world)) {}
+
+    World world_;
 };
 
 /// Builds the entities, then the world from them: bodies in description order, then joints in

@@ -11,6 +11,8 @@
 #include "scenes/asset_path.h"
 #include "scenes/scenes.h"
 
+#include "ecs/components.h"
+
 #include "physics/collision/convex_hull.h"
 #include "physics/collision/convex_mesh_shape.h"
 #include "physics/mass_properties.h"
@@ -115,47 +117,46 @@ class BunnyChainScript final : public SceneScript {
     }
 
     void start(SceneInstance& scene) override {
-        end_ = {};
-        for (const auto& [name, id] : scene.namedBodies)
-            if (name == "bunny" + std::to_string(kBunnies)) end_ = id;
+        end_ = scene.bodyNamed("bunny" + std::to_string(kBunnies));
         // The chain swings out from the ceiling anchor by the release angle, joints intact.
         const double angle = knob(releaseAngle_) * M_PI / 180.0;
         if (angle == 0.0) return;
         const Quat turn(Eigen::AngleAxisd(angle, Vec3::UnitZ()));
         const Vec3 anchor = ceilingAnchor();
-        for (const auto& [name, id] : scene.namedBodies) {
-            if (name.rfind("bunny", 0) != 0) continue;
-            Body& body = scene.world.body(id);
-            body.x = anchor + turn * (body.x - anchor);
-            body.q = (turn * body.q).normalized();
-            body.xPrev = body.x;
-            body.qPrev = body.q;
+        for (const ecs::Entity body : scene.bodyEntities) {
+            const ecs::Name* name = scene.registry.tryGet<ecs::Name>(body);
+            if (name == nullptr || name->value.rfind("bunny", 0) != 0) continue;
+            scene.registry.patch<ecs::Transform>(body, [&](ecs::Transform& transform) {
+                transform.position = anchor + turn * (transform.position - anchor);
+                transform.rotation = (turn * transform.rotation).normalized();
+            });
         }
     }
 
     void knobChanged(SceneInstance& scene, std::size_t index) override {
         if (index != solver_) return;
         const SolverSplit split = kSplits[static_cast<std::size_t>(knob(solver_))];
-        WorldSettings settings = scene.world.settings();
+        ecs::PhysicsSystem physics = scene.physics();
+        WorldSettings settings = physics.settings();
         settings.substeps = split.substeps;
         settings.iterations = split.iterations;
-        scene.world.setSettings(settings);
+        physics.setSettings(settings);
     }
 
     void readouts(const SceneInstance& scene, std::vector<SceneReadout>& out) const override {
-        if (!scene.world.isValid(end_)) return;
-        const Body& last = scene.world.body(end_);
-        const Vec3 endPoint = last.userPosition() + last.userOrientation() * Vec3(0.0, -kPitch / 2, 0.0);
+        if (!scene.registry.isValid(end_)) return;
+        const ecs::Transform& last = scene.registry.get<ecs::Transform>(end_);
+        const Vec3 endPoint = last.position + last.rotation * Vec3(0.0, -kPitch / 2, 0.0);
         const double rest = kBunnies * kPitch;
         out.push_back({.label = "elongation (%)", .value = 100.0 * ((endPoint - ceilingAnchor()).norm() - rest) / rest});
-        out.push_back({.label = "substeps", .value = double(scene.world.settings().substeps), .format = "%.0f"});
-        out.push_back({.label = "iterations", .value = double(scene.world.settings().iterations), .format = "%.0f"});
+        out.push_back({.label = "substeps", .value = double(scene.world().settings().substeps), .format = "%.0f"});
+        out.push_back({.label = "iterations", .value = double(scene.world().settings().iterations), .format = "%.0f"});
     }
 
   private:
     std::size_t solver_ = 0;
     std::size_t releaseAngle_ = 0;
-    BodyId end_;
+    ecs::Entity end_;
 };
 
 }  // namespace

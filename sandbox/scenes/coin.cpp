@@ -19,6 +19,8 @@
 
 #include "scenes/scenes.h"
 
+#include "ecs/components.h"
+
 
 #include <algorithm>
 #include <cmath>
@@ -61,16 +63,16 @@ SceneDescription buildCoin() {
 }
 
 /// Angle of the coin's face from the table (rad): 0 flat, π/2 upright.
-double coinTilt(const Body& coin) {
-    const Vec3 axis = coin.userOrientation() * Vec3::UnitY();
+double coinTilt(const Quat& orientation) {
+    const Vec3 axis = orientation * Vec3::UnitY();
     return std::acos(std::clamp(std::abs(axis.y()), 0.0, 1.0));
 }
 
 /// Rate (rad/s) at which the coin's axis turns about the vertical: the wobble.
-double coinPrecessionRate(const Body& coin) {
+double coinPrecessionRate(const Quat& orientation, const Vec3& angularVelocity) {
     // The axis u turns at u̇ = ω × u; its azimuth about the vertical at (u_h × u̇_h)·y / |u_h|².
-    const Vec3 axis = coin.userOrientation() * Vec3::UnitY();
-    const Vec3 rate = coin.omega.cross(axis);
+    const Vec3 axis = orientation * Vec3::UnitY();
+    const Vec3 rate = angularVelocity.cross(axis);
     const double horizontal2 = axis.x() * axis.x() + axis.z() * axis.z();
     if (!(horizontal2 > 1e-12)) return 0.0;
     return (axis.z() * rate.x() - axis.x() * rate.z()) / horizontal2;
@@ -127,42 +129,48 @@ class CoinScript : public SceneScript {
     }
 
     void readouts(const SceneInstance& scene, std::vector<SceneReadout>& out) const override {
-        if (!scene.world.isValid(coin_)) return;
-        const Body& coin = scene.world.body(coin_);
-        const double tilt = coinTilt(coin);
+        if (!scene.registry.isValid(coin_)) return;
+        const Quat& orientation = scene.registry.get<ecs::Transform>(coin_).rotation;
+        const Vec3& angularVelocity = scene.registry.get<ecs::RigidBody>(coin_).angularVelocity;
+        const double tilt = coinTilt(orientation);
         out.push_back({"tilt of the face from the table (deg)", tilt / kDegree, "%.2f"});
-        out.push_back({"precession rate (rad/s)", std::abs(coinPrecessionRate(coin)), "%.1f"});
+        out.push_back({"precession rate (rad/s)", std::abs(coinPrecessionRate(orientation, angularVelocity)), "%.1f"});
         out.push_back({"steady rolling prediction (rad/s)", steadyPrecessionRate(tilt), "%.1f"});
     }
 
   private:
     void applyFriction(SceneInstance& scene) const {
-        for (BodyId id : {coin_, table_}) {
-            if (!scene.world.isValid(id)) continue;
-            scene.world.body(id).staticFriction = knob(friction_);
-            scene.world.body(id).dynamicFriction = knob(friction_);
+        for (const ecs::Entity body : {coin_, table_}) {
+            if (!scene.registry.isValid(body)) continue;
+            scene.registry.patch<ecs::Collider>(body, [&](ecs::Collider& collider) {
+                collider.staticFriction = knob(friction_);
+                collider.dynamicFriction = knob(friction_);
+            });
         }
     }
 
     /// On its rim at the knob's tilt from upright, the lowest rim corner on the table, spinning
     /// about the vertical through its centre.
     void place(SceneInstance& scene) const {
-        if (!scene.world.isValid(coin_)) return;
-        Body& coin = scene.world.body(coin_);
+        if (!scene.registry.isValid(coin_)) return;
         const double alpha = std::clamp(90.0 - knob(tilt_), 0.0, 90.0) * kDegree;  // face to table
         const Quat orientation(Eigen::AngleAxisd(alpha, Vec3::UnitZ()));
         const Vec3 centre(0.0, kCoinRadius * std::sin(alpha) + 0.5 * kCoinThickness * std::cos(alpha), 0.0);
-        coin.q = (orientation * coin.userRotation.conjugate()).normalized();
-        coin.x = centre - coin.q * coin.userOrigin;
-        coin.v = Vec3::Zero();
-        coin.omega = Vec3(0.0, knob(spin_), 0.0);
+        scene.registry.patch<ecs::Transform>(coin_, [&](ecs::Transform& transform) {
+            transform.position = centre;
+            transform.rotation = orientation;
+        });
+        scene.registry.patch<ecs::RigidBody>(coin_, [&](ecs::RigidBody& coin) {
+            coin.velocity = Vec3::Zero();
+            coin.angularVelocity = Vec3(0.0, knob(spin_), 0.0);
+        });
     }
 
     std::size_t spin_ = 0;
     std::size_t tilt_ = 0;
     std::size_t friction_ = 0;
-    BodyId coin_;
-    BodyId table_;
+    ecs::Entity coin_;
+    ecs::Entity table_;
 };
 
 }  // namespace

@@ -11,6 +11,8 @@
 
 #include "scenes/scenes.h"
 
+#include "ecs/components.h"
+
 
 #include <algorithm>
 #include <array>
@@ -99,49 +101,56 @@ class CradleScript : public SceneScript {
         if (index == velocityPass_) applyVelocityPass(scene);
         if (index == restitution_) applyRestitution(scene);
         // A new speed takes effect while the striker is still on its way in, else at restart.
-        if (index == speed_ && scene.world.isValid(striker_) &&
-            scene.world.body(striker_).x.x() > rowX(kRowSize - 1) + 2.0 * kMarbleRadius + 1e-3)
+        if (index == speed_ && scene.registry.isValid(striker_) &&
+            scene.registry.get<ecs::RigidBody>(striker_).centreOfMass.x() >
+                rowX(kRowSize - 1) + 2.0 * kMarbleRadius + 1e-3)
             launch(scene);
     }
 
     void readouts(const SceneInstance& scene, std::vector<SceneReadout>& out) const override {
-        if (!scene.world.isValid(row_[0]) || !scene.world.isValid(striker_)) return;
+        if (!scene.registry.isValid(row_[0]) || !scene.registry.isValid(striker_)) return;
         const double initial = std::max(launchedSpeed_, 1e-9);
-        out.push_back({"far marble speed / striker's initial",
-                       scene.world.body(row_[0]).v.norm() / initial, "%.3f"});
-        out.push_back(
-            {"striker speed / its initial", scene.world.body(striker_).v.norm() / initial, "%.3f"});
+        const auto speed = [&](ecs::Entity marble) {
+            return scene.registry.get<ecs::RigidBody>(marble).velocity.norm();
+        };
+        out.push_back({"far marble speed / striker's initial", speed(row_[0]) / initial, "%.3f"});
+        out.push_back({"striker speed / its initial", speed(striker_) / initial, "%.3f"});
     }
 
   private:
     void applyVelocityPass(SceneInstance& scene) const {
-        WorldSettings settings = scene.world.settings();
+        ecs::PhysicsSystem physics = scene.physics();
+        WorldSettings settings = physics.settings();
         settings.velocityPass = toggled(velocityPass_);
-        scene.world.setSettings(settings);
+        physics.setSettings(settings);
     }
 
     void applyRestitution(SceneInstance& scene) const {
-        for (BodyId id : row_)
-            if (scene.world.isValid(id)) scene.world.body(id).restitution = knob(restitution_);
-        if (scene.world.isValid(striker_))
-            scene.world.body(striker_).restitution = knob(restitution_);
+        const auto setRestitution = [&](ecs::Entity marble) {
+            if (!scene.registry.isValid(marble)) return;
+            scene.registry.patch<ecs::Collider>(
+                marble, [&](ecs::Collider& collider) { collider.restitution = knob(restitution_); });
+        };
+        for (const ecs::Entity marble : row_) setRestitution(marble);
+        setRestitution(striker_);
     }
 
     /// Sets the striker rolling towards the row: v along −x, ω = v / r about +z, so its
     /// contact point with the ground is at rest.
     void launch(SceneInstance& scene) {
         launchedSpeed_ = knob(speed_);
-        if (!scene.world.isValid(striker_)) return;
-        Body& striker = scene.world.body(striker_);
-        striker.v = Vec3(-launchedSpeed_, 0.0, 0.0);
-        striker.omega = Vec3(0.0, 0.0, launchedSpeed_ / kMarbleRadius);
+        if (!scene.registry.isValid(striker_)) return;
+        scene.registry.patch<ecs::RigidBody>(striker_, [&](ecs::RigidBody& striker) {
+            striker.velocity = Vec3(-launchedSpeed_, 0.0, 0.0);
+            striker.angularVelocity = Vec3(0.0, 0.0, launchedSpeed_ / kMarbleRadius);
+        });
     }
 
     size_t velocityPass_ = 0;
     size_t speed_ = 0;
     size_t restitution_ = 0;
-    std::array<BodyId, kRowSize> row_{};
-    BodyId striker_{};
+    std::array<ecs::Entity, kRowSize> row_{};
+    ecs::Entity striker_{};
     double launchedSpeed_ = kDefaultSpeed;
 };
 

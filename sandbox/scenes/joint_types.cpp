@@ -10,6 +10,9 @@
 
 #include "scenes/scenes.h"
 
+#include "ecs/components.h"
+#include "ecs/joint_pose.h"
+
 #include "physics/joints/joint_parts.h"
 
 #include <algorithm>
@@ -111,35 +114,6 @@ SceneDescription build() {
     return scene;
 }
 
-// ---------------------------------------------------------------------------------------------
-// Measures for the readouts, from the joints' frames (joint_parts.h).
-
-/// Carriage offset along the rail axis: (p1 − p0)·a (m).
-double prismaticOffset(const Joint& joint, const Body* bodies) {
-    const JointAnchors anchors = jointAnchors(joint, bodies);
-    return (anchors.p1 - anchors.p0).dot(worldFrame0(joint, bodies) * Vec3::UnitX());
-}
-
-/// Swing: the angle between the two joint axes (rad).
-double swingAngle(const Joint& joint, const Body* bodies) {
-    const Vec3 a0 = worldFrame0(joint, bodies) * Vec3::UnitX();
-    const Vec3 a1 = worldFrame1(joint, bodies) * Vec3::UnitX();
-    return std::atan2(a0.cross(a1).norm(), a0.dot(a1));
-}
-
-/// Twist about the mean axis between the normals projected off it (Eqs. 22-24), 0 where undefined.
-double twistAngle(const Joint& joint, const Body* bodies) {
-    const Mat3 f0 = worldFrame0(joint, bodies).toRotationMatrix();
-    const Mat3 f1 = worldFrame1(joint, bodies).toRotationMatrix();
-    const Vec3 sum = f0.col(0) + f1.col(0);
-    if (sum.norm() < 1e-6) return 0.0;
-    const Vec3 n = sum.normalized();
-    const Vec3 n0 = f0.col(1) - n.dot(f0.col(1)) * n;
-    const Vec3 n1 = f1.col(1) - n.dot(f1.col(1)) * n;
-    if (n0.norm() < 1e-9 || n1.norm() < 1e-9) return 0.0;
-    return signedAngle(n, n0.normalized(), n1.normalized());
-}
-
 std::string rangeLabel(const char* what, double lower, double upper, const char* unit) {
     char text[96];
     std::snprintf(text, sizeof text, "%s [%s] (limits %.2f .. %.2f)", what, unit, lower, upper);
@@ -184,44 +158,45 @@ class JointTypesScript : public SceneScript {
         hingeDrive_ = scene.jointNamed("hinge_drive_joint");
         ballHard_ = scene.jointNamed("ball_hard_joint");
         ballSoft_ = scene.jointNamed("ball_soft_joint");
-        applyAll(scene.world, 0.0);
+        applyAll(scene.registry, 0.0);
     }
 
     void beforeFrame(SceneInstance& scene, double time, double /*dt*/) override {
-        if (toggled(animate_)) applyTargets(scene.world, time);
+        if (toggled(animate_)) applyTargets(scene.registry, time);
     }
 
     void knobChanged(SceneInstance& scene, std::size_t /*index*/) override {
-        applyAll(scene.world, lastTime_);
+        applyAll(scene.registry, lastTime_);
         // A limit moved past a body is put right before the next step, not turned into speed.
-        scene.world.requestRepair();
+        scene.physics().requestRepair();
     }
 
     void readouts(const SceneInstance& scene, std::vector<SceneReadout>& out) const override {
-        const World& world = scene.world;
-        const Body* bodies = world.bodies().data();
+        const ecs::Registry& registry = scene.registry;
+        const auto pose = [&](ecs::Entity joint) {
+            return ecs::jointPose(registry, registry.get<ecs::Joint>(joint));
+        };
         const double lower = knob(prismaticLower_);
         out.push_back({rangeLabel("prismatic hard offset", lower, kPrismaticUpper, "m"),
-                       prismaticOffset(world.joint(prismaticHard_), bodies), "%.4f"});
+                       ecs::prismaticOffset(pose(prismaticHard_)), "%.4f"});
         out.push_back({rangeLabel("prismatic soft offset", lower, kPrismaticUpper, "m"),
-                       prismaticOffset(world.joint(prismaticSoft_), bodies), "%.4f"});
-        out.push_back({"prismatic drive offset [m] (target " + format("%.3f", world.joint(prismaticDrive_).target) + ")",
-                       prismaticOffset(world.joint(prismaticDrive_), bodies), "%.4f"});
+                       ecs::prismaticOffset(pose(prismaticSoft_)), "%.4f"});
+        out.push_back({"prismatic drive offset [m] (target " + format("%.3f", slideTarget_) + ")",
+                       ecs::prismaticOffset(pose(prismaticDrive_)), "%.4f"});
         const double hinge = knob(hingeLimit_);
         out.push_back({rangeLabel("hinge hard angle", -hinge, hinge, "rad"),
-                       hingeAngle(world.joint(hingeHard_), bodies), "%.4f"});
+                       ecs::hingeAngle(pose(hingeHard_)), "%.4f"});
         out.push_back({rangeLabel("hinge soft angle", -hinge, hinge, "rad"),
-                       hingeAngle(world.joint(hingeSoft_), bodies), "%.4f"});
-        out.push_back({"hinge drive angle [rad] (target " + format("%.3f", world.joint(hingeDrive_).target) + ")",
-                       hingeAngle(world.joint(hingeDrive_), bodies), "%.4f"});
+                       ecs::hingeAngle(pose(hingeSoft_)), "%.4f"});
+        out.push_back({"hinge drive angle [rad] (target " + format("%.3f", hingeTarget()) + ")",
+                       ecs::hingeAngle(pose(hingeDrive_)), "%.4f"});
         const double swing = knob(swingLimit_);
         const double twist = knob(twistLimit_);
-        for (const auto& [label, id] : {std::pair{"ball hard", ballHard_}, std::pair{"ball soft", ballSoft_}}) {
-            const Joint& joint = world.joint(id);
+        for (const auto& [label, joint] : {std::pair{"ball hard", ballHard_}, std::pair{"ball soft", ballSoft_}}) {
             out.push_back({rangeLabel((std::string(label) + " swing").c_str(), 0.0, swing, "rad"),
-                           swingAngle(joint, bodies), "%.4f"});
+                           ecs::swingAngle(pose(joint)), "%.4f"});
             out.push_back({rangeLabel((std::string(label) + " twist").c_str(), -twist, twist, "rad"),
-                           twistAngle(joint, bodies), "%.4f"});
+                           ecs::twistAngle(pose(joint)), "%.4f"});
         }
     }
 
@@ -232,50 +207,74 @@ class JointTypesScript : public SceneScript {
         return text;
     }
 
-    /// The drive targets: the knobs' values, swept about them while `animate` is on.
-    void applyTargets(World& world, double time) {
+    double hingeTarget() const { return hingeAngleTarget_; }
+
+    /// Changes joint `entity`'s definition through the engine layer.
+    template <class Change>
+    static void editJoint(ecs::Registry& registry, ecs::Entity entity, Change&& change) {
+        registry.patch<ecs::Joint>(entity, [&](ecs::Joint& joint) { change(joint.def); });
+    }
+
+    /// The drive targets: the knobs' values, swept about them while `animate` is on; a drive
+    /// that is off has no target.
+    void applyTargets(ecs::Registry& registry, double time) {
         lastTime_ = time;
         const bool sweep = toggled(animate_);
         const double hingeSweep = sweep ? 0.8 * std::sin(1.2 * time) : 0.0;
         const double slideSweep = sweep ? 0.15 * std::sin(1.7 * time) : 0.0;
-        world.joint(hingeDrive_).target = knob(hingeTarget_) + hingeSweep;
-        world.joint(prismaticDrive_).target = std::min(knob(prismaticTarget_) + slideSweep, 0.0);
+        hingeAngleTarget_ = knob(hingeTarget_) + hingeSweep;
+        slideTarget_ = std::min(knob(prismaticTarget_) + slideSweep, 0.0);
+        const bool drives = toggled(drives_);
+        editJoint(registry, hingeDrive_, [&](JointDef& def) {
+            def.targetAngle = drives ? std::optional(hingeAngleTarget_) : std::nullopt;
+        });
+        editJoint(registry, prismaticDrive_, [&](JointDef& def) {
+            def.targetOffset = drives ? std::optional(slideTarget_) : std::nullopt;
+        });
     }
 
-    void applyAll(World& world, double time) {
-        const Joint::Drive drive = toggled(drives_) ? Joint::Drive::Position : Joint::Drive::None;
-        for (JointId id : {hingeDrive_, prismaticDrive_}) {
-            world.joint(id).drive = drive;
-            world.joint(id).driveCompliance = knob(driveCompliance_);
-        }
-        applyTargets(world, time);
+    void applyAll(ecs::Registry& registry, double time) {
+        for (const ecs::Entity joint : {hingeDrive_, prismaticDrive_})
+            editJoint(registry, joint, [&](JointDef& def) { def.driveCompliance = knob(driveCompliance_); });
+        applyTargets(registry, time);
 
-        for (JointId id : {prismaticHard_, prismaticSoft_}) world.joint(id).limits = {knob(prismaticLower_), kPrismaticUpper};
-        world.joint(prismaticSoft_).limitCompliance = knob(softLinear_);
+        const Range slide{knob(prismaticLower_), kPrismaticUpper};
+        for (const ecs::Entity joint : {prismaticHard_, prismaticSoft_})
+            editJoint(registry, joint, [&](JointDef& def) { def.limits = slide; });
+        editJoint(registry, prismaticSoft_, [&](JointDef& def) { def.limitCompliance = knob(softLinear_); });
 
         const double hinge = knob(hingeLimit_);
-        for (JointId id : {hingeHard_, hingeSoft_}) world.joint(id).limits = {-hinge, hinge};
-        world.joint(hingeSoft_).limitCompliance = knob(softAngular_);
+        for (const ecs::Entity joint : {hingeHard_, hingeSoft_})
+            editJoint(registry, joint, [&](JointDef& def) { def.limits = Range{-hinge, hinge}; });
+        editJoint(registry, hingeSoft_, [&](JointDef& def) { def.limitCompliance = knob(softAngular_); });
 
-        for (JointId id : {ballHard_, ballSoft_}) {
-            world.joint(id).swingLimit = knob(swingLimit_);
-            world.joint(id).twistLimits = {-knob(twistLimit_), knob(twistLimit_)};
+        for (const ecs::Entity joint : {ballHard_, ballSoft_}) {
+            editJoint(registry, joint, [&](JointDef& def) {
+                def.swingLimit = knob(swingLimit_);
+                def.twistLimits = Range{-knob(twistLimit_), knob(twistLimit_)};
+            });
         }
-        world.joint(ballSoft_).limitCompliance = knob(softAngular_);
-        world.joint(ballSoft_).twistCompliance = knob(softAngular_);
+        editJoint(registry, ballSoft_, [&](JointDef& def) {
+            def.limitCompliance = knob(softAngular_);
+            def.twistCompliance = knob(softAngular_);
+        });
 
-        for (JointId id : {prismaticHard_, prismaticSoft_, prismaticDrive_, hingeHard_, hingeSoft_, hingeDrive_,
-                           ballHard_, ballSoft_}) {
-            world.joint(id).linearDamping = knob(damping_);
-            world.joint(id).angularDamping = knob(damping_);
+        for (const ecs::Entity joint : {prismaticHard_, prismaticSoft_, prismaticDrive_, hingeHard_, hingeSoft_,
+                                        hingeDrive_, ballHard_, ballSoft_}) {
+            editJoint(registry, joint, [&](JointDef& def) {
+                def.linearDamping = knob(damping_);
+                def.angularDamping = knob(damping_);
+            });
         }
     }
 
     std::size_t animate_, drives_, hingeTarget_, prismaticTarget_, driveCompliance_, softLinear_, softAngular_,
         prismaticLower_, hingeLimit_, swingLimit_, twistLimit_, damping_;
-    JointId prismaticHard_, prismaticSoft_, prismaticDrive_, hingeHard_, hingeSoft_, hingeDrive_, ballHard_,
+    ecs::Entity prismaticHard_, prismaticSoft_, prismaticDrive_, hingeHard_, hingeSoft_, hingeDrive_, ballHard_,
         ballSoft_;
     double lastTime_ = 0.0;
+    double hingeAngleTarget_ = 0.0;  ///< the hinge drive's current target (rad)
+    double slideTarget_ = 0.0;        ///< the prismatic drive's current target (m)
 };
 
 }  // namespace

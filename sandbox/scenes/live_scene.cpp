@@ -9,18 +9,33 @@ LiveScene::LiveScene(SceneDescription description, const SceneEntry* entry)
       script_(entry != nullptr && entry->makeScript != nullptr ? entry->makeScript() : nullptr),
       instance_(buildScene(description_)) {
     if (script_) script_->start(instance_);
+    sync();
 }
 
-void LiveScene::step() {
+std::chrono::steady_clock::duration LiveScene::step() {
     if (script_) script_->beforeFrame(instance_, time(), description_.dt);
-    instance_.world.step(description_.dt);
+    const auto worldStep = instance_.physics().step(description_.dt);
     ++frame_;
+    return worldStep;
 }
 
 void LiveScene::restart() {
     instance_ = buildScene(description_);
     frame_ = 0;
     if (script_) script_->start(instance_);
+    sync();
+}
+
+void LiveScene::sync() {
+    ecs::PhysicsSystem physics = instance_.physics();
+    physics.sync();
+    physics.writeBack();
+}
+
+bool LiveScene::setKnob(std::string_view name, double value) {
+    if (!script_ || !script_->setKnob(instance_, name, value)) return false;
+    sync();
+    return true;
 }
 
 }  // namespace substep

@@ -1,13 +1,17 @@
 #pragma once
 /// A scene as it runs: its built instance, its script (scene_script.h) and the frame count.
-/// Every command and the viewer step scenes through this, so a script acts the same in each.
+/// Every command and the viewer step scenes through this, so a script acts the same in each;
+/// and this steps the scene through the engine layer's physics system, the only way the
+/// sandbox reaches the world.
 
 #include "scenes/scene_registry.h"
 #include "scenes/scene_script.h"
 
 #include "scene/scene.h"
 
+#include <chrono>
 #include <memory>
+#include <string_view>
 
 namespace substep {
 
@@ -18,15 +22,25 @@ class LiveScene {
     /// nullptr for a scene file.
     LiveScene(SceneDescription description, const SceneEntry* entry);
 
-    /// One frame of the scene's dt: the script's beforeFrame, then the world's step.
-    void step();
+    /// One frame of the scene's dt: the script's beforeFrame, then the physics system's step
+    /// (patched components applied, the world stepped, its state written back into components).
+    /// Returns the time of the world's step alone, which the commands report.
+    std::chrono::steady_clock::duration step();
     /// Builds the scene again from its description; the script keeps its knobs.
     void restart();
+    /// Applies what the script or the caller changed in components (Registry::patch) to the
+    /// world now, and reads the world back into components, rather than at the next step: for
+    /// outputs of the state before the first step, and for a knob turned while paused.
+    void sync();
+    /// Sets knob `name` of the script and syncs; false when there is no script or no such knob.
+    bool setKnob(std::string_view name, double value);
 
     SceneInstance& instance() { return instance_; }
     const SceneInstance& instance() const { return instance_; }
-    World& world() { return instance_.world; }
-    const World& world() const { return instance_.world; }
+    /// The scene's physics system (made per call).
+    ecs::PhysicsSystem physics() { return instance_.physics(); }
+    /// The world, read-only (global measures: energies, penetration, step times).
+    const World& world() const { return instance_.world(); }
     /// The script, or nullptr.
     SceneScript* script() { return script_.get(); }
     const SceneScript* script() const { return script_.get(); }

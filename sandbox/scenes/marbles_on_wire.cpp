@@ -11,6 +11,8 @@
 
 #include "scenes/scenes.h"
 
+#include "ecs/components.h"
+
 #include "physics/collision/spline_tube.h"
 
 #include <algorithm>
@@ -98,8 +100,10 @@ class MarblesOnWireScript : public SceneScript {
     void start(SceneInstance& scene) override {
         apply(scene);
         marbles_.clear();
-        for (const auto& [name, id] : scene.namedBodies)
-            if (name.starts_with("marble")) marbles_.push_back(id);
+        for (const ecs::Entity body : scene.bodyEntities) {
+            const ecs::Name* name = scene.registry.tryGet<ecs::Name>(body);
+            if (name != nullptr && name->value.starts_with("marble")) marbles_.push_back(body);
+        }
         highest_ = 0.0;
     }
 
@@ -110,18 +114,18 @@ class MarblesOnWireScript : public SceneScript {
     void beforeFrame(SceneInstance& scene, double /*time*/, double /*dt*/) override {
         // The highest any marble has been above its resting height on the track (the jump),
         // measured vertically from the parabola the wires follow: a few mm off on the slopes.
-        for (BodyId id : marbles_) {
-            if (!scene.world.isValid(id)) continue;
-            const Vec3& x = scene.world.body(id).x;
+        for (const ecs::Entity marble : marbles_) {
+            if (!scene.registry.isValid(marble)) continue;
+            const Vec3& x = scene.registry.get<ecs::RigidBody>(marble).centreOfMass;
             highest_ = std::max(highest_, x.y() - trackHeight(x.x()) - restingHeight());
         }
     }
 
     void readouts(const SceneInstance& scene, std::vector<SceneReadout>& out) const override {
         int onTrack = 0;
-        for (BodyId id : marbles_) {
-            if (!scene.world.isValid(id)) continue;
-            const Vec3& x = scene.world.body(id).x;
+        for (const ecs::Entity marble : marbles_) {
+            if (!scene.registry.isValid(marble)) continue;
+            const Vec3& x = scene.registry.get<ecs::RigidBody>(marble).centreOfMass;
             const double above = x.y() - trackHeight(x.x()) - restingHeight();
             onTrack += std::abs(x.x()) <= kHalfLength && std::abs(x.z()) < kHalfGauge &&
                        std::abs(above) < 0.01;
@@ -132,13 +136,14 @@ class MarblesOnWireScript : public SceneScript {
 
   private:
     void apply(SceneInstance& scene) const {
-        WorldSettings settings = scene.world.settings();
+        ecs::PhysicsSystem physics = scene.physics();
+        WorldSettings settings = physics.settings();
         settings.velocityPass = toggled(velocityPass_);
-        scene.world.setSettings(settings);
+        physics.setSettings(settings);
     }
 
     size_t velocityPass_ = 0;
-    std::vector<BodyId> marbles_;
+    std::vector<ecs::Entity> marbles_;
     double highest_ = 0.0;
 };
 

@@ -20,7 +20,8 @@
 
 #include "scenes/scenes.h"
 
-#include "physics/joints/joint_parts.h"
+#include "ecs/components.h"
+#include "ecs/joint_pose.h"
 
 #include <algorithm>
 #include <array>
@@ -177,30 +178,31 @@ class RobotArmScript : public SceneScript {
         hand_ = scene.bodyNamed("hand");
         grip_ = scene.jointNamed("grip");
         for (std::size_t i = 0; i < kArmJoints.size(); ++i) joints_[i] = scene.jointNamed(kArmJoints[i].name);
-        scene.world.joint(grip_).hasSwingLimit = toggled(orient_);
-        placeTarget(scene.world, toggled(orbit_) ? orbitPoint(0.0) : knobTarget());
+        gripSwingLimit_ = scene.registry.get<ecs::Joint>(grip_).def.swingLimit.value_or(0.0);
+        holdOrientation(scene.registry);
+        placeTarget(scene.registry, toggled(orbit_) ? orbitPoint(0.0) : knobTarget());
         gliding_ = false;
-        boundPull(scene.world);
+        boundPull(scene);
     }
 
     void beforeFrame(SceneInstance& scene, double time, double dt) override {
         if (toggled(orbit_)) {
-            placeTarget(scene.world, orbitPoint(time));
+            placeTarget(scene.registry, orbitPoint(time));
         } else if (gliding_) {
             // The box glides to the sliders' point rather than jumping there: a jump of a metre
             // would pull the arm through its limits at full force in one frame.
-            const Vec3 from = targetPosition(scene.world);
+            const Vec3 from = targetPosition(scene.registry);
             const Vec3 to = knobTarget();
             const double step = kGlideSpeed * dt;
             const double distance = (to - from).norm();
             gliding_ = distance > step;
-            placeTarget(scene.world, gliding_ ? Vec3(from + (to - from) * (step / distance)) : to);
+            placeTarget(scene.registry, gliding_ ? Vec3(from + (to - from) * (step / distance)) : to);
         }
-        boundPull(scene.world);
+        boundPull(scene);
     }
 
     void knobChanged(SceneInstance& scene, std::size_t index) override {
-        if (index == orient_) scene.world.joint(grip_).hasSwingLimit = toggled(orient_);
+        if (index == orient_) holdOrientation(scene.registry);
         if (index == x_ || index == y_ || index == z_) {
             // Moving a slider takes the box off its path.
             knobValue(orbit_) = 0.0;
@@ -209,17 +211,16 @@ class RobotArmScript : public SceneScript {
     }
 
     void readouts(const SceneInstance& scene, std::vector<SceneReadout>& out) const override {
-        const World& world = scene.world;
-        const Body& hand = world.body(hand_);
-        const Vec3 gripper = hand.pointToWorld(world.joint(grip_).anchor1);
-        out.push_back({"gripper to target [mm]", 1000.0 * (gripper - targetPosition(world)).norm(), "%.2f"});
-        const Body* bodies = world.bodies().data();
+        const ecs::Registry& registry = scene.registry;
+        const ecs::JointPose grip = ecs::jointPose(registry, registry.get<ecs::Joint>(grip_));
+        out.push_back({"gripper to target [mm]", 1000.0 * (grip.anchor1 - grip.anchor0).norm(), "%.2f"});
         for (std::size_t i = 0; i < kArmJoints.size(); ++i) {
             const ArmJoint& joint = kArmJoints[i];
             char label[80];
             std::snprintf(label, sizeof label, "%s [deg] (limits %.0f .. %.0f)", joint.name,
                           joint.limits.lower * 180.0 / M_PI, joint.limits.upper * 180.0 / M_PI);
-            out.push_back({label, hingeAngle(world.joint(joints_[i]), bodies) * 180.0 / M_PI, "%.1f"});
+            const double angle = ecs::hingeAngle(ecs::jointPose(registry, registry.get<ecs::Joint>(joints_[i])));
+            out.push_back({label, angle * 180.0 / M_PI, "%.1f"});
         }
     }
 
@@ -246,34 +247,41 @@ class RobotArmScript : public SceneScript {
         return Vec3(radius * std::cos(angle), height, -radius * std::sin(angle));
     }
 
-    Vec3 targetPosition(const World& world) const { return world.body(target_).userPosition(); }
+    Vec3 targetPosition(const ecs::Registry& registry) const {
+        return registry.get<ecs::Transform>(target_).position;
+    }
 
-    /// Moves the static box: its pose and its previous pose, so it carries no velocity.
-    void placeTarget(World& world, const Vec3& position) {
-        Body& box = world.body(target_);
-        box.x = position - box.q * box.userOrigin;
-        box.xPrev = box.x;
-        box.qPrev = box.q;
+    /// The swing limit that keeps the gripper along the box, on or off by the knob.
+    void holdOrientation(ecs::Registry& registry) const {
+        registry.patch<ecs::Joint>(grip_, [&](ecs::Joint& grip) {
+            grip.def.swingLimit = toggled(orient_) ? std::optional(gripSwingLimit_) : std::nullopt;
+        });
+    }
+
+    /// Moves the static box; the physics system carries it there without velocity.
+    void placeTarget(ecs::Registry& registry, const Vec3& position) const {
+        registry.patch<ecs::Transform>(target_, [&](ecs::Transform& box) { box.position = position; });
     }
 
     /// α = max(α_min, gap / F_max) for the attachment, likewise for the swing limit: a pull of at
-    /// most F_max (see the top of this file).
-    void boundPull(World& world) {
-        Joint& grip = world.joint(grip_);
-        const Body* bodies = world.bodies().data();
-        const JointAnchors anchors = jointAnchors(grip, bodies);
-        grip.compliance = std::max(kMinCompliance, (anchors.p1 - anchors.p0).norm() / kMaxPull);
-        const Vec3 a0 = worldFrame0(grip, bodies) * Vec3::UnitX();
-        const Vec3 a1 = worldFrame1(grip, bodies) * Vec3::UnitX();
-        const double swing = std::atan2(a0.cross(a1).norm(), a0.dot(a1));
-        grip.limitCompliance = std::max(kMinCompliance, swing / kMaxTwistingPull);
+    /// most F_max (see the top of this file). The gap and the swing are the grip's readout, on
+    /// the target where it has just been put: the physics system applies the move first.
+    void boundPull(SceneInstance& scene) const {
+        ecs::PhysicsSystem physics = scene.physics();
+        physics.sync();
+        physics.writeBack();
+        scene.registry.patch<ecs::Joint>(grip_, [&](ecs::Joint& grip) {
+            grip.def.compliance = std::max(kMinCompliance, grip.readout.error / kMaxPull);
+            grip.def.limitCompliance = std::max(kMinCompliance, grip.readout.coordinate / kMaxTwistingPull);
+        });
     }
 
     std::size_t orbit_, x_, y_, z_, orient_;
     bool gliding_ = false;
-    BodyId target_, hand_;
-    JointId grip_;
-    std::array<JointId, kArmJoints.size()> joints_;
+    ecs::Entity target_, hand_;
+    ecs::Entity grip_;
+    std::array<ecs::Entity, kArmJoints.size()> joints_;
+    double gripSwingLimit_ = 0.0;  ///< the scene's swing limit of the grip (rad)
 };
 
 }  // namespace

@@ -15,6 +15,8 @@
 
 #include "scenes/scenes.h"
 
+#include "ecs/components.h"
+
 #include <algorithm>
 #include <cmath>
 #include <memory>
@@ -166,38 +168,41 @@ class TwistedRopeScript final : public SceneScript {
         turnsApplied_ = 0.0;
         drive_ = hold_ = {};
         joints_.clear();
-        for (const auto& [name, id] : scene.namedJoints) {
-            if (name == "drive") drive_ = id;
-            else if (name == "hold") hold_ = id;
-            else if (name.rfind("joint", 0) == 0) joints_.push_back(id);
+        for (const ecs::Entity joint : scene.jointEntities) {
+            const ecs::Name* name = scene.registry.tryGet<ecs::Name>(joint);
+            if (name == nullptr) continue;
+            if (name->value == "drive") drive_ = joint;
+            else if (name->value == "hold") hold_ = joint;
+            else if (name->value.rfind("joint", 0) == 0) joints_.push_back(joint);
         }
-        for (const auto& [name, id] : scene.namedBodies)
-            if (name == "link" + std::to_string(kLinks)) end_ = id;
-        applyRope(scene.world);
+        end_ = scene.bodyNamed("link" + std::to_string(kLinks));
+        applyRope(scene.registry);
     }
 
     void beforeFrame(SceneInstance& scene, double /*time*/, double dt) override {
-        if (!scene.world.isValid(drive_) || dt <= 0.0) return;
+        if (!scene.registry.isValid(drive_) || dt <= 0.0) return;
         // Turn at the knob's rate until the knob's number of turns is applied, the last frame's
         // share clipped so that the total is exact; the hinge motor spreads it over the substeps.
         const double rate = knob(turnRate_);
         const double remaining = std::max(0.0, knob(turns_) - std::abs(turnsApplied_));
         const double step = std::copysign(std::min(std::abs(rate) * dt, remaining), rate);
-        scene.world.joint(drive_).targetVelocity = 2.0 * M_PI * step / dt;
+        scene.registry.patch<ecs::Joint>(
+            drive_, [&](ecs::Joint& drive) { drive.def.targetVelocity = 2.0 * M_PI * step / dt; });
         turnsApplied_ += step;
     }
 
     void knobChanged(SceneInstance& scene, std::size_t index) override {
-        if (index != turnRate_ && index != turns_) applyRope(scene.world);
+        if (index != turnRate_ && index != turns_) applyRope(scene.registry);
     }
 
     void readouts(const SceneInstance& scene, std::vector<SceneReadout>& out) const override {
         out.push_back({.label = "turns applied", .value = turnsApplied_, .format = "%.2f"});
-        if (!scene.world.isValid(end_) || !scene.world.isValid(drive_)) return;
-        const Body& end = scene.world.body(end_);
-        const Vec3 tip = end.userPosition() + end.userOrientation() * Vec3(0.0, kPitch / 2, 0.0);
+        const ecs::Registry& registry = scene.registry;
+        if (!registry.isValid(end_) || !registry.isValid(drive_)) return;
+        const ecs::Transform& end = registry.get<ecs::Transform>(end_);
+        const Vec3 tip = end.position + end.rotation * Vec3(0.0, kPitch / 2, 0.0);
         out.push_back({.label = "end-to-end distance (m)", .value = (tip - ropePoint(0.0)).norm(), .format = "%.3f"});
-        out.push_back({.label = "twisting moment (N m)", .value = scene.world.jointReadout(drive_).torque,
+        out.push_back({.label = "twisting moment (N m)", .value = registry.get<ecs::Joint>(drive_).readout.torque,
                        .format = "%.1f"});
         // Greenhill: a straight rod under tension T buckles under a moment 2√(B T).
         const double swingCompliance = knob(swingCompliance_);
@@ -205,40 +210,40 @@ class TwistedRopeScript final : public SceneScript {
             swingCompliance > 0.0 ? 2.0 * std::sqrt(kPitch / swingCompliance * knob(pull_)) : 0.0;
         out.push_back({.label = "Greenhill moment 2√(B T) (N m)", .value = threshold, .format = "%.1f"});
         int touching = 0;  // link-link pairs in contact: the coils wrapping round one another
-        const auto bodies = scene.world.bodies();
-        for (const ContactPair& pair : scene.world.contactPairs())
+        // Contacts are a measure of the whole world, read (never changed) from it.
+        const auto bodies = scene.world().bodies();
+        for (const ContactPair& pair : scene.world().contactPairs())
             if (pair.count > 0 && bodies[pair.body0].isDynamic() && bodies[pair.body1].isDynamic()) ++touching;
         out.push_back({.label = "links touching", .value = static_cast<double>(touching), .format = "%.0f"});
     }
 
   private:
     /// Puts the knobs' limits and compliances into the rope's joints and the pull into the hold.
-    void applyRope(World& world) const {
+    void applyRope(ecs::Registry& registry) const {
         const double twist = knob(twistLimit_) * M_PI / 180.0;
-        for (JointId id : joints_) {
-            Joint& joint = world.joint(id);
-            joint.hasSwingLimit = true;
-            joint.swingLimit = knob(swingLimit_) * M_PI / 180.0;
-            joint.limitCompliance = knob(swingCompliance_);
-            joint.hasTwistLimits = true;
-            joint.twistLimits = {-twist, twist};
-            joint.twistCompliance = knob(twistCompliance_);
+        for (const ecs::Entity entity : joints_) {
+            registry.patch<ecs::Joint>(entity, [&](ecs::Joint& joint) {
+                joint.def.swingLimit = knob(swingLimit_) * M_PI / 180.0;
+                joint.def.limitCompliance = knob(swingCompliance_);
+                joint.def.twistLimits = Range{-twist, twist};
+                joint.def.twistCompliance = knob(twistCompliance_);
+            });
         }
-        if (world.isValid(hold_)) {
+        if (registry.isValid(hold_)) {
             // A spring towards kPullReach: force ≈ reach / compliance = the pull.
-            Joint& hold = world.joint(hold_);
-            const double pull = knob(pull_);
-            hold.drive = pull > 0.0 ? Joint::Drive::Position : Joint::Drive::None;
-            hold.target = kPullReach;
-            hold.driveCompliance = pull > 0.0 ? kPullReach / pull : 0.0;
+            registry.patch<ecs::Joint>(hold_, [&](ecs::Joint& hold) {
+                const double pull = knob(pull_);
+                hold.def.targetOffset = pull > 0.0 ? std::optional(kPullReach) : std::nullopt;
+                hold.def.driveCompliance = pull > 0.0 ? kPullReach / pull : 0.0;
+            });
         }
     }
 
     std::size_t turnRate_ = 0, turns_ = 0, twistLimit_ = 0, twistCompliance_ = 0;
     std::size_t swingLimit_ = 0, swingCompliance_ = 0, pull_ = 0;
-    JointId drive_, hold_;
-    BodyId end_;
-    std::vector<JointId> joints_;
+    ecs::Entity drive_, hold_;
+    ecs::Entity end_;
+    std::vector<ecs::Entity> joints_;
     double turnsApplied_ = 0.0;  ///< signed
 };
 

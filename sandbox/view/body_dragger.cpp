@@ -1,5 +1,7 @@
 #include "view/body_dragger.h"
 
+#include "ecs/components.h"
+#include "ecs/joint_pose.h"
 #include "physics/collision/shape_bounds.h"
 
 #include <cmath>
@@ -37,9 +39,9 @@ std::optional<double> rayBoxEntry(const Vec3& origin, const Vec3& direction, con
 
 /// A body the cursor moves directly rather than through a spring: static (it has no mass to pull)
 /// and out of the collision pipeline (a colliding static body sits in the broadphase's static
-/// tree, which is not updated when it moves). The world's own anchor body has no shape.
-bool movesDirectly(const Body& body) {
-    return !body.isDynamic() && !body.collide && body.shape.type != ShapeType::None;
+/// tree, which is not updated when it moves).
+bool movesDirectly(const ecs::RigidBody& body, const ecs::Collider& collider) {
+    return body.type == BodyType::Static && !collider.collide && collider.shape.type != ShapeType::None;
 }
 
 }  // namespace
@@ -56,81 +58,84 @@ Ray cursorRay(const render::Camera& camera, float x, float y, float width, float
     return {position, (forward + ndcX * halfWidth * right + ndcY * halfHeight * up).normalized()};
 }
 
-bool BodyDragger::grab(World& world, const Ray& ray) {
-    if (active()) release(world);
-    std::optional<BodyId> hitBody;
+bool BodyDragger::grab(ecs::PhysicsSystem physics, const Ray& ray) {
+    if (active()) release(physics);
+    ecs::Registry& registry = physics.registry();
+    std::optional<ecs::Entity> hitBody;
     Vec3 hitLocal = Vec3::Zero();
     double nearest = std::numeric_limits<double>::infinity();
-    const std::span<const Body> bodies = world.bodies();
-    for (std::size_t index = 0; index < bodies.size(); ++index) {
-        const Body& body = bodies[index];
-        if (!body.alive || !(body.isDynamic() || movesDirectly(body))) continue;
-        // The ray in the body's own frame (the frame its shape is given in), tested against the
-        // shape's bounds there.
-        const Quat userToWorld = body.q * body.userRotation;
-        const Vec3 userOrigin = body.pointToWorld(body.userOrigin);
-        const Vec3 origin = userToWorld.conjugate() * (ray.origin - userOrigin);
-        const Vec3 direction = userToWorld.conjugate() * ray.direction;
-        const Aabb bounds = shapeLocalBounds(body.shape);
-        const std::optional<double> distance = rayBoxEntry(origin, direction, bounds.min, bounds.max);
-        if (distance && *distance < nearest) {
-            nearest = *distance;
-            hitLocal = origin + *distance * direction;
-            hitBody = BodyId{static_cast<uint32_t>(index), body.generation};
-        }
-    }
+    registry.view<ecs::RigidBody, ecs::Transform, ecs::Collider>().each(
+        [&](ecs::Entity entity, const ecs::RigidBody& body, const ecs::Transform& transform,
+            const ecs::Collider& collider) {
+            if (body.id.isNull()) return;
+            if (!(body.simulatedMass > 0.0 || movesDirectly(body, collider))) return;
+            // The ray in the body's own frame (the frame its shape is given in), tested against
+            // the shape's bounds there.
+            const Vec3 origin = transform.rotation.conjugate() * (ray.origin - transform.position);
+            const Vec3 direction = transform.rotation.conjugate() * ray.direction;
+            const Aabb bounds = shapeLocalBounds(collider.shape);
+            const std::optional<double> distance = rayBoxEntry(origin, direction, bounds.min, bounds.max);
+            if (distance && *distance < nearest) {
+                nearest = *distance;
+                hitLocal = origin + *distance * direction;
+                hitBody = entity;
+            }
+        });
     if (!hitBody) return false;
 
     planePoint_ = ray.origin + nearest * ray.direction;
     planeNormal_ = ray.direction;
-    const Body& body = world.body(*hitBody);
-    if (!body.isDynamic()) {
+    const ecs::RigidBody& body = registry.get<ecs::RigidBody>(*hitBody);
+    if (!(body.simulatedMass > 0.0)) {
         staticBody_ = *hitBody;
-        staticGrabOffset_ = body.x - planePoint_;
+        staticGrabOffset_ = registry.get<ecs::Transform>(*hitBody).position - planePoint_;
         return true;
     }
     JointDef def;
     def.type = JointType::Distance;
-    def.body1 = *hitBody;
     def.anchor0 = planePoint_;
     def.anchor1 = hitLocal;
-    def.compliance = 1.0 / (kStiffnessPerKilogram * body.mass);
+    def.compliance = 1.0 / (kStiffnessPerKilogram * body.simulatedMass);
     def.linearDamping = kDamping;
-    joint_ = world.createJoint(def);
+    // A joint entity to the world (body0 null); the physics system makes it at the next step.
+    const ecs::Entity spring = registry.create();
+    registry.emplace<ecs::Joint>(spring, ecs::Joint{.def = def, .body0 = ecs::kNullEntity, .body1 = *hitBody});
+    joint_ = spring;
     return true;
 }
 
-void BodyDragger::drag(World& world, const Ray& ray) {
+void BodyDragger::drag(ecs::Registry& registry, const Ray& ray) {
     if (!active()) return;
     const double facing = ray.direction.dot(planeNormal_);
     if (std::abs(facing) < 1e-6) return;  // the ray runs along the plane: keep the last point
     const double distance = (planePoint_ - ray.origin).dot(planeNormal_) / facing;
     if (distance <= 0.0) return;  // the plane is behind the camera
     const Vec3 cursor = ray.origin + distance * ray.direction;
-    if (joint_ && world.isValid(*joint_)) {
+    if (joint_ && registry.has<ecs::Joint>(*joint_)) {
         // The world's anchor is a world point (the world body's frame is the world's).
-        world.joint(*joint_).anchor0 = cursor;
-    } else if (staticBody_ && world.isValid(*staticBody_)) {
-        // Moved, not pushed: the previous pose goes along, so the body is still at rest where it
-        // is put, and only the joints attached to it feel the move (they pull their bodies along).
-        Body& body = world.body(*staticBody_);
-        body.x = cursor + staticGrabOffset_;
-        body.xPrev = body.x;
+        registry.patch<ecs::Joint>(*joint_, [&](ecs::Joint& joint) { joint.def.anchor0 = cursor; });
+    } else if (staticBody_ && registry.has<ecs::Transform>(*staticBody_)) {
+        // Moved, not pushed: the physics system carries it there at rest, and only the joints
+        // attached to it feel the move (they pull their bodies along).
+        registry.patch<ecs::Transform>(*staticBody_, [&](ecs::Transform& transform) {
+            transform.position = cursor + staticGrabOffset_;
+        });
     }
 }
 
-void BodyDragger::release(World& world) {
-    if (joint_ && world.isValid(*joint_)) world.destroyJoint(*joint_);
+void BodyDragger::release(ecs::PhysicsSystem physics) {
+    if (joint_) physics.destroy(*joint_);
     forget();
 }
 
-std::optional<render::DebugLine> BodyDragger::line(const World& world) const {
-    if (!joint_ || !world.isValid(*joint_)) return std::nullopt;
-    const Joint& joint = world.joint(*joint_);
-    const Body& body = world.bodies()[joint.body1];
+std::optional<render::DebugLine> BodyDragger::line(const ecs::Registry& registry) const {
+    if (!joint_) return std::nullopt;
+    const ecs::Joint* joint = registry.tryGet<ecs::Joint>(*joint_);
+    if (joint == nullptr) return std::nullopt;
+    const ecs::JointPose pose = ecs::jointPose(registry, *joint);
     render::DebugLine line;
-    line.from = joint.anchor0.cast<float>();
-    line.to = body.pointToWorld(joint.anchor1).cast<float>();
+    line.from = pose.anchor0.cast<float>();
+    line.to = pose.anchor1.cast<float>();
     line.colour = render::Colour(1.0f, 0.85f, 0.2f);
     return line;
 }

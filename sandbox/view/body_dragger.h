@@ -8,8 +8,12 @@
 /// directly instead: it follows the cursor across the same plane, and the joints attached to it
 /// pull their bodies along. A static body that collides stays put: the broadphase files it in
 /// its static tree once, so moving it would leave its collisions behind.
+///
+/// It works through the engine layer: the spring is a joint entity (a Joint component to the
+/// world), moved by patching its anchor and removed by the physics system; a static body is
+/// moved by patching its Transform. Bodies are found from their Transform and Collider.
 
-#include "physics/world.h"
+#include "ecs/physics_system.h"
 #include "render/render_scene.h"
 
 #include <optional>
@@ -30,30 +34,30 @@ class BodyDragger {
     /// Grabs the nearest body the ray hits (its shape's local bounding box, exact for boxes): a
     /// dynamic one with a spring at the hit point, a static non-colliding one by that point.
     /// Returns false, doing nothing, when none is hit.
-    bool grab(World& world, const Ray& ray);
+    bool grab(ecs::PhysicsSystem physics, const Ray& ray);
     /// Moves the spring's world end, or the held static body, to where the ray meets the drag
     /// plane.
-    void drag(World& world, const Ray& ray);
+    void drag(ecs::Registry& registry, const Ray& ray);
     /// Removes the spring, or lets the static body stay where it was put.
-    void release(World& world);
-    /// Forgets what is held without touching a world: for when the world itself was replaced.
+    void release(ecs::PhysicsSystem physics);
+    /// Forgets what is held without touching a scene: for when the scene itself was replaced.
     void forget() {
         joint_.reset();
         staticBody_.reset();
     }
     bool active() const { return joint_.has_value() || staticBody_.has_value(); }
-    /// The spring, while a dynamic body is held.
-    std::optional<JointId> joint() const { return joint_; }
-    /// The static body, while one is held.
-    std::optional<BodyId> staticBody() const { return staticBody_; }
+    /// The spring's joint entity, while a dynamic body is held.
+    std::optional<ecs::Entity> joint() const { return joint_; }
+    /// The static body's entity, while one is held.
+    std::optional<ecs::Entity> staticBody() const { return staticBody_; }
 
     /// The spring as a line from the cursor's point to the body, when held.
-    std::optional<render::DebugLine> line(const World& world) const;
+    std::optional<render::DebugLine> line(const ecs::Registry& registry) const;
 
   private:
-    std::optional<JointId> joint_;
-    std::optional<BodyId> staticBody_;
-    Vec3 staticGrabOffset_ = Vec3::Zero();  ///< from the grab point to the static body's x
+    std::optional<ecs::Entity> joint_;
+    std::optional<ecs::Entity> staticBody_;
+    Vec3 staticGrabOffset_ = Vec3::Zero();  ///< from the grab point to the static body's origin
     Vec3 planePoint_ = Vec3::Zero();   ///< the drag plane passes through the grab point...
     Vec3 planeNormal_ = Vec3::UnitZ();  ///< ...facing the ray it was grabbed along
 };

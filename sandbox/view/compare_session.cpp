@@ -142,8 +142,8 @@ void CompareSession::setKnob(std::size_t index, double value) {
     }
 }
 
-void CompareSession::setJointCompliance(JointId id, double compliance) {
-    for (const std::unique_ptr<ViewSession>& each : runs_) each->setJointCompliance(id, compliance);
+void CompareSession::setJointCompliance(ecs::Entity joint, double compliance) {
+    for (const std::unique_ptr<ViewSession>& each : runs_) each->setJointCompliance(joint, compliance);
 }
 
 render::RenderTarget CompareSession::target(std::size_t index, render::PixelSize window) const {

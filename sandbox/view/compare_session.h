@@ -77,8 +77,8 @@ class CompareSession {
     /// Sets script knob `index` in every run. In compare mode each run keeps its own substeps and
     /// iterations, even when the knob switches the solver: the split is what is compared.
     void setKnob(std::size_t index, double value);
-    /// Sets a joint's compliance in every run (the runs are built alike, so ids agree).
-    void setJointCompliance(JointId id, double compliance);
+    /// Sets a joint's compliance in every run (the runs are built alike, so entities agree).
+    void setJointCompliance(ecs::Entity joint, double compliance);
 
     Playback& playback() { return playback_; }
     std::size_t runCount() const { return runs_.size(); }

@@ -238,7 +238,7 @@ PanelRequests ViewPanel::draw(CompareSession& session, const FrameTimes& times, 
         size_t listed = 0;
         for (const auto& [name, id] : first.namedJoints()) {
             if (listed++ == kMaxListed) break;
-            float compliance = static_cast<float>(first.world().joint(id).compliance);
+            float compliance = static_cast<float>(first.jointCompliance(id));
             if (ImGui::SliderFloat(name.c_str(), &compliance, 0.0f, 1.0f, "%.2e", ImGuiSliderFlags_Logarithmic)) {
                 session.setJointCompliance(id, compliance);
             }

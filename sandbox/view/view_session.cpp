@@ -1,5 +1,7 @@
 #include "view/view_session.h"
 
+#include "ecs/components.h"
+
 #include <algorithm>
 #include <chrono>
 
@@ -43,8 +45,12 @@ void ViewSession::rebuild(bool keepScript) {
     chainMeasure_.reset();
     if (source_.entry != nullptr && !source_.entry->chain.endBody.empty()) {
         chainMeasure_ = std::make_unique<ErrorRecorder>(live_->instance(),
-                                                        errorReference(source_.entry, live_->world()));
+                                                        errorReference(source_.entry, live_->instance()));
     }
+    namedJoints_.clear();
+    const SceneInstance& scene = live_->instance();
+    for (const ecs::Entity joint : scene.jointEntities)
+        if (const ecs::Name* name = scene.registry.tryGet<ecs::Name>(joint)) namedJoints_.emplace_back(name->value, joint);
     finite_ = live_->world().isFinite();
     lastStepMs_ = 0.0;
     energy_.clear();
@@ -53,15 +59,38 @@ void ViewSession::rebuild(bool keepScript) {
     sample();
 }
 
-void ViewSession::setJointCompliance(JointId id, double compliance) {
-    World& world = live_->world();
-    if (world.isValid(id) && compliance >= 0.0) world.joint(id).compliance = compliance;
+bool ViewSession::grab(const Ray& ray) {
+    const bool grabbed = dragger_.grab(live_->physics(), ray);
+    live_->sync();
+    return grabbed;
+}
+
+void ViewSession::drag(const Ray& ray) {
+    dragger_.drag(live_->instance().registry, ray);
+    live_->sync();
+}
+
+void ViewSession::release() {
+    dragger_.release(live_->physics());
+    live_->sync();
+}
+
+double ViewSession::jointCompliance(ecs::Entity joint) const {
+    const ecs::Joint* component = live_->instance().registry.tryGet<ecs::Joint>(joint);
+    return component != nullptr ? component->def.compliance : 0.0;
+}
+
+void ViewSession::setJointCompliance(ecs::Entity joint, double compliance) {
+    ecs::Registry& registry = live_->instance().registry;
+    if (!registry.has<ecs::Joint>(joint) || !(compliance >= 0.0)) return;
+    registry.patch<ecs::Joint>(joint, [&](ecs::Joint& component) { component.def.compliance = compliance; });
+    live_->sync();
 }
 
 void ViewSession::setKnob(std::size_t index, double value) {
     SceneScript* script = live_->script();
     if (script == nullptr || index >= script->knobs().size()) return;
-    script->setKnob(live_->instance(), script->knobs()[index].name, value);
+    live_->setKnob(script->knobs()[index].name, value);
     // A knob may switch the solver (the bunny chain's 20 x 1 against 1 x 20): the panel's
     // sliders follow, so a restart keeps what the knob chose.
     controls_.substeps = live_->world().settings().substeps;
@@ -69,19 +98,20 @@ void ViewSession::setKnob(std::size_t index, double value) {
 }
 
 void ViewSession::applyControls() {
-    WorldSettings settings = live_->world().settings();
+    ecs::PhysicsSystem physics = live_->physics();
+    WorldSettings settings = physics.settings();
     settings.substeps = controls_.substeps;
     settings.iterations = controls_.iterations;
     settings.gravity.y() = controls_.gravityY;
     settings.measureTime = true;  // the panel's stage breakdown
-    live_->world().setSettings(settings);
+    physics.setSettings(settings);
 }
 
 void ViewSession::applyDrawingOptions() {
     // SceneDrawing fixes its camera, ground and force scale from the state it is made from; a
     // fresh build of the scene gives the same ones as at the start, whatever the world did since.
-    const SceneInstance initial = buildLabelledScene(source_.description, source_.label);
-    drawing_ = std::make_unique<SceneDrawing>(source_.description, initial.world, aspect_, controls_.drawing);
+    SceneInstance initial = buildLabelledScene(source_.description, source_.label);
+    drawing_ = std::make_unique<SceneDrawing>(source_.description, initial, aspect_, controls_.drawing);
 }
 
 void ViewSession::stepOnce() {
@@ -97,19 +127,17 @@ void ViewSession::sample() {
     // The plots measure the scene, not the hand pulling it: the drag spring's stretch and stored
     // energy are left out (the work it does still shows as a change of the scene's energy).
     const World& world = live_->world();
-    const std::optional<JointId> spring = dragger_.joint();
+    const ecs::Registry& registry = live_->instance().registry;
+    const std::optional<ecs::Entity> spring = dragger_.joint();
     double energy = world.energies().total();
     double jointError = 0.0;
     if (!spring) {
         jointError = world.maxJointError();
     } else {
-        energy -= world.jointReadout(*spring).elasticEnergy;
-        const std::span<const Joint> joints = world.joints();
-        for (std::size_t index = 0; index < joints.size(); ++index) {
-            if (!joints[index].alive || index == spring->index) continue;
-            const JointId id{static_cast<uint32_t>(index), joints[index].generation};
-            jointError = std::max(jointError, world.jointReadout(id).error);
-        }
+        if (const ecs::Joint* held = registry.tryGet<ecs::Joint>(*spring)) energy -= held->readout.elasticEnergy;
+        for (const ecs::Entity joint : live_->instance().jointEntities)
+            if (const ecs::Joint* component = registry.tryGet<ecs::Joint>(joint))
+                jointError = std::max(jointError, component->readout.error);
     }
     energy_.push(static_cast<float>(energy));
     jointError_.push(static_cast<float>(jointError));
@@ -122,7 +150,8 @@ void ViewSession::sample() {
 render::RenderScene ViewSession::draw(const render::Camera& camera) {
     render::RenderScene scene = drawing_->draw(live_->instance());
     scene.camera = camera;
-    if (const std::optional<render::DebugLine> spring = dragger_.line(live_->world())) scene.lines.push_back(*spring);
+    if (const std::optional<render::DebugLine> spring = dragger_.line(live_->instance().registry))
+        scene.lines.push_back(*spring);
     return scene;
 }
 

@@ -48,19 +48,23 @@ class ViewSession {
 
     /// Grabs the body under `ray` (body_dragger.h): a dynamic one with a spring, a static
     /// non-colliding one directly. False when none is there.
-    bool grab(const Ray& ray) { return dragger_.grab(live_->world(), ray); }
+    /// Each of these changes components; the world follows at once (LiveScene::sync), so what
+    /// is drawn and measured agrees while the scene is paused.
+    bool grab(const Ray& ray);
     /// Moves the held spring's end, or the held static body, along `ray`.
-    void drag(const Ray& ray) { dragger_.drag(live_->world(), ray); }
-    void release() { dragger_.release(live_->world()); }
+    void drag(const Ray& ray);
+    void release();
     bool dragging() const { return dragger_.active(); }
 
     /// The current state to draw, seen through `camera`.
     render::RenderScene draw(const render::Camera& camera);
 
     /// The scene's named joints, for the panel's compliance sliders.
-    const std::vector<std::pair<std::string, JointId>>& namedJoints() const { return live_->instance().namedJoints; }
+    const std::vector<std::pair<std::string, ecs::Entity>>& namedJoints() const { return namedJoints_; }
+    /// A joint's attachment compliance α (m/N), as its component holds it.
+    double jointCompliance(ecs::Entity joint) const;
     /// Sets a joint's attachment compliance α (m/N) live; a restart brings back the scene's.
-    void setJointCompliance(JointId id, double compliance);
+    void setJointCompliance(ecs::Entity joint, double compliance);
 
     SessionControls& controls() { return controls_; }
     const SessionControls& controls() const { return controls_; }
@@ -97,6 +101,7 @@ class ViewSession {
     BodyDragger dragger_;
     /// Measures the chain's elongation as `substep sweep` does; null without a chain.
     std::unique_ptr<ErrorRecorder> chainMeasure_;
+    std::vector<std::pair<std::string, ecs::Entity>> namedJoints_;  ///< of the current build
     bool finite_ = true;
     double lastStepMs_ = 0.0;
     PlotHistory energy_{600};

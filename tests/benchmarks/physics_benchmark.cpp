@@ -25,10 +25,10 @@ SceneInstance makeScene(const char* name, int substeps, double& dt) {
 double chainElongation(int substeps) {
     double dt = 0.0;
     SceneInstance scene = makeScene("chain100", substeps, dt);
-    for (int i = 0; i < 300; ++i) scene.world.step(dt);
+    for (int i = 0; i < 300; ++i) scene.physics().step(dt);
     const Vec3 top(0.0, 30.0, 0.0);
     const double rest = 0.25 * 99.5;
-    return ((scene.world.body(scene.namedBodies.back().second).x - top).norm() - rest) / rest;
+    return ((scene.world().body(scene.namedBodyIds().back().second).x - top).norm() - rest) / rest;
 }
 
 /// rope100: largest joint gap over 5 s (m).
@@ -37,8 +37,8 @@ double ropeLargestGap(int substeps) {
     SceneInstance scene = makeScene("rope100", substeps, dt);
     double largest = 0.0;
     for (int i = 0; i < 300; ++i) {
-        scene.world.step(dt);
-        largest = std::max(largest, scene.world.maxJointError());
+        scene.physics().step(dt);
+        largest = std::max(largest, scene.world().maxJointError());
     }
     return largest;
 }
@@ -47,18 +47,18 @@ double ropeLargestGap(int substeps) {
 double pendulumEnergyError(int substeps) {
     double dt = 0.0;
     SceneInstance scene = makeScene("pendulum3", substeps, dt);
-    const double initial = scene.world.energies().total();
-    for (int i = 0; i < 600; ++i) scene.world.step(dt);
-    return std::abs(scene.world.energies().total() - initial) / 10.0;
+    const double initial = scene.world().energies().total();
+    for (int i = 0; i < 600; ++i) scene.physics().step(dt);
+    return std::abs(scene.world().energies().total() - initial) / 10.0;
 }
 
 void stepScene(benchmark::State& state, const char* name, double (*error)(int)) {
     const int substeps = static_cast<int>(state.range(0));
     double dt = 0.0;
     SceneInstance scene = makeScene(name, substeps, dt);
-    for (int i = 0; i < 60; ++i) scene.world.step(dt);  // warm-up second
+    for (int i = 0; i < 60; ++i) scene.physics().step(dt);  // warm-up second
     for (auto _ : state) {
-        scene.world.step(dt);
+        scene.physics().step(dt);
         benchmark::ClobberMemory();
     }
     state.counters["error"] = error(substeps);

@@ -44,14 +44,14 @@ TEST(SceneEntities, EveryBodyIsAnEntityWithItsComponents) {
         const auto& rigidBody = s.registry.get<ecs::RigidBody>(e);
         // Bodies reach the world in description order, after its static anchor (index 0).
         EXPECT_EQ(rigidBody.id.index, i + 1);
-        EXPECT_TRUE(s.world.isValid(rigidBody.id));
+        EXPECT_TRUE(s.world().isValid(rigidBody.id));
         EXPECT_EQ(s.registry.get<ecs::Collider>(e).restitution, d.bodies[i].def.restitution);
         EXPECT_TRUE(s.registry.get<ecs::RenderMaterial>(e).visible);
         EXPECT_EQ(s.registry.has<ecs::Name>(e), !d.bodies[i].name.empty());
     }
     EXPECT_EQ(s.registry.get<ecs::Name>(s.bodyEntities[2]).value, "bob");
-    ASSERT_EQ(s.namedBodies.size(), 2u);
-    EXPECT_EQ(s.namedBodies[1].second, s.registry.get<ecs::RigidBody>(s.bodyEntities[2]).id);
+    ASSERT_EQ(s.namedBodyIds().size(), 2u);
+    EXPECT_EQ(s.namedBodyIds()[1].second, s.registry.get<ecs::RigidBody>(s.bodyEntities[2]).id);
     // Static and moving bodies are told apart by colour.
     EXPECT_NE(s.registry.get<ecs::RenderMaterial>(s.bodyEntities[0]).colour,
               s.registry.get<ecs::RenderMaterial>(s.bodyEntities[1]).colour);
@@ -65,12 +65,12 @@ TEST(SceneEntities, EveryJointIsAnEntityNamingItsBodyEntities) {
     EXPECT_EQ(rope.body1, s.bodyEntities[2]);
     EXPECT_EQ(rope.def.maxDistance, 1.0);
     EXPECT_EQ(s.registry.get<ecs::Name>(s.jointEntities[0]).value, "rope");
-    ASSERT_EQ(s.namedJoints.size(), 1u);
-    EXPECT_EQ(s.namedJoints[0].second, rope.id);
+    ASSERT_EQ(s.namedJointIds().size(), 1u);
+    EXPECT_EQ(s.namedJointIds()[0].second, rope.id);
 
     const auto& pin = s.registry.get<ecs::Joint>(s.jointEntities[1]);
     EXPECT_TRUE(pin.body0.isNull());  // "world"
-    EXPECT_TRUE(s.world.isValid(pin.id));
+    EXPECT_TRUE(s.world().isValid(pin.id));
     EXPECT_EQ(pin.id.index, rope.id.index + 1);  // description order
     EXPECT_FALSE(s.registry.has<ecs::Name>(s.jointEntities[1]));
 }
@@ -82,18 +82,18 @@ TEST(SceneEntities, MovedInstanceStepsThroughItsPhysicsSystem) {
     for (int i = 0; i < 10; ++i)
         s.physics().step(1.0 / 60.0);
     const BodyId id = s.registry.get<ecs::RigidBody>(free).id;
-    EXPECT_EQ(s.registry.get<ecs::Transform>(free).position, s.world.body(id).userPosition());
+    EXPECT_EQ(s.registry.get<ecs::Transform>(free).position, s.world().body(id).userPosition());
     EXPECT_LT(s.registry.get<ecs::Transform>(free).position.y(), 0.0);
 }
 
 TEST(SceneEntities, DestroyingABodyEntityDropsItsJointsFromTheWorld) {
     SceneInstance s = buildScene(pendulumScene());
-    const JointId rope = s.namedJoints[0].second;
+    const JointId rope = s.namedJointIds()[0].second;
     s.physics().destroy(s.bodyEntities[2]);  // bob
-    EXPECT_FALSE(s.world.isValid(rope));
-    EXPECT_FALSE(s.world.isValid(s.namedBodies[1].second));
-    EXPECT_TRUE(s.world.isValid(s.namedBodies[0].second));
-    EXPECT_EQ(s.world.maxJointError(), 0.0);
+    EXPECT_FALSE(s.world().isValid(rope));
+    EXPECT_FALSE(s.world().isValid(s.namedBodyIds()[1].second));
+    EXPECT_TRUE(s.world().isValid(s.namedBodyIds()[0].second));
+    EXPECT_EQ(s.world().maxJointError(), 0.0);
 }
 
 }  // namespace

@@ -25,7 +25,7 @@ const SceneEntry& bunnyChain() {
 }
 
 BodyId bodyNamed(const SceneInstance& scene, const std::string& name) {
-    for (const auto& [bodyName, id] : scene.namedBodies)
+    for (const auto& [bodyName, id] : scene.namedBodyIds())
         if (bodyName == name) return id;
     return {};
 }
@@ -62,8 +62,8 @@ HullIntegrals integrateHull(const ConvexHull& hull) {
 
 TEST(BunnyChain, BunniesWeighAsTheirHullAndShareOneShape) {
     SceneInstance scene = buildScene(bunnyChain().build());
-    const Body& first = scene.world.body(bodyNamed(scene, "bunny1"));
-    const Body& last = scene.world.body(bodyNamed(scene, "bunny100"));
+    const Body& first = scene.world().body(bodyNamed(scene, "bunny1"));
+    const Body& last = scene.world().body(bodyNamed(scene, "bunny100"));
     ASSERT_EQ(first.shape.type, ShapeType::Mesh);
     ASSERT_TRUE(first.shape.convex);
     ASSERT_TRUE(first.shape.hull);
@@ -116,7 +116,7 @@ TEST(BunnyChain, SolverKnobSwitchesTheSplitAndStartLeavesItAlone) {
     WorldSettings settings = scene.world().settings();
     settings.substeps = 7;
     settings.iterations = 3;
-    scene.world().setSettings(settings);
+    scene.physics().setSettings(settings);
     scene.script()->start(scene.instance());
     EXPECT_EQ(scene.world().settings().substeps, 7);
     EXPECT_EQ(scene.world().settings().iterations, 3);
@@ -150,7 +150,7 @@ TEST(BunnyChain, TheChainAtRestMeasuresItsRestLength) {
     // Built hanging straight: every joint closed, so the measure reads 0 before any step.
     const SceneEntry& entry = bunnyChain();
     SceneInstance scene = buildScene(entry.build());
-    const Body& body = scene.world.body(bodyNamed(scene, std::string(entry.chain.endBody)));
+    const Body& body = scene.world().body(bodyNamed(scene, std::string(entry.chain.endBody)));
     const Vec3 point = body.userPosition() + body.userOrientation() * Vec3(0.0, -0.1, 0.0);
     EXPECT_NEAR((point - Vec3(0.0, entry.chain.anchor[1], 0.0)).norm(), entry.chain.restLength, 1e-9);
 }

@@ -36,7 +36,7 @@ struct Sample {
 };
 
 BodyId coinId(const SceneInstance& scene) {
-    for (const auto& [name, id] : scene.namedBodies)
+    for (const auto& [name, id] : scene.namedBodyIds())
         if (name == "coin") return id;
     return {};
 }

@@ -19,7 +19,7 @@ namespace substep {
 namespace {
 
 BodyId namedBody(const SceneInstance& scene, std::string_view name) {
-    for (const auto& [bodyName, id] : scene.namedBodies)
+    for (const auto& [bodyName, id] : scene.namedBodyIds())
         if (bodyName == name) return id;
     return {};
 }

@@ -35,7 +35,7 @@ class JointTypes : public testing::Test {
         ASSERT_TRUE(scene_.world().isFinite());
     }
     const Body& body(std::string_view name) const {
-        for (const auto& [bodyName, id] : scene_.instance().namedBodies)
+        for (const auto& [bodyName, id] : scene_.instance().namedBodyIds())
             if (bodyName == name) return scene_.world().body(id);
         ADD_FAILURE() << "no body " << name;
         return scene_.world().body(BodyId{});

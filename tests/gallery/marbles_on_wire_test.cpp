@@ -29,18 +29,18 @@ struct Track {
 
 Track findTrack(const SceneInstance& scene) {
     Track track;
-    for (const Body& b : scene.world.bodies())
+    for (const Body& b : scene.world().bodies())
         if (b.shape.type == ShapeType::Spline) {
             // The wires are static bodies at the origin: their curves are in world coordinates.
             EXPECT_LT(b.x.norm() + (b.userPosition() - b.x).norm(), 1e-12);
             track.wires.push_back(b.shape.spline.get());
         }
-    for (const auto& [name, id] : scene.namedBodies)
+    for (const auto& [name, id] : scene.namedBodyIds())
         if (name.starts_with("marble")) track.marbles.push_back(id);
     EXPECT_EQ(track.wires.size(), 2u);
     EXPECT_GE(track.marbles.size(), 3u);
     if (!track.marbles.empty())
-        track.marbleRadius = scene.world.body(track.marbles[0]).shape.radius;
+        track.marbleRadius = scene.world().body(track.marbles[0]).shape.radius;
     return track;
 }
 

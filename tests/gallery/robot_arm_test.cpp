@@ -79,7 +79,7 @@ class RobotArm : public testing::Test {
         ASSERT_TRUE(scene_.world().isFinite());
     }
     const Body& body(std::string_view name) const {
-        for (const auto& [bodyName, id] : scene_.instance().namedBodies)
+        for (const auto& [bodyName, id] : scene_.instance().namedBodyIds())
             if (bodyName == name) return scene_.world().body(id);
         ADD_FAILURE() << "no body " << name;
         return scene_.world().body(BodyId{});
@@ -157,7 +157,7 @@ TEST_F(RobotArm, OutOfReachTheGripperStopsOnTheLineAtFullReach) {
     // a stretched arm sag below the line by its weight's torque over the pull.
     WorldSettings settings = scene_.world().settings();
     settings.gravity = Vec3::Zero();
-    scene_.world().setSettings(settings);
+    scene_.physics().setSettings(settings);
     for (const Vec3& direction : {Vec3(0, 1, 0), Vec3(0.8, 0.6, 0.0), Vec3(0.5, 0.5, -0.7)}) {
         const Vec3 d = direction.normalized();
         const Vec3 goal = kShoulder + 1.5 * d;

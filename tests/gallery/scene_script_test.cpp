@@ -4,6 +4,8 @@
 #include "scenes/live_scene.h"
 #include "scenes/scenes.h"
 
+#include "ecs/components.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -23,7 +25,11 @@ class ProbeScript : public SceneScript {
     }
     void start(SceneInstance& scene) override {
         ++starts;
-        scene.world.joint(scene.namedJoints.front().second).compliance = knob(compliance_);
+        setCompliance(scene);
+    }
+    void setCompliance(SceneInstance& scene) const {
+        scene.registry.patch<ecs::Joint>(scene.jointEntities.front(),
+                                         [&](ecs::Joint& spring) { spring.def.compliance = knob(compliance_); });
     }
     void beforeFrame(SceneInstance&, double time, double dt) override {
         times.push_back(time);
@@ -31,14 +37,14 @@ class ProbeScript : public SceneScript {
     }
     void knobChanged(SceneInstance& scene, std::size_t index) override {
         changed.push_back(index);
-        WorldSettings settings = scene.world.settings();
-        if (index == compliance_) scene.world.joint(scene.namedJoints.front().second).compliance = knob(compliance_);
+        WorldSettings settings = scene.world().settings();
+        if (index == compliance_) setCompliance(scene);
         if (index == pass_) settings.velocityPass = toggled(pass_);
         if (index == split_) {
             settings.substeps = knob(split_) == 0.0 ? 20 : 1;
             settings.iterations = knob(split_) == 0.0 ? 1 : 20;
         }
-        scene.world.setSettings(settings);
+        scene.physics().setSettings(settings);
     }
 
     int starts = 0;
@@ -74,9 +80,9 @@ TEST(SceneScript, SetKnobClampsToTheKindAndApplies) {
     const SceneEntry entry = probeEntry();
     LiveScene scene(entry.build(), &entry);
     SceneScript& script = *scene.script();
-    const JointId spring = scene.instance().namedJoints.front().second;
+    const JointId spring = scene.instance().namedJointIds().front().second;
 
-    EXPECT_TRUE(script.setKnob(scene.instance(), "compliance", 5.0));  // above its range
+    EXPECT_TRUE(scene.setKnob("compliance", 5.0));  // above its range
     EXPECT_DOUBLE_EQ(script.findKnob("compliance")->value, 0.1);
     EXPECT_DOUBLE_EQ(scene.world().joint(spring).compliance, 0.1);
 
@@ -91,7 +97,7 @@ TEST(SceneScript, SetKnobClampsToTheKindAndApplies) {
     EXPECT_EQ(scene.world().settings().iterations, 20);
 
     EXPECT_FALSE(script.setKnob(scene.instance(), "no_such_knob", 1.0));
-    EXPECT_FALSE(script.setKnob(scene.instance(), "compliance", std::nan("")));
+    EXPECT_FALSE(scene.setKnob("compliance", std::nan("")));
     EXPECT_EQ(gLastProbe->changed.size(), 4u);  // the refused ones applied nothing
 }
 
@@ -112,13 +118,13 @@ TEST(LiveScene, RestartKeepsTheKnobsAndStartsTheNewWorldFromThem) {
     const SceneEntry entry = probeEntry();
     LiveScene scene(entry.build(), &entry);
     ProbeScript* probe = gLastProbe;
-    scene.script()->setKnob(scene.instance(), "compliance", 0.01);
+    scene.setKnob("compliance", 0.01);
     for (int frame = 0; frame < 10; ++frame) scene.step();
     scene.restart();
     EXPECT_EQ(scene.frame(), 0);
     EXPECT_EQ(probe->starts, 2);
     EXPECT_EQ(gLastProbe, probe) << "a restart keeps the script";
-    const JointId spring = scene.instance().namedJoints.front().second;
+    const JointId spring = scene.instance().namedJointIds().front().second;
     EXPECT_DOUBLE_EQ(scene.world().joint(spring).compliance, 0.01);
 }
 

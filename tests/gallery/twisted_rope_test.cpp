@@ -33,7 +33,7 @@ const SceneEntry& twistedRope() {
 /// The rope's links in order (link1 at the turned end).
 std::vector<BodyId> links(const SceneInstance& scene) {
     std::vector<BodyId> ids(kLinks);
-    for (const auto& [name, id] : scene.namedBodies)
+    for (const auto& [name, id] : scene.namedBodyIds())
         if (name.rfind("link", 0) == 0) ids[std::stoi(name.substr(4)) - 1] = id;
     return ids;
 }
@@ -68,21 +68,21 @@ struct RopeState {
 
 RopeState measure(const SceneInstance& scene) {
     const std::vector<BodyId> ids = links(scene);
-    const Body& first = scene.world.body(ids.front());
-    const Body& last = scene.world.body(ids.back());
+    const Body& first = scene.world().body(ids.front());
+    const Body& last = scene.world().body(ids.back());
     RopeState state{.span = ((last.userPosition() + 0.5 * kPitch * axisOf(last)) -
                              (first.userPosition() - 0.5 * kPitch * axisOf(first)))
                                 .norm()};
     for (int i = 0; i + 1 < kLinks; ++i) {
-        const Body& a = scene.world.body(ids[i]);
-        const Body& b = scene.world.body(ids[i + 1]);
+        const Body& a = scene.world().body(ids[i]);
+        const Body& b = scene.world().body(ids[i + 1]);
         state.maxSwing = std::max(state.maxSwing, swingBetween(a, b));
         const double twist = twistBetween(a, b);
         state.maxTwist = std::max(state.maxTwist, std::abs(twist));
         state.totalTwist += twist;
     }
-    const auto bodies = scene.world.bodies();
-    for (const ContactPair& pair : scene.world.contactPairs())
+    const auto bodies = scene.world().bodies();
+    for (const ContactPair& pair : scene.world().contactPairs())
         if (pair.count > 0 && bodies[pair.body0].isDynamic() && bodies[pair.body1].isDynamic())
             ++state.touching;
     return state;

@@ -68,19 +68,25 @@ inline double angleBetween(const Vec3& a, const Vec3& b) {
     return std::atan2(a.cross(b).norm(), a.dot(b));
 }
 
-/// Steps `world` for `seconds` in frames of `dt`, calling `afterFrame(t)` after each frame.
-template <class AfterFrame>
-void runFor(World& world, double seconds, AfterFrame&& afterFrame, double dt = kDt) {
+/// Steps `stepped` for `seconds` in frames of `dt`, calling `afterFrame(t)` after each frame.
+/// `stepped` is a World (stepped directly) or a built scene (stepped through its physics system).
+template <class Stepped, class AfterFrame>
+void runFor(Stepped& stepped, double seconds, AfterFrame&& afterFrame, double dt = kDt) {
     const int frames = static_cast<int>(std::lround(seconds / dt));
     for (int f = 1; f <= frames; ++f) {
-        world.step(dt);
+        if constexpr (requires { stepped.physics(); }) {
+            stepped.physics().step(dt);
+        } else {
+            stepped.step(dt);
+        }
         afterFrame(f * dt);
     }
 }
 
-inline void runFor(World& world, double seconds, double dt = kDt) {
+template <class Stepped>
+void runFor(Stepped& stepped, double seconds, double dt = kDt) {
     runFor(
-        world, seconds, [](double) {}, dt);
+        stepped, seconds, [](double) {}, dt);
 }
 
 /// A sampled signal s(t).

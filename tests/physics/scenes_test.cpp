@@ -20,13 +20,13 @@ using test::kDt;
 using test::report;
 
 BodyId bodyNamed(const SceneInstance& scene, const std::string& name) {
-    for (const auto& [n, id] : scene.namedBodies)
+    for (const auto& [n, id] : scene.namedBodyIds())
         if (n == name) return id;
     throw std::invalid_argument("no body " + name);
 }
 
 JointId jointNamed(const SceneInstance& scene, const std::string& name) {
-    for (const auto& [n, id] : scene.namedJoints)
+    for (const auto& [n, id] : scene.namedJointIds())
         if (n == name) return id;
     throw std::invalid_argument("no joint " + name);
 }
@@ -34,11 +34,11 @@ JointId jointNamed(const SceneInstance& scene, const std::string& name) {
 /// Rebuilds the scene's world settings with another substep/iteration split (and solver).
 void resplit(SceneInstance& scene, int substeps, int iterations,
              SolverType solver = SolverType::GaussSeidel) {
-    WorldSettings settings = scene.world.settings();
+    WorldSettings settings = scene.world().settings();
     settings.substeps = substeps;
     settings.iterations = iterations;
     settings.solver = solver;
-    scene.world.setSettings(settings);
+    scene.physics().setSettings(settings);
 }
 
 // --- Fig. 4: boxes on springs ------------------------------------------------------------------
@@ -60,7 +60,7 @@ struct Spring {
 };
 
 Vec3 anchorPoint(const SceneInstance& scene, const std::string& body, const Vec3& local) {
-    return test::userPoint(scene.world.body(bodyNamed(scene, body)), local);
+    return test::userPoint(scene.world().body(bodyNamed(scene, body)), local);
 }
 
 /// Checks every spring reads f = carried m g, is stretched α f and stores ½ α f².
@@ -71,7 +71,7 @@ void expectHooke(const SceneInstance& scene, const std::vector<Spring>& springs,
         const double stretch = (anchorPoint(scene, s.upper, s.upperAnchor) -
                                 anchorPoint(scene, s.lower, s.lowerAnchor))
                                    .norm();
-        const JointReadout r = scene.world.jointReadout(jointNamed(scene, s.name));
+        const JointReadout r = scene.world().jointReadout(jointNamed(scene, s.name));
         EXPECT_NEAR(r.force, force, relativeTolerance * force) << s.name;
         EXPECT_NEAR(stretch, kCompliance * force, relativeTolerance * kCompliance * force)
             << s.name;
@@ -105,15 +105,15 @@ class Boxes3Test : public ::testing::TestWithParam<std::tuple<int, int>> {};
 TEST_P(Boxes3Test, SpringsKeepHookeForcesAndStretches) {
     const auto [substeps, iterations] = GetParam();
     SceneInstance scene = buildScene(scenes::boxes3());
-    ASSERT_EQ(scene.world.settings().gravity, Vec3(0, -kG, 0));
+    ASSERT_EQ(scene.world().settings().gravity, Vec3(0, -kG, 0));
     resplit(scene, substeps, iterations);
-    const Vec3 start = scene.world.body(bodyNamed(scene, "small2")).userPosition();
+    const Vec3 start = scene.world().body(bodyNamed(scene, "small2")).userPosition();
     double worst = 0.0, worstMove = 0.0;
-    test::runFor(scene.world, 2.0, [&](double) {
+    test::runFor(scene, 2.0, [&](double) {
         expectHooke(scene, boxes3Springs(), 0.015, &worst);
         worstMove =
             std::max(worstMove,
-                     (scene.world.body(bodyNamed(scene, "small2")).userPosition() - start).norm());
+                     (scene.world().body(bodyNamed(scene, "small2")).userPosition() - start).norm());
     });
     report("boxes3_worst_relative_error_" + std::to_string(substeps) + "x" +
                std::to_string(iterations),
@@ -141,12 +141,12 @@ TEST(Boxes7Test, BranchedSpringsKeepHookeForces) {
                            Vec3(0, 0.05, 0), kSmall});
     }
     double worst = 0.0;
-    test::runFor(scene.world, 2.0, [&](double) { expectHooke(scene, springs, 0.01, &worst); });
+    test::runFor(scene, 2.0, [&](double) { expectHooke(scene, springs, 0.01, &worst); });
     report("boxes7_worst_relative_error", worst);
     // Symmetric branches keep the large box level (up to the solve order's asymmetry: measured
     // 5e-6 rad).
     EXPECT_LT(test::turnBetween(Quat::Identity(),
-                                scene.world.body(bodyNamed(scene, "large")).userOrientation())
+                                scene.world().body(bodyNamed(scene, "large")).userOrientation())
                   .norm(),
               1e-4);
 }
@@ -172,12 +172,12 @@ TEST(Boxes3Test, JacobiChainKeepsHookeForces) {
     const std::vector<Spring>& springs = boxes3Springs();
     std::vector<double> sumForce(springs.size()), sumStretch(springs.size());
     int samples = 0;
-    test::runFor(scene.world, 20.0, [&](double t) {
+    test::runFor(scene, 20.0, [&](double t) {
         if (t <= 10.0) return;
         ++samples;
         for (size_t i = 0; i < springs.size(); ++i) {
             const Spring& s = springs[i];
-            sumForce[i] += scene.world.jointReadout(jointNamed(scene, s.name)).force;
+            sumForce[i] += scene.world().jointReadout(jointNamed(scene, s.name)).force;
             sumStretch[i] += (anchorPoint(scene, s.upper, s.upperAnchor) -
                               anchorPoint(scene, s.lower, s.lowerAnchor))
                                  .norm();
@@ -200,11 +200,11 @@ TEST(HingeBarTest, HoldsTheBarLevelWithTorqueMgLOver2) {
     SceneInstance scene = buildScene(scenes::hingeBar());
     const BodyId bar = bodyNamed(scene, "bar");
     double worstAngle = 0.0;
-    test::runFor(scene.world, 2.0, [&](double) {
-        const Vec3 x = test::userAxis(scene.world.body(bar), Vec3::UnitX());
+    test::runFor(scene, 2.0, [&](double) {
+        const Vec3 x = test::userAxis(scene.world().body(bar), Vec3::UnitX());
         worstAngle = std::max(worstAngle, std::abs(std::atan2(x.y(), x.x())));
     });
-    const JointReadout r = scene.world.jointReadout(jointNamed(scene, "hinge"));
+    const JointReadout r = scene.world().jointReadout(jointNamed(scene, "hinge"));
     report("hinge_bar_scene_torque_Nm", r.torque);
     report("hinge_bar_scene_max_angle_rad", worstAngle);
     EXPECT_NEAR(r.torque, 1.0 * kG * 0.4 / 2, 0.01 * 2.0);
@@ -240,7 +240,7 @@ TEST(MassRatioTest, ForcesAndStretchesAtEveryCompliance) {
         const double offset = heavy / light * kG * h * h;  // ERRATA item 7
         double sumTopForce[3] = {}, sumBottomForce[3] = {}, sumTopGap[3] = {}, sumBottomGap[3] = {};
         int samples = 0;
-        test::runFor(scene.world, 20.0, [&](double t) {
+        test::runFor(scene, 20.0, [&](double t) {
             if (t <= 10.0) return;
             ++samples;
             for (int i = 0; i < 3; ++i) {
@@ -251,12 +251,12 @@ TEST(MassRatioTest, ForcesAndStretchesAtEveryCompliance) {
                 const Vec3 heavyTop = anchorPoint(scene, "heavy" + id, Vec3(0, 0.1, 0));
                 sumTopGap[i] += (ceilingAnchor - lightTop).norm();
                 sumBottomGap[i] += (lightBottom - heavyTop).norm();
-                sumTopForce[i] += scene.world.jointReadout(jointNamed(scene, "top" + id)).force;
+                sumTopForce[i] += scene.world().jointReadout(jointNamed(scene, "top" + id)).force;
                 sumBottomForce[i] +=
-                    scene.world.jointReadout(jointNamed(scene, "bottom" + id)).force;
+                    scene.world().jointReadout(jointNamed(scene, "bottom" + id)).force;
             }
         });
-        ASSERT_TRUE(scene.world.isFinite());
+        ASSERT_TRUE(scene.world().isFinite());
         for (int i = 0; i < 3; ++i) {
             const double alpha = compliances[i];
             SCOPED_TRACE(::testing::Message() << substeps << " substeps, compliance " << alpha);
@@ -285,9 +285,9 @@ double pendulumEnergy(const SceneInstance& scene) {
     const Vec3 moments = test::boxMoments(Vec3(1.0, 0.1, 0.1), 1.0);
     double energy = 0.0;
     for (const char* name : {"link1", "link2", "link3"}) {
-        const Body& b = scene.world.body(bodyNamed(scene, name));
+        const Body& b = scene.world().body(bodyNamed(scene, name));
         energy += test::kineticEnergy(b, 1.0, moments) +
-                  test::potentialEnergy(b, 1.0, scene.world.settings().gravity);
+                  test::potentialEnergy(b, 1.0, scene.world().settings().gravity);
     }
     return energy;
 }
@@ -305,8 +305,8 @@ TEST(Pendulum3Test, SubstepsLoseLessEnergyThanIterations) {
         SceneInstance scene = buildScene(scenes::pendulum3());
         resplit(scene, substeps, iterations);
         const double e0 = pendulumEnergy(scene);
-        test::runFor(scene.world, 10.0);
-        EXPECT_TRUE(scene.world.isFinite());
+        test::runFor(scene, 10.0);
+        EXPECT_TRUE(scene.world().isFinite());
         loss[i] = std::abs(pendulumEnergy(scene) - e0);
         report("pendulum3_energy_loss_J_" + std::to_string(substeps) + "x" +
                    std::to_string(iterations),

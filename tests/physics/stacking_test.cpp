@@ -13,7 +13,7 @@ namespace substep {
 namespace {
 
 BodyId namedBody(const SceneInstance& instance, const std::string& name) {
-    for (const auto& [bodyName, id] : instance.namedBodies)
+    for (const auto& [bodyName, id] : instance.namedBodyIds())
         if (bodyName == name) return id;
     return {};
 }
@@ -23,10 +23,10 @@ double driftOf(const char* sceneName, const char* bodyName, double seconds) {
     SceneInstance instance = buildScene(findBuiltinScene(sceneName)->build());
     const BodyId top = namedBody(instance, bodyName);
     EXPECT_FALSE(top.isNull());
-    const Vec3 start = instance.world.body(top).userPosition();
-    test::runFor(instance.world, seconds, [&](double) {});
-    EXPECT_TRUE(instance.world.isFinite());
-    return (instance.world.body(top).userPosition() - start).norm();
+    const Vec3 start = instance.world().body(top).userPosition();
+    test::runFor(instance, seconds, [&](double) {});
+    EXPECT_TRUE(instance.world().isFinite());
+    return (instance.world().body(top).userPosition() - start).norm();
 }
 
 TEST(StackingTest, StackOfTenStandsForTenSeconds) {

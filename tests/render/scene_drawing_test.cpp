@@ -1,4 +1,4 @@
-// Tests sandbox/scene_drawing.cpp: a World becomes a RenderScene with every body's shape where
+// Tests sandbox/scene_drawing.cpp: a scene's components become a RenderScene with every body's shape where
 // the body is, a ground under everything, a camera that sees the bodies, and debug lines for
 // joints and their forces.
 
@@ -37,9 +37,9 @@ TEST(SceneDrawing, EveryBuiltinSceneShowsEachBodyAboveTheGround) {
         SCOPED_TRACE(std::string(entry.name));
         const SceneDescription description = entry.build();
         SceneInstance scene = buildScene(description);
-        SceneDrawing drawing(description, scene.world, 4.0f / 3.0f);
-        const render::RenderScene drawn = drawing.draw(scene.world);
-        EXPECT_EQ(drawn.instances.size(), drawableBodies(scene.world));
+        SceneDrawing drawing(description, scene, 4.0f / 3.0f);
+        const render::RenderScene drawn = drawing.draw(scene);
+        EXPECT_EQ(drawn.instances.size(), drawableBodies(scene.world()));
         ASSERT_TRUE(drawn.ground.has_value());
         for (const render::RenderInstance& instance : drawn.instances) {
             EXPECT_GE(drawn.ground->normal.dot(instance.position), drawn.ground->offset);
@@ -53,10 +53,10 @@ TEST(SceneDrawing, EveryBuiltinSceneShowsEachBodyAboveTheGround) {
 TEST(SceneDrawing, InstancesFollowTheBodies) {
     const SceneDescription description = findBuiltinScene("pendula")->build();
     SceneInstance scene = buildScene(description);
-    SceneDrawing drawing(description, scene.world, 1.0f);
-    const render::RenderScene before = drawing.draw(scene.world);
-    for (int i = 0; i < 30; ++i) scene.world.step(description.dt);
-    const render::RenderScene after = drawing.draw(scene.world);
+    SceneDrawing drawing(description, scene, 1.0f);
+    const render::RenderScene before = drawing.draw(scene);
+    for (int i = 0; i < 30; ++i) scene.physics().step(description.dt);
+    const render::RenderScene after = drawing.draw(scene);
     ASSERT_EQ(before.instances.size(), after.instances.size());
     float largestMove = 0.0f;
     for (std::size_t i = 0; i < before.instances.size(); ++i) {
@@ -66,29 +66,29 @@ TEST(SceneDrawing, InstancesFollowTheBodies) {
     // The camera is fixed for the whole rendering.
     EXPECT_TRUE(after.camera.position.isApprox(before.camera.position));
     // The instance is at the body's user frame, as `run --csv` reports it.
-    const Body& body = scene.world.bodies()[1];
+    const Body& body = scene.world().bodies()[1];
     EXPECT_TRUE(after.instances[0].position.isApprox(body.userPosition().cast<float>(), 1e-5f));
 }
 
 TEST(SceneDrawing, JointsGetFramesAndForces) {
     const SceneDescription description = findBuiltinScene("boxes3")->build();
     SceneInstance scene = buildScene(description);
-    SceneDrawing drawing(description, scene.world, 1.0f);
+    SceneDrawing drawing(description, scene, 1.0f);
     const std::size_t joints = description.joints.size();
     // Before any step: a link line and two three-axis frames per joint, no forces yet.
-    EXPECT_EQ(drawing.draw(scene.world).lines.size(), joints * 7);
-    scene.world.step(description.dt);
+    EXPECT_EQ(drawing.draw(scene).lines.size(), joints * 7);
+    scene.physics().step(description.dt);
     // After one: a spring that pulls (the world reports a force) holds its box up with an arrow
     // of three lines pointing up.
-    const render::RenderScene drawn = drawing.draw(scene.world);
+    const render::RenderScene drawn = drawing.draw(scene);
     std::size_t pulling = 0;
-    for (const auto& [name, id] : scene.namedJoints) pulling += scene.world.jointReadout(id).force > 0.0 ? 1 : 0;
+    for (const auto& [name, id] : scene.namedJointIds()) pulling += scene.world().jointReadout(id).force > 0.0 ? 1 : 0;
     ASSERT_EQ(drawn.lines.size(), joints * 7 + pulling * 3);
     for (std::size_t line = joints * 7; line < drawn.lines.size(); line += 3) {
         EXPECT_GT(drawn.lines[line].to.y() - drawn.lines[line].from.y(), 0.0f) << "arrow " << line;
     }
-    SceneDrawing plain(description, scene.world, 1.0f, {.jointFrames = false, .jointForces = false});
-    EXPECT_EQ(plain.draw(scene.world).lines.size(), joints);
+    SceneDrawing plain(description, scene, 1.0f, {.jointFrames = false, .jointForces = false});
+    EXPECT_EQ(plain.draw(scene).lines.size(), joints);
 }
 
 TEST(SceneDrawing, DefaultCameraSeesEveryBody) {
@@ -96,8 +96,8 @@ TEST(SceneDrawing, DefaultCameraSeesEveryBody) {
     description.camera.reset();
     SceneInstance scene = buildScene(description);
     const float aspect = 16.0f / 9.0f;
-    SceneDrawing drawing(description, scene.world, aspect);
-    for (const render::RenderInstance& instance : drawing.draw(scene.world).instances) {
+    SceneDrawing drawing(description, scene, aspect);
+    for (const render::RenderInstance& instance : drawing.draw(scene).instances) {
         const render::Vec3f ndc = project(drawing.camera(), aspect, instance.position);
         EXPECT_LT(std::abs(ndc.x()), 1.0f);
         EXPECT_LT(std::abs(ndc.y()), 1.0f);
@@ -105,20 +105,21 @@ TEST(SceneDrawing, DefaultCameraSeesEveryBody) {
 }
 
 TEST(SceneDrawing, SplineTubesHeightfieldsAndMeshesBecomeMeshInstances) {
-    World world;
+    SceneDescription description;
     const auto field = makeHeightfield(3, 2, {0, 0.5, 0, 0, 0.2, 0}, 2.0, 1.0);
-    world.createBody({.shape = heightfieldShape(field), .type = BodyType::Static});
+    description.bodies.push_back({"", {.shape = heightfieldShape(field), .type = BodyType::Static}});
     const auto tube = makeSplineTube({Vec3(0, 1, 0), Vec3(1, 1.5, 0), Vec3(2, 1, 0)}, 0.05, false);
-    world.createBody({.shape = splineShape(tube), .type = BodyType::Static});
+    description.bodies.push_back({"", {.shape = splineShape(tube), .type = BodyType::Static}});
     auto tetrahedron = std::make_shared<TriangleMesh>();
     tetrahedron->vertices = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)};
     tetrahedron->triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
     Shape mesh{.type = ShapeType::Mesh, .mesh = tetrahedron};
-    world.createBody({.shape = mesh, .type = BodyType::Static, .position = Vec3(0, 2, 0)});
-    world.createBody({.shape = mesh, .type = BodyType::Static, .position = Vec3(1, 2, 0)});
+    description.bodies.push_back({"", {.shape = mesh, .type = BodyType::Static, .position = Vec3(0, 2, 0)}});
+    description.bodies.push_back({"", {.shape = mesh, .type = BodyType::Static, .position = Vec3(1, 2, 0)}});
+    SceneInstance scene = buildScene(description);
 
-    SceneDrawing drawing(SceneDescription{}, world, 1.0f);
-    const render::RenderScene drawn = drawing.draw(world);
+    SceneDrawing drawing(description, scene, 1.0f);
+    const render::RenderScene drawn = drawing.draw(scene);
     ASSERT_EQ(drawn.instances.size(), 4u);
     // The heightfield's grid is centred on its frame, as the physics has it.
     float lowestX = 1e9f;
@@ -131,7 +132,7 @@ TEST(SceneDrawing, SplineTubesHeightfieldsAndMeshesBecomeMeshInstances) {
     }
     // Bodies sharing a mesh share its render mesh (one instanced draw), frame after frame.
     EXPECT_EQ(drawn.instances[2].mesh, drawn.instances[3].mesh);
-    EXPECT_EQ(drawing.draw(world).instances[2].mesh, drawn.instances[2].mesh);
+    EXPECT_EQ(drawing.draw(scene).instances[2].mesh, drawn.instances[2].mesh);
 }
 
 TEST(SceneDrawing, BodiesHaveDistinctColoursAndStaticOnesAreGrey) {
@@ -151,15 +152,15 @@ TEST(SceneDrawing, ContactsAreArrowsAlongTheirNormalsWhenAskedFor) {
     if (entry == nullptr) GTEST_SKIP() << "no stack10 scene in this build";
     const SceneDescription description = entry->build();
     SceneInstance scene = buildScene(description);
-    for (int i = 0; i < 5; ++i) scene.world.step(description.dt);
+    for (int i = 0; i < 5; ++i) scene.physics().step(description.dt);
     std::size_t points = 0;
-    for (const ContactPair& pair : scene.world.contactPairs()) points += pair.count;
+    for (const ContactPair& pair : scene.world().contactPairs()) points += pair.count;
     const DrawingOptions contactsOnly{.jointFrames = false, .jointForces = false, .contacts = true};
-    SceneDrawing drawing(description, scene.world, 1.0f, contactsOnly);
-    EXPECT_EQ(drawing.draw(scene.world).lines.size(), points * 3);
+    SceneDrawing drawing(description, scene, 1.0f, contactsOnly);
+    EXPECT_EQ(drawing.draw(scene).lines.size(), points * 3);
     // Off by default.
-    SceneDrawing plain(description, scene.world, 1.0f);
-    EXPECT_EQ(plain.draw(scene.world).lines.size(), scene.world.joints().size() * 7);
+    SceneDrawing plain(description, scene, 1.0f);
+    EXPECT_EQ(plain.draw(scene).lines.size(), scene.world().joints().size() * 7);
 }
 
 }  // namespace
@@ -175,7 +176,7 @@ TEST(SceneDrawing, SceneInstanceBodiesWearTheirRenderMaterial) {
     description.bodies.push_back({"red", BodyDef{.shape = sphereShape(0.1), .mass = 1.0}, Vec3(1.0, 0.0, 0.0)});
     description.bodies.push_back({"plain", BodyDef{.shape = sphereShape(0.1), .mass = 1.0, .position = Vec3(1.0, 0.0, 0.0)}});
     SceneInstance scene = buildScene(description);
-    SceneDrawing drawing(description, scene.world, 1.0f);
+    SceneDrawing drawing(description, scene, 1.0f);
 
     render::RenderScene drawn = drawing.draw(scene);
     ASSERT_EQ(drawn.instances.size(), 2u);
@@ -188,6 +189,32 @@ TEST(SceneDrawing, SceneInstanceBodiesWearTheirRenderMaterial) {
     drawn = drawing.draw(scene);
     ASSERT_EQ(drawn.instances.size(), 1u);
     EXPECT_TRUE(drawn.instances[0].colour.isApprox(render::Colour(0.0f, 0.0f, 1.0f)));
+}
+
+// The render system draws from components: a RenderMaterial's mesh is drawn instead of the
+// collision shape, and a body moved through its Transform is drawn where it was put.
+TEST(SceneDrawing, RenderMaterialMeshReplacesTheShapeAndTransformsPlaceBodies) {
+    SceneDescription description;
+    description.bodies.push_back({"ball", BodyDef{.shape = sphereShape(0.1), .mass = 1.0}});
+    description.bodies.push_back({"mount", BodyDef{.shape = boxShape(Vec3(0.2, 0.2, 0.2)), .type = BodyType::Static,
+                                                   .position = Vec3(0.0, 1.0, 0.0), .collide = false}});
+    SceneInstance scene = buildScene(description);
+    SceneDrawing drawing(description, scene, 1.0f);
+    ASSERT_EQ(drawing.draw(scene).instances[0].kind, render::ShapeKind::Sphere);
+
+    auto look = std::make_shared<TriangleMesh>();
+    look->vertices = {Vec3(0, 0, 0), Vec3(0.1, 0, 0), Vec3(0, 0.1, 0), Vec3(0, 0, 0.1)};
+    look->triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+    scene.registry.get<ecs::RenderMaterial>(scene.bodyEntities[0]).mesh = look;
+    scene.registry.patch<ecs::Transform>(scene.bodyEntities[1],
+                                         [](ecs::Transform& mount) { mount.position = Vec3(2.0, 1.0, 0.0); });
+    scene.physics().step(1.0 / 60.0);
+    const render::RenderScene drawn = drawing.draw(scene);
+    ASSERT_EQ(drawn.instances.size(), 2u);
+    EXPECT_EQ(drawn.instances[0].kind, render::ShapeKind::Mesh);
+    ASSERT_TRUE(drawn.instances[0].mesh);
+    EXPECT_EQ(drawn.instances[0].mesh->indices.size(), 12u);  // the material mesh's 4 triangles
+    EXPECT_TRUE(drawn.instances[1].position.isApprox(render::Vec3f(2.0f, 1.0f, 0.0f)));
 }
 
 }  // namespace

@@ -210,7 +210,7 @@ SceneInstance builtin(const char* name) {
 
 TEST(ErrorMeasures, ChainAtItsRestPoseHasNoElongationAndNoDrift) {
     const SceneInstance scene = builtin("chain100");
-    ErrorRecorder recorder(scene, errorReference(findBuiltinScene("chain100"), scene.world));
+    ErrorRecorder recorder(scene, errorReference(findBuiltinScene("chain100"), scene));
     recorder.sample();
     const ErrorMeasures measures = recorder.measures();
     ASSERT_TRUE(measures.chainElongation.has_value());
@@ -223,14 +223,14 @@ TEST(ErrorMeasures, ChainAtItsRestPoseHasNoElongationAndNoDrift) {
 
 TEST(ErrorMeasures, EnergyScaleIsTheEntrysOrTheWeightTimesOneMetre) {
     const SceneInstance pendulum = builtin("pendulum3");
-    EXPECT_EQ(errorReference(findBuiltinScene("pendulum3"), pendulum.world).energyScale, 10.0);
+    EXPECT_EQ(errorReference(findBuiltinScene("pendulum3"), pendulum).energyScale, 10.0);
 
     // chain100 gives no scale: 100 boxes of 1 kg under g = 10 weigh 1000 N.
     const SceneInstance chain = builtin("chain100");
-    EXPECT_NEAR(errorReference(findBuiltinScene("chain100"), chain.world).energyScale, 1000.0,
+    EXPECT_NEAR(errorReference(findBuiltinScene("chain100"), chain).energyScale, 1000.0,
                 1e-9);
     // A scene file has no entry: the same weight rule, and no chain.
-    const ErrorReference reference = errorReference(nullptr, chain.world);
+    const ErrorReference reference = errorReference(nullptr, chain);
     EXPECT_NEAR(reference.energyScale, 1000.0, 1e-9);
     EXPECT_TRUE(reference.chain.endBody.empty());
 }
@@ -241,29 +241,29 @@ TEST(ErrorMeasures, FollowTheirDefinitionsOverARun) {
     SceneInstance scene = buildScene(description);
     ErrorRecorder recorder(scene, {.energyScale = 10.0});
     recorder.sample();
-    const double initial = scene.world.energies().total();
+    const double initial = scene.world().energies().total();
     double largestChange = 0.0;
     // Every joint of pendulum3 is named, so the named ones are all of them.
     auto meanJointError = [&] {
         double sum = 0.0;
-        for (const auto& [name, id] : scene.namedJoints)
-            sum += scene.world.jointReadout(id).error;
-        return sum / static_cast<double>(scene.namedJoints.size());
+        for (const auto& [name, id] : scene.namedJointIds())
+            sum += scene.world().jointReadout(id).error;
+        return sum / static_cast<double>(scene.namedJointIds().size());
     };
     double meanSum = meanJointError();
-    double largestError = scene.world.maxJointError();
+    double largestError = scene.world().maxJointError();
     for (int frame = 1; frame <= 30; ++frame) {
-        scene.world.step(description.dt);
+        scene.physics().step(description.dt);
         recorder.sample();
-        largestChange = std::max(largestChange, std::abs(scene.world.energies().total() - initial));
+        largestChange = std::max(largestChange, std::abs(scene.world().energies().total() - initial));
         meanSum += meanJointError();
-        largestError = std::max(largestError, scene.world.maxJointError());
+        largestError = std::max(largestError, scene.world().maxJointError());
     }
     const ErrorMeasures measures = recorder.measures();
     EXPECT_EQ(recorder.sampleCount(), 31u);
     EXPECT_DOUBLE_EQ(measures.energyDrift, largestChange / 10.0);
     EXPECT_DOUBLE_EQ(measures.energyErrorFinal,
-                     std::abs(scene.world.energies().total() - initial) / 10.0);
+                     std::abs(scene.world().energies().total() - initial) / 10.0);
     EXPECT_DOUBLE_EQ(measures.maxJointError, largestError);
     EXPECT_NEAR(measures.meanJointError, meanSum / 31.0, 1e-15);
     EXPECT_FALSE(measures.chainElongation.has_value());

@@ -14,6 +14,8 @@
 #include "view/scene_file_watch.h"
 #include "view/view_session.h"
 
+#include "ecs/components.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -196,14 +198,15 @@ TEST(BodyDraggerTest, PullsTheBodyUnderTheCursorAndLetsGo) {
 TEST(ViewSessionTest, JointComplianceIsEditableLive) {
     view::ViewSession session(resolveScene("boxes3"), 16.0f / 9.0f);
     ASSERT_FALSE(session.namedJoints().empty());
-    const JointId id = session.namedJoints().front().second;
-    const double original = session.world().joint(id).compliance;
+    const ecs::Entity id = session.namedJoints().front().second;
+    const JointId worldId = session.instance().registry.get<ecs::Joint>(id).id;
+    const double original = session.world().joint(worldId).compliance;
     session.setJointCompliance(id, 0.05);
-    EXPECT_EQ(session.world().joint(id).compliance, 0.05);
+    EXPECT_EQ(session.world().joint(session.instance().registry.get<ecs::Joint>(id).id).compliance, 0.05);
     session.setJointCompliance(id, -1.0);  // refused: a compliance is never negative
-    EXPECT_EQ(session.world().joint(id).compliance, 0.05);
+    EXPECT_EQ(session.world().joint(session.instance().registry.get<ecs::Joint>(id).id).compliance, 0.05);
     session.restart();
-    EXPECT_EQ(session.world().joint(session.namedJoints().front().second).compliance, original);
+    EXPECT_EQ(session.world().joint(session.instance().registry.get<ecs::Joint>(session.namedJoints().front().second).id).compliance, original);
 }
 
 // A saved scene file is noticed once, a built-in scene (no path) never, and a file that is
@@ -307,9 +310,9 @@ TEST(CompareSessionTest, RunsTwoSplitsOfOneSceneInLockstep) {
     EXPECT_EQ(session.splits()[1], (view::SolverSplit{4, 20}));
 
     // Joint edits reach both runs; a restart brings both back to the start, keeping the splits.
-    const JointId joint = session.first().namedJoints().front().second;
+    const ecs::Entity joint = session.first().namedJoints().front().second;
     session.setJointCompliance(joint, 1e-3);
-    EXPECT_EQ(session.run(1).world().joint(joint).compliance, 1e-3);
+    EXPECT_EQ(session.run(1).world().joint(session.run(1).instance().registry.get<ecs::Joint>(joint).id).compliance, 1e-3);
     session.restart();
     EXPECT_EQ(session.run(0).frame(), 0);
     EXPECT_EQ(session.run(1).frame(), 0);
@@ -389,7 +392,7 @@ TEST(BodyDraggerTest, MovesAStaticNonCollidingBodyAndTheJointsFollow) {
 
     const World& world = session.world();
     const auto bodyNamed = [&](const std::string& name) {
-        for (const auto& [bodyName, id] : session.instance().namedBodies) {
+        for (const auto& [bodyName, id] : session.instance().namedBodyIds()) {
             if (bodyName == name) return id;
         }
         throw std::runtime_error("no body " + name);

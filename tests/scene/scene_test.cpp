@@ -39,50 +39,50 @@ SceneDescription twoBodies() {
 
 TEST(BuildScene, WorldSettingsComeFromTheDescription) {
     const SceneInstance s = buildScene(twoBodies());
-    EXPECT_EQ(s.world.settings().gravity, Vec3(0, -10, 0));
-    EXPECT_EQ(s.world.settings().substeps, 7);
-    EXPECT_EQ(s.world.settings().iterations, 3);
+    EXPECT_EQ(s.world().settings().gravity, Vec3(0, -10, 0));
+    EXPECT_EQ(s.world().settings().substeps, 7);
+    EXPECT_EQ(s.world().settings().iterations, 3);
 }
 
 TEST(BuildScene, BodiesInOrderAndNamedOnesRecorded) {
     const SceneInstance s = buildScene(twoBodies());
-    ASSERT_EQ(s.namedBodies.size(), 2u);
-    EXPECT_EQ(s.namedBodies[0].first, "ceiling");
-    EXPECT_EQ(s.namedBodies[1].first, "bob");
-    const BodyId ceiling = s.namedBodies[0].second;
-    const BodyId bob = s.namedBodies[1].second;
-    ASSERT_TRUE(s.world.isValid(ceiling));
-    ASSERT_TRUE(s.world.isValid(bob));
+    ASSERT_EQ(s.namedBodyIds().size(), 2u);
+    EXPECT_EQ(s.namedBodyIds()[0].first, "ceiling");
+    EXPECT_EQ(s.namedBodyIds()[1].first, "bob");
+    const BodyId ceiling = s.namedBodyIds()[0].second;
+    const BodyId bob = s.namedBodyIds()[1].second;
+    ASSERT_TRUE(s.world().isValid(ceiling));
+    ASSERT_TRUE(s.world().isValid(bob));
     EXPECT_LT(ceiling.index, bob.index);
-    EXPECT_EQ(s.world.body(ceiling).type, BodyType::Static);
-    EXPECT_FALSE(s.world.body(ceiling).isDynamic());
-    EXPECT_NEAR(s.world.body(bob).mass, 2.0, 1e-12);
-    EXPECT_TRUE(s.world.body(bob).userPosition().isApprox(Vec3(0, 1, 0)));
+    EXPECT_EQ(s.world().body(ceiling).type, BodyType::Static);
+    EXPECT_FALSE(s.world().body(ceiling).isDynamic());
+    EXPECT_NEAR(s.world().body(bob).mass, 2.0, 1e-12);
+    EXPECT_TRUE(s.world().body(bob).userPosition().isApprox(Vec3(0, 1, 0)));
     // The unnamed body exists too: the world's anchor plus three bodies.
-    EXPECT_EQ(s.world.bodies().size(), 4u);
+    EXPECT_EQ(s.world().bodies().size(), 4u);
 }
 
 TEST(BuildScene, JointBodyNamesResolve) {
     const SceneInstance s = buildScene(twoBodies());
-    const BodyId ceiling = s.namedBodies[0].second;
-    const BodyId bob = s.namedBodies[1].second;
-    ASSERT_EQ(s.namedJoints.size(), 2u);
-    EXPECT_EQ(s.namedJoints[0].first, "rope");
-    EXPECT_EQ(s.namedJoints[1].first, "pin");
-    ASSERT_EQ(s.world.joints().size(), 3u);
+    const BodyId ceiling = s.namedBodyIds()[0].second;
+    const BodyId bob = s.namedBodyIds()[1].second;
+    ASSERT_EQ(s.namedJointIds().size(), 2u);
+    EXPECT_EQ(s.namedJointIds()[0].first, "rope");
+    EXPECT_EQ(s.namedJointIds()[1].first, "pin");
+    ASSERT_EQ(s.world().joints().size(), 3u);
 
-    const Joint& rope = s.world.joint(s.namedJoints[0].second);
+    const Joint& rope = s.world().joint(s.namedJointIds()[0].second);
     EXPECT_EQ(rope.type, JointType::Distance);
     EXPECT_EQ(rope.body0, ceiling.index);
     EXPECT_EQ(rope.body1, bob.index);
     EXPECT_EQ(rope.maxDistance, 1.0);
 
     // "world" and "" both mean the world's anchor body, index 0.
-    const Joint& unnamed = s.world.joints()[1];
+    const Joint& unnamed = s.world().joints()[1];
     EXPECT_EQ(unnamed.type, JointType::Spherical);
     EXPECT_EQ(unnamed.body0, 0u);
     EXPECT_EQ(unnamed.body1, bob.index);
-    const Joint& pin = s.world.joint(s.namedJoints[1].second);
+    const Joint& pin = s.world().joint(s.namedJointIds()[1].second);
     EXPECT_EQ(pin.body0, 0u);
     EXPECT_EQ(pin.body1, ceiling.index);
 }
@@ -104,12 +104,12 @@ TEST(BuildScene, AmbiguousBodyNamesThrow) {
 TEST(BuildScene, BuildsTheFullSceneFile) {
     const SceneInstance s =
         buildScene(loadSceneFile(std::string(SUBSTEP_TEST_DATA_DIR) + "/full.json"));
-    EXPECT_EQ(s.namedBodies.size(), 6u);
-    EXPECT_EQ(s.namedJoints.size(), 5u);
-    EXPECT_EQ(s.world.bodies().size(), 8u);
-    EXPECT_EQ(s.world.joints().size(), 6u);
-    EXPECT_EQ(s.world.settings().substeps, 40);
-    EXPECT_TRUE(s.world.isFinite());
+    EXPECT_EQ(s.namedBodyIds().size(), 6u);
+    EXPECT_EQ(s.namedJointIds().size(), 5u);
+    EXPECT_EQ(s.world().bodies().size(), 8u);
+    EXPECT_EQ(s.world().joints().size(), 6u);
+    EXPECT_EQ(s.world().settings().substeps, 40);
+    EXPECT_TRUE(s.world().isFinite());
 }
 
 }  // namespace

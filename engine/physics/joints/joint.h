@@ -116,6 +116,10 @@ struct JointReadout {
     double torque = 0.0;
     double error = 0.0;
     double elasticEnergy = 0.0;
+    /// The joint's coordinate on the current state: a hinge's angle (rad), a prismatic joint's
+    /// offset along its axis (m), a spherical joint's swing, the angle between its axes (rad);
+    /// 0 for distance and fixed joints.
+    double coordinate = 0.0;
 };
 
 }  // namespace substep

@@ -3,6 +3,7 @@
 #include "physics/joints/joint_parts.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace substep {
 
@@ -45,7 +46,26 @@ JointReadout readJoint(const Joint& joint, const Body* bodies, double h) {
     return {.force = joint.linearImpulse.norm() * invH2,
             .torque = joint.angularImpulse.norm() * invH2,
             .error = evaluation.error,
-            .elasticEnergy = evaluation.elasticEnergy};
+            .elasticEnergy = evaluation.elasticEnergy,
+            .coordinate = jointCoordinate(joint, bodies)};
+}
+
+double jointCoordinate(const Joint& joint, const Body* bodies) {
+    switch (joint.type) {
+        case JointType::Hinge: return hingeAngle(joint, bodies);
+        case JointType::Spherical: {
+            const Vec3 a0 = worldFrame0(joint, bodies) * Vec3::UnitX();
+            const Vec3 a1 = worldFrame1(joint, bodies) * Vec3::UnitX();
+            return std::atan2(a0.cross(a1).norm(), a0.dot(a1));
+        }
+        case JointType::Prismatic: {
+            const JointAnchors anchors = jointAnchors(joint, bodies);
+            return (anchors.p1 - anchors.p0).dot(worldFrame0(joint, bodies) * Vec3::UnitX());
+        }
+        case JointType::Distance:
+        case JointType::Fixed: return 0.0;
+    }
+    return 0.0;
 }
 
 }  // namespace substep
