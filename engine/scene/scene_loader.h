@@ -2,6 +2,8 @@
 /// Scene files (JSON, version 1; DESIGN.md "Scene files"): parsing and complete validation into a
 /// SceneDescription. Every problem is reported as one SceneError naming the file and the JSON path
 /// of the offending value, so the `substep` command can print it and exit with code 2.
+/// The format's rules and bounds: docs/SCENE_FORMAT.md. How the loader is laid out, and where a
+/// reader of a new top-level key plugs in: scene_loader.cpp and scene_loader_sections.h.
 
 #include "scene/scene.h"
 

@@ -1,5 +1,5 @@
-// Tests engine/scene/mesh_import.cpp and the mesh shape of engine/scene/scene_loader.cpp: hand-
-// written mesh files (tests/data/scenes) load with the right vertices, volume and shape, and
+// Tests engine/scene/mesh_import.cpp and the mesh shape of engine/scene/scene_loader_shapes.cpp:
+// hand-written mesh files (tests/data/scenes) load with the right vertices, volume and shape, and
 // every bad mesh is a SceneError naming the file and the JSON path.
 
 #include "scene/mesh_import.h"

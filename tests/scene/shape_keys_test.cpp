@@ -1,5 +1,5 @@
-// Tests engine/scene/scene_loader.cpp, the spline and heightfield shape keys: valid files build
-// the shapes they describe, and every invalid value is reported at its JSON path.
+// Tests engine/scene/scene_loader_shapes.cpp, the spline and heightfield shape keys: valid
+// files build the shapes they describe, and every invalid value is reported at its JSON path.
 
 #include "physics/collision/heightfield.h"
 #include "physics/collision/spline_tube.h"
