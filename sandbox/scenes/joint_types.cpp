@@ -10,7 +10,7 @@
 
 #include "scenes/scenes.h"
 
-#include "physics/joints/joint_parts.h"
+#include "physics/joints/joint_geometry.h"
 
 #include <algorithm>
 #include <cmath>
@@ -112,7 +112,7 @@ SceneDescription build() {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Measures for the readouts, from the joints' frames (joint_parts.h).
+// Measures for the readouts, from the joints' frames (joint_geometry.h).
 
 /// Carriage offset along the rail axis: (p1 − p0)·a (m).
 double prismaticOffset(const Joint& joint, const Body* bodies) {
@@ -205,14 +205,14 @@ class JointTypesScript : public SceneScript {
                        prismaticOffset(world.joint(prismaticHard_), bodies), "%.4f"});
         out.push_back({rangeLabel("prismatic soft offset", lower, kPrismaticUpper, "m"),
                        prismaticOffset(world.joint(prismaticSoft_), bodies), "%.4f"});
-        out.push_back({"prismatic drive offset [m] (target " + format("%.3f", world.joint(prismaticDrive_).target) + ")",
+        out.push_back({"prismatic drive offset [m] (target " + format("%.3f", world.joint(prismaticDrive_).prismatic().target) + ")",
                        prismaticOffset(world.joint(prismaticDrive_), bodies), "%.4f"});
         const double hinge = knob(hingeLimit_);
         out.push_back({rangeLabel("hinge hard angle", -hinge, hinge, "rad"),
                        hingeAngle(world.joint(hingeHard_), bodies), "%.4f"});
         out.push_back({rangeLabel("hinge soft angle", -hinge, hinge, "rad"),
                        hingeAngle(world.joint(hingeSoft_), bodies), "%.4f"});
-        out.push_back({"hinge drive angle [rad] (target " + format("%.3f", world.joint(hingeDrive_).target) + ")",
+        out.push_back({"hinge drive angle [rad] (target " + format("%.3f", world.joint(hingeDrive_).hinge().target) + ")",
                        hingeAngle(world.joint(hingeDrive_), bodies), "%.4f"});
         const double swing = knob(swingLimit_);
         const double twist = knob(twistLimit_);
@@ -238,31 +238,31 @@ class JointTypesScript : public SceneScript {
         const bool sweep = toggled(animate_);
         const double hingeSweep = sweep ? 0.8 * std::sin(1.2 * time) : 0.0;
         const double slideSweep = sweep ? 0.15 * std::sin(1.7 * time) : 0.0;
-        world.joint(hingeDrive_).target = knob(hingeTarget_) + hingeSweep;
-        world.joint(prismaticDrive_).target = std::min(knob(prismaticTarget_) + slideSweep, 0.0);
+        world.joint(hingeDrive_).hinge().target = knob(hingeTarget_) + hingeSweep;
+        world.joint(prismaticDrive_).prismatic().target = std::min(knob(prismaticTarget_) + slideSweep, 0.0);
     }
 
     void applyAll(World& world, double time) {
-        const Joint::Drive drive = toggled(drives_) ? Joint::Drive::Position : Joint::Drive::None;
-        for (JointId id : {hingeDrive_, prismaticDrive_}) {
-            world.joint(id).drive = drive;
-            world.joint(id).driveCompliance = knob(driveCompliance_);
-        }
+        const JointDrive drive = toggled(drives_) ? JointDrive::Position : JointDrive::None;
+        world.joint(hingeDrive_).hinge().drive = drive;
+        world.joint(hingeDrive_).hinge().driveCompliance = knob(driveCompliance_);
+        world.joint(prismaticDrive_).prismatic().drive = drive;
+        world.joint(prismaticDrive_).prismatic().driveCompliance = knob(driveCompliance_);
         applyTargets(world, time);
 
-        for (JointId id : {prismaticHard_, prismaticSoft_}) world.joint(id).limits = {knob(prismaticLower_), kPrismaticUpper};
-        world.joint(prismaticSoft_).limitCompliance = knob(softLinear_);
+        for (JointId id : {prismaticHard_, prismaticSoft_}) world.joint(id).prismatic().limits = {knob(prismaticLower_), kPrismaticUpper};
+        world.joint(prismaticSoft_).prismatic().limitCompliance = knob(softLinear_);
 
         const double hinge = knob(hingeLimit_);
-        for (JointId id : {hingeHard_, hingeSoft_}) world.joint(id).limits = {-hinge, hinge};
-        world.joint(hingeSoft_).limitCompliance = knob(softAngular_);
+        for (JointId id : {hingeHard_, hingeSoft_}) world.joint(id).hinge().limits = {-hinge, hinge};
+        world.joint(hingeSoft_).hinge().limitCompliance = knob(softAngular_);
 
         for (JointId id : {ballHard_, ballSoft_}) {
-            world.joint(id).swingLimit = knob(swingLimit_);
-            world.joint(id).twistLimits = {-knob(twistLimit_), knob(twistLimit_)};
+            world.joint(id).spherical().swingLimit = knob(swingLimit_);
+            world.joint(id).spherical().twistLimits = {-knob(twistLimit_), knob(twistLimit_)};
         }
-        world.joint(ballSoft_).limitCompliance = knob(softAngular_);
-        world.joint(ballSoft_).twistCompliance = knob(softAngular_);
+        world.joint(ballSoft_).spherical().swingCompliance = knob(softAngular_);
+        world.joint(ballSoft_).spherical().twistCompliance = knob(softAngular_);
 
         for (JointId id : {prismaticHard_, prismaticSoft_, prismaticDrive_, hingeHard_, hingeSoft_, hingeDrive_,
                            ballHard_, ballSoft_}) {

@@ -20,7 +20,7 @@
 
 #include "scenes/scenes.h"
 
-#include "physics/joints/joint_parts.h"
+#include "physics/joints/joint_geometry.h"
 
 #include <algorithm>
 #include <array>
@@ -177,7 +177,7 @@ class RobotArmScript : public SceneScript {
         hand_ = scene.bodyNamed("hand");
         grip_ = scene.jointNamed("grip");
         for (std::size_t i = 0; i < kArmJoints.size(); ++i) joints_[i] = scene.jointNamed(kArmJoints[i].name);
-        scene.world.joint(grip_).hasSwingLimit = toggled(orient_);
+        scene.world.joint(grip_).spherical().hasSwingLimit = toggled(orient_);
         placeTarget(scene.world, toggled(orbit_) ? orbitPoint(0.0) : knobTarget());
         gliding_ = false;
         boundPull(scene.world);
@@ -200,7 +200,7 @@ class RobotArmScript : public SceneScript {
     }
 
     void knobChanged(SceneInstance& scene, std::size_t index) override {
-        if (index == orient_) scene.world.joint(grip_).hasSwingLimit = toggled(orient_);
+        if (index == orient_) scene.world.joint(grip_).spherical().hasSwingLimit = toggled(orient_);
         if (index == x_ || index == y_ || index == z_) {
             // Moving a slider takes the box off its path.
             knobValue(orbit_) = 0.0;
@@ -266,7 +266,7 @@ class RobotArmScript : public SceneScript {
         const Vec3 a0 = worldFrame0(grip, bodies) * Vec3::UnitX();
         const Vec3 a1 = worldFrame1(grip, bodies) * Vec3::UnitX();
         const double swing = std::atan2(a0.cross(a1).norm(), a0.dot(a1));
-        grip.limitCompliance = std::max(kMinCompliance, swing / kMaxTwistingPull);
+        grip.spherical().swingCompliance = std::max(kMinCompliance, swing / kMaxTwistingPull);
     }
 
     std::size_t orbit_, x_, y_, z_, orient_;

@@ -183,7 +183,7 @@ class TwistedRopeScript final : public SceneScript {
         const double rate = knob(turnRate_);
         const double remaining = std::max(0.0, knob(turns_) - std::abs(turnsApplied_));
         const double step = std::copysign(std::min(std::abs(rate) * dt, remaining), rate);
-        scene.world.joint(drive_).targetVelocity = 2.0 * M_PI * step / dt;
+        scene.world.joint(drive_).hinge().targetVelocity = 2.0 * M_PI * step / dt;
         turnsApplied_ += step;
     }
 
@@ -216,17 +216,17 @@ class TwistedRopeScript final : public SceneScript {
     void applyRope(World& world) const {
         const double twist = knob(twistLimit_) * M_PI / 180.0;
         for (JointId id : joints_) {
-            Joint& joint = world.joint(id);
+            SphericalJoint& joint = world.joint(id).spherical();
             joint.hasSwingLimit = true;
             joint.swingLimit = knob(swingLimit_) * M_PI / 180.0;
-            joint.limitCompliance = knob(swingCompliance_);
+            joint.swingCompliance = knob(swingCompliance_);
             joint.hasTwistLimits = true;
             joint.twistLimits = {-twist, twist};
             joint.twistCompliance = knob(twistCompliance_);
         }
         if (world.isValid(hold_)) {
             // A spring towards kPullReach: force ≈ reach / compliance = the pull.
-            Joint& hold = world.joint(hold_);
+            PrismaticJoint& hold = world.joint(hold_).prismatic();
             const double pull = knob(pull_);
             hold.drive = pull > 0.0 ? Joint::Drive::Position : Joint::Drive::None;
             hold.target = kPullReach;

@@ -1,18 +1,25 @@
 #include "physics/joints/joint_solver.h"
 
-#include "physics/joints/joint_parts.h"
+#include "physics/joints/joint_geometry.h"
 
 #include <algorithm>
 
 namespace substep {
 
+void beginJointSubstep(Joint& joint, double h) {
+    joint.resetMultipliers();
+    // A hinge motor advances its target angle by h·v every substep.
+    if (HingeJoint* hinge = std::get_if<HingeJoint>(&joint.model); hinge && hinge->drive == JointDrive::Velocity)
+        hinge->target = wrapAngle(hinge->target + h * hinge->targetVelocity);
+}
+
 void solveJointPositions(Joint& joint, SolverContext& ctx) {
-    switch (joint.type) {
-        case JointType::Distance: solveDistanceJoint(joint, ctx); break;
-        case JointType::Fixed: solveFixedJoint(joint, ctx); break;
-        case JointType::Hinge: solveHingeJoint(joint, ctx); break;
-        case JointType::Spherical: solveSphericalJoint(joint, ctx); break;
-        case JointType::Prismatic: solvePrismaticJoint(joint, ctx); break;
+    switch (joint.model.index()) {
+        case 0: solveDistanceJoint(joint, *std::get_if<DistanceJoint>(&joint.model), ctx); break;
+        case 1: solveFixedJoint(joint, *std::get_if<FixedJoint>(&joint.model), ctx); break;
+        case 2: solveHingeJoint(joint, *std::get_if<HingeJoint>(&joint.model), ctx); break;
+        case 3: solveSphericalJoint(joint, *std::get_if<SphericalJoint>(&joint.model), ctx); break;
+        case 4: solvePrismaticJoint(joint, *std::get_if<PrismaticJoint>(&joint.model), ctx); break;
     }
 }
 
@@ -34,16 +41,17 @@ void solveJointVelocities(const Joint& joint, Body* bodies, double h) {
 
 JointReadout readJoint(const Joint& joint, const Body* bodies, double h) {
     JointEvaluation evaluation;
-    switch (joint.type) {
-        case JointType::Distance: evaluation = evaluateDistanceJoint(joint, bodies); break;
-        case JointType::Fixed: evaluation = evaluateFixedJoint(joint, bodies); break;
-        case JointType::Hinge: evaluation = evaluateHingeJoint(joint, bodies); break;
-        case JointType::Spherical: evaluation = evaluateSphericalJoint(joint, bodies); break;
-        case JointType::Prismatic: evaluation = evaluatePrismaticJoint(joint, bodies); break;
+    switch (joint.model.index()) {
+        case 0: evaluation = evaluateDistanceJoint(joint, *std::get_if<DistanceJoint>(&joint.model), bodies); break;
+        case 1: evaluation = evaluateFixedJoint(joint, *std::get_if<FixedJoint>(&joint.model), bodies); break;
+        case 2: evaluation = evaluateHingeJoint(joint, *std::get_if<HingeJoint>(&joint.model), bodies); break;
+        case 3: evaluation = evaluateSphericalJoint(joint, *std::get_if<SphericalJoint>(&joint.model), bodies); break;
+        case 4: evaluation = evaluatePrismaticJoint(joint, *std::get_if<PrismaticJoint>(&joint.model), bodies); break;
     }
+    // Eq. 10: f = λn/h², and Eq. 17: τ = λn/h², summed over the joint's parts.
     const double invH2 = h > 0.0 ? 1.0 / (h * h) : 0.0;
-    return {.force = joint.linearImpulse.norm() * invH2,
-            .torque = joint.angularImpulse.norm() * invH2,
+    return {.force = joint.linearImpulse().norm() * invH2,
+            .torque = joint.angularImpulse().norm() * invH2,
             .error = evaluation.error,
             .elasticEnergy = evaluation.elasticEnergy};
 }
