@@ -137,9 +137,10 @@ struct PrismaticJoint {
 /// One alternative per JointType, in the enum's order (Joint::type() is the index).
 using JointModel = std::variant<DistanceJoint, FixedJoint, HingeJoint, SphericalJoint, PrismaticJoint>;
 
-/// Calls f with the joint model's alternative (a switch: no virtual call, nothing allocated).
+/// Calls f with the joint model's alternative (a switch: no virtual call, nothing allocated),
+/// inlined: the multipliers are reset through it for every joint every substep.
 template <class Model, class F>
-decltype(auto) visitJointModel(Model& model, F&& f) {
+[[gnu::always_inline]] inline decltype(auto) visitJointModel(Model& model, F&& f) {
     switch (model.index()) {
         case 0: return f(*std::get_if<0>(&model));
         case 1: return f(*std::get_if<1>(&model));

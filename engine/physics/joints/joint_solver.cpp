@@ -6,13 +6,6 @@
 
 namespace substep {
 
-void beginJointSubstep(Joint& joint, double h) {
-    joint.resetMultipliers();
-    // A hinge motor advances its target angle by h·v every substep.
-    if (HingeJoint* hinge = std::get_if<HingeJoint>(&joint.model); hinge && hinge->drive == JointDrive::Velocity)
-        hinge->target = wrapAngle(hinge->target + h * hinge->targetVelocity);
-}
-
 void solveJointPositions(Joint& joint, SolverContext& ctx) {
     switch (joint.model.index()) {
         case 0: solveDistanceJoint(joint, *std::get_if<DistanceJoint>(&joint.model), ctx); break;
