@@ -38,7 +38,7 @@ struct Body {
     Vec3 x = Vec3::Zero();
     Quat q = Quat::Identity();
     Vec3 v = Vec3::Zero();
-    Vec3 omega = Vec3::Zero();
+    Vec3 omega = Vec3::Zero();  ///< world angular velocity ω = ω n_rot (Eq. 1)
     Vec3 xPrev = Vec3::Zero();
     Quat qPrev = Quat::Identity();
     Vec3 vPrev = Vec3::Zero();      ///< velocity before the substep's velocity derivation
@@ -75,14 +75,14 @@ struct Body {
         if (isotropic) return invInertia.x() * worldVector;
         return q * invInertia.cwiseProduct(q.conjugate() * worldVector);
     }
-    /// The generalised inverse mass of Eqs. 2-3 for a correction along unit n at offset r.
+    /// The generalised inverse mass of Eq. 2 (Eq. 3) for a correction along unit n at offset r.
     double positionalInverseMass(const Vec3& r, const Vec3& n) const {
         const Vec3 rn = r.cross(n);
         if (isotropic) return invMass + invInertia.x() * rn.squaredNorm();
         const Vec3 rnBody = q.conjugate() * rn;
         return invMass + rnBody.dot(invInertia.cwiseProduct(rnBody));
     }
-    /// The generalised inverse mass of Eqs. 11-12 for a rotation about unit n.
+    /// The generalised inverse mass of Eq. 11 (Eq. 12) for a rotation about unit n.
     double angularInverseMass(const Vec3& n) const {
         if (isotropic) return invInertia.x() * n.squaredNorm();
         const Vec3 nb = q.conjugate() * n;

@@ -76,7 +76,7 @@ struct Row {
 
 /// The small system of one pair's patch, K x = rhs, where K_ij = l_i·l_j (1/m0 + 1/m1) +
 /// a0_i·I0⁻¹a0_j + a1_i·I1⁻¹a1_j is the relative motion along row i per unit multiplier of row
-/// j (Eqs. 2-3 and 11-12 are its diagonal entries). Solving the rows of a patch together is
+/// j (Eq. 2 plus Eq. 3, or Eq. 11 plus Eq. 12, are its diagonal entries). Solving the rows of a patch together is
 /// what lets a box rest: point by point, the push at one corner turns the box and sinks the
 /// others, and a friction push at the contact plane tips the box; the next correction tips it
 /// back and moves the contact sideways, so the patch never settles (a pyramid's bottom row
@@ -297,13 +297,15 @@ double pushOut(double depth, const Body& b0, const Body& b1, const Vec3& r0, con
 }
 
 /// The paper's contact for a pair with one point (a marble, a coin on its rim): the push
-/// (Eq. 26), then static friction from the motion during the substep (Eqs. 27-28), each the
-/// scalar update of Eqs. 2-5.
+/// (Eq. 26), then static friction from the motion during the substep (Eq. 27, Eq. 28), each
+/// the scalar update of applyPositionalCorrection (Eq. 2 to Eq. 9).
 void solveSinglePointPositions(ContactPair& pair, Contact& c, SolverContext& ctx) {
     const Body& b0 = ctx.bodies[pair.body0];
     const Body& b1 = ctx.bodies[pair.body1];
     Vec3 r0 = b0.q * c.local0;
     Vec3 r1 = b1.q * c.local1;
+    // Eq. 26: the points p1, p2 on the current poses and the depth d along n (with this
+    // file's normal, from body 1 towards body 0), pushed out as Δx = d n with α = 0 and λ_n.
     const double depth = pushOut(((b1.x + r1) - (b0.x + r0)).dot(c.normal), b0, b1, r0, r1, c.normal, ctx);
     if (!(depth > 0.0)) {
         pair.lambdaNormal = c.lambdaNormal;
@@ -315,8 +317,9 @@ void solveSinglePointPositions(ContactPair& pair, Contact& c, SolverContext& ctx
     if (!(pair.staticFriction > 0.0)) return;
     r0 = b0.q * c.local0;
     r1 = b1.q * c.local1;
-    const Vec3 motion = (b0.x + r0 - previousPoint(b0, c.local0)) - (b1.x + r1 - previousPoint(b1, c.local1));
-    const Vec3 slip = motion - motion.dot(c.normal) * c.normal;
+    const Vec3 motion = (b0.x + r0 - previousPoint(b0, c.local0)) - (b1.x + r1 - previousPoint(b1, c.local1));  // Eq. 27
+    const Vec3 slip = motion - motion.dot(c.normal) * c.normal;  // Eq. 28
+    // Static friction: Δx = Δp_t with α = 0, only while λ_t stays within μ_s λ_n (paper 3.5).
     double lambdaTangent = pair.lambdaTangent();
     applyPositionalCorrection(ctx, pair.body0, pair.body1, -slip, r0, r1, 0.0, lambdaTangent,
                               pair.staticFriction * pair.lambdaNormal);
@@ -324,27 +327,30 @@ void solveSinglePointPositions(ContactPair& pair, Contact& c, SolverContext& ctx
     pair.lambdaTangent2 = 0.0;
 }
 
-/// Eqs. 29-34 for a pair with one point: restitution, then dynamic friction with the impulse
-/// clamped (ERRATA item 2).
+/// The velocity pass for a pair with one point (Eq. 29, Eq. 30, Eq. 33, Eq. 34): restitution,
+/// then dynamic friction with the impulse clamped (ERRATA item 2).
 void solveSinglePointVelocities(const ContactPair& pair, const Contact& c, Body& b0, Body& b1,
                                 double h, double gravity) {
     const Vec3& n = c.normal;
     const Vec3 r0 = b0.q * c.local0;
     const Vec3 r1 = b1.q * c.local1;
-    const Vec3 v = pointVelocity(b0.v, b0.omega, r0) - pointVelocity(b1.v, b1.omega, r1);
-    const double vn = v.dot(n);
+    const Vec3 v = pointVelocity(b0.v, b0.omega, r0) - pointVelocity(b1.v, b1.omega, r1);  // Eq. 29
+    const double vn = v.dot(n);                                                               // Eq. 29
+    // v̄_n: Eq. 29 on the velocities before this substep's derivation (paper before Eq. 34).
     const double vnBefore =
         (pointVelocity(b0.vPrev, b0.omegaPrev, r0) - pointVelocity(b1.vPrev, b1.omegaPrev, r1)).dot(n);
     const double e = std::abs(vnBefore) <= 2.0 * gravity * h ? 0.0 : pair.restitution;
-    const double change = std::max(-e * vnBefore, 0.0) - vn;
-    if (std::abs(change) > kRestingSpeed) applyVelocityCorrection(b0, b1, change * n, r0, r1);
+    const double change = std::max(-e * vnBefore, 0.0) - vn;  // Eq. 34
+    if (std::abs(change) > kRestingSpeed) applyVelocityCorrection(b0, b1, change * n, r0, r1);  // Eq. 33
     if (!(pair.dynamicFriction > 0.0)) return;
     const Vec3 vAfter = pointVelocity(b0.v, b0.omega, r0) - pointVelocity(b1.v, b1.omega, r1);
-    const Vec3 slip = vAfter - vAfter.dot(n) * n;
+    const Vec3 slip = vAfter - vAfter.dot(n) * n;  // Eq. 29: v_t
     const double slipSpeed = slip.norm();
     if (!(slipSpeed > kRestingSpeed)) return;
     const Vec3 t = slip / slipSpeed;
     const double w = b0.positionalInverseMass(r0, t) + b1.positionalInverseMass(r1, t);
+    // Eq. 30 with ERRATA item 2: an impulse of at most h μ_d f_n, f_n = λ_n / h² (Eq. 10),
+    // changes the slip speed by at most that times w1 + w2; applied by Eq. 33.
     const double maxChange = pair.dynamicFriction * c.lambdaNormal / h * w;
     applyVelocityCorrection(b0, b1, -std::min(maxChange, slipSpeed) * t, r0, r1);
 }
@@ -377,7 +383,7 @@ void solveContactPositions(ContactPair& pair, std::span<Contact> contacts, Solve
     }
     if (!penetrates) return;
 
-    // Eqs. 27-28 for the patch: the tangential motion of its centre during this substep, and
+    // Eq. 27 and Eq. 28 for the patch: the tangential motion of its centre during this substep, and
     // its turn about the normal, are undone together with the pushes, and kept only while
     // λ_t ≤ μ_s Σλ_n (and the turn within μ_s Σλ_n times the lever arm). See contact.h for
     // why not corner by corner.
@@ -476,20 +482,20 @@ void solveContactVelocities(const ContactPair& pair, std::span<const Contact> co
         if (!pushed(c)) continue;
         const Vec3 r0 = b0.q * c.local0;
         const Vec3 r1 = b1.q * c.local1;
-        const double vn = (pointVelocity(b0.v, b0.omega, r0) - pointVelocity(b1.v, b1.omega, r1)).dot(c.normal);
+        const double vn = (pointVelocity(b0.v, b0.omega, r0) - pointVelocity(b1.v, b1.omega, r1)).dot(c.normal);  // Eq. 29
         const double vnBefore = (pointVelocity(b0.vPrev, b0.omegaPrev, r0) -
                                  pointVelocity(b1.vPrev, b1.omegaPrev, r1)).dot(c.normal);
         const double e = std::abs(vnBefore) <= restingSpeed ? 0.0 : pair.restitution;
         r0s[rows] = r0;
         r1s[rows] = r1;
         normals[rows] = i;
-        rhs[rows] = std::max(-e * vnBefore, 0.0) - vn;
+        rhs[rows] = std::max(-e * vnBefore, 0.0) - vn;  // Eq. 34
         largestChange = std::max(largestChange, std::abs(rhs[rows]));
         ++rows;
     }
 
     // Eq. 30 with ERRATA item 2, for the patch: the friction impulse is at most
-    // h μ_d |f_n| = μ_d Σλ_n / h (a disc, so friction is isotropic), and the spin about the
+    // h μ_d |f_n| = μ_d Σλ_n / h, with f_n = λ_n / h² (Eq. 10) (a disc, so friction is isotropic), and the spin about the
     // normal is slowed by at most that times the lever arm.
     const bool friction = pair.dynamicFriction > 0.0;
     const Vec3 r0 = b0.q * patch.centre0;

@@ -8,7 +8,9 @@ namespace substep {
 namespace {
 
 /// One body's side of a correction along a unit direction: its generalised inverse mass and
-/// the rotation per unit multiplier, computed once and used for both (Eqs. 2-3, 8-9, 11-12).
+/// the rotation per unit multiplier, computed once and used for both: w is Eq. 2 or Eq. 3
+/// (positional) or Eq. 11 or Eq. 12 (angular); the rotation is the one Eq. 8 and Eq. 9 (or
+/// Eq. 15 and Eq. 16) apply per unit Δλ.
 struct BodyResponse {
     double w = 0.0;                ///< generalised inverse mass
     Vec3 rotationPerUnit = Vec3::Zero();  ///< world rotation per unit Δλ: I⁻¹ (r × n) or I⁻¹ n
@@ -44,7 +46,9 @@ inline bool skippedByRepair(SolverContext& ctx, double size, double threshold, d
     return false;
 }
 
-/// Moves body `index` by dx and turns it by dtheta: Eqs. 6-9 and 15-16, or gathered for Jacobi.
+/// Moves body `index` by dx and turns it by dtheta (the position update of Eq. 6 or Eq. 7, the
+/// rotation of Eq. 8, Eq. 9, Eq. 15 or Eq. 16, applied by the exact exponential map rather than
+/// the linearised quaternion update), or gathers them for Jacobi.
 inline void moveBody(SolverContext& ctx, uint32_t index, const Vec3& dx, const Vec3& dtheta) {
     Body& body = ctx.bodies[index];
     if (body.invMass == 0.0) return;
@@ -88,8 +92,8 @@ Vec3 applyPositionalCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, con
     if (lambda + deltaLambda > lambdaLimit) return Vec3::Zero();
     lambda += deltaLambda;  // Eq. 5
     const Vec3 p = deltaLambda * n;
-    moveBody(ctx, i0, p * b0.invMass, s0.rotationPerUnit * deltaLambda);
-    moveBody(ctx, i1, -p * b1.invMass, -s1.rotationPerUnit * deltaLambda);
+    moveBody(ctx, i0, p * b0.invMass, s0.rotationPerUnit * deltaLambda);    // Eq. 6, Eq. 8
+    moveBody(ctx, i1, -p * b1.invMass, -s1.rotationPerUnit * deltaLambda);  // Eq. 7, Eq. 9
     return p;
 }
 
@@ -142,11 +146,12 @@ Vec3 applyAngularCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, const 
     const double alphaTilde = compliance * ctx.invH2;
     const double denominator = s0.w + s1.w + alphaTilde;
     if (!(denominator > 0.0)) return Vec3::Zero();
-    const double deltaLambda = (theta - alphaTilde * lambda) / denominator;  // Eq. 13
+    // Eq. 13 with ERRATA item 1's sign (θ rather than −θ).
+    const double deltaLambda = (theta - alphaTilde * lambda) / denominator;
     if (lambda + deltaLambda > lambdaLimit) return Vec3::Zero();
     lambda += deltaLambda;                                                  // Eq. 14
-    moveBody(ctx, i0, Vec3::Zero(), s0.rotationPerUnit * deltaLambda);
-    moveBody(ctx, i1, Vec3::Zero(), -s1.rotationPerUnit * deltaLambda);
+    moveBody(ctx, i0, Vec3::Zero(), s0.rotationPerUnit * deltaLambda);   // Eq. 15
+    moveBody(ctx, i1, Vec3::Zero(), -s1.rotationPerUnit * deltaLambda);  // Eq. 16
     return deltaLambda * n;
 }
 
@@ -236,8 +241,8 @@ Vec3 solvePoint(SolverContext& ctx, uint32_t i0, uint32_t i1, const Vec3& delta,
         return Vec3::Zero();
     const Body& b0 = ctx.bodies[i0];
     const Body& b1 = ctx.bodies[i1];
-    // K = Σ (1/m) 1 − [r]× I⁻¹ [r]×: the generalised inverse mass of Eqs. 2-3 for every
-    // direction at once.
+    // K = Σ (1/m) 1 − [r]× I⁻¹ [r]×: the generalised inverse masses of Eq. 2 and Eq. 3 for
+    // every direction at once (nᵀ K n = w1 + w2).
     const double alphaTilde = compliance * ctx.invH2;
     const double diagonal = b0.invMass + b1.invMass + alphaTilde;
     Symmetric3 k{.xx = diagonal, .yy = diagonal, .zz = diagonal};
@@ -246,9 +251,9 @@ Vec3 solvePoint(SolverContext& ctx, uint32_t i0, uint32_t i1, const Vec3& delta,
     Vec3 deltaLambda;
     if (!solveSymmetric(k, delta - alphaTilde * lambda, deltaLambda))  // Eq. 4, vector form
         return Vec3::Zero();                                           // two static bodies
-    lambda += deltaLambda;
-    moveBody(ctx, i0, deltaLambda * b0.invMass, s0.turn(deltaLambda));
-    moveBody(ctx, i1, -deltaLambda * b1.invMass, -s1.turn(deltaLambda));
+    lambda += deltaLambda;                                                // Eq. 5, vector form
+    moveBody(ctx, i0, deltaLambda * b0.invMass, s0.turn(deltaLambda));    // Eq. 6, Eq. 8
+    moveBody(ctx, i1, -deltaLambda * b1.invMass, -s1.turn(deltaLambda));  // Eq. 7, Eq. 9
     return deltaLambda;
 }
 
@@ -280,14 +285,15 @@ Vec3 applyRotationCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, const
         return Vec3::Zero();
     const Body& b0 = ctx.bodies[i0];
     const Body& b1 = ctx.bodies[i1];
-    // K = I0⁻¹ + I1⁻¹ in world coordinates, each Σ d_k e_k e_kᵀ over the principal axes.
+    // K = I0⁻¹ + I1⁻¹ in world coordinates, each Σ d_k e_k e_kᵀ over the principal axes
+    // (nᵀ K n is Eq. 11 plus Eq. 12).
     const PointResponse s0(b0, Vec3::Zero(), /*angular=*/true);
     const PointResponse s1(b1, Vec3::Zero(), /*angular=*/true);
     const double alphaTilde = compliance * ctx.invH2;
     Symmetric3 k{.xx = alphaTilde, .yy = alphaTilde, .zz = alphaTilde};
     s0.addTo(k);
     s1.addTo(k);
-    const Vec3 rhs = rotation - alphaTilde * lambda;
+    const Vec3 rhs = rotation - alphaTilde * lambda;  // Eq. 13's numerator, vector form
     Vec3 deltaLambda;
     if (freeAxis) {
         // Only the two directions normal to the free axis are constrained: solve K restricted
@@ -304,9 +310,9 @@ Vec3 applyRotationCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, const
     } else if (!solveSymmetric(k, rhs, deltaLambda)) {
         return Vec3::Zero();  // two static bodies
     }
-    lambda += deltaLambda;
-    moveBody(ctx, i0, Vec3::Zero(), s0.turn(deltaLambda));
-    moveBody(ctx, i1, Vec3::Zero(), -s1.turn(deltaLambda));
+    lambda += deltaLambda;                                   // Eq. 14, vector form
+    moveBody(ctx, i0, Vec3::Zero(), s0.turn(deltaLambda));   // Eq. 15
+    moveBody(ctx, i1, Vec3::Zero(), -s1.turn(deltaLambda));  // Eq. 16
     return deltaLambda;
 }
 
@@ -329,7 +335,7 @@ Vec3 applyVelocityCorrection(Body& b0, Body& b1, const Vec3& deltaVelocity, cons
     const Vec3 n = deltaVelocity / magnitude;
     const double w = b0.positionalInverseMass(r0, n) + b1.positionalInverseMass(r1, n);
     if (!(w > 0.0)) return Vec3::Zero();
-    const Vec3 p = deltaVelocity / w;  // Eq. 33
+    const Vec3 p = deltaVelocity / w;  // Eq. 33: p = Δv / (w1 + w2), then v and ω of both bodies
     if (b0.invMass > 0.0) {
         b0.v += p * b0.invMass;
         if (b0.rotates()) b0.omega += b0.applyInverseInertia(r0.cross(p));
@@ -347,7 +353,7 @@ Vec3 applyAngularVelocityCorrection(Body& b0, Body& b1, const Vec3& deltaOmega) 
     const Vec3 n = deltaOmega / magnitude;
     const double w = b0.angularInverseMass(n) + b1.angularInverseMass(n);
     if (!(w > 0.0)) return Vec3::Zero();
-    const Vec3 p = deltaOmega / w;
+    const Vec3 p = deltaOmega / w;  // Eq. 33's angular form, with Eq. 11 and Eq. 12 for w
     if (b0.rotates() && b0.invMass > 0.0) b0.omega += b0.applyInverseInertia(p);
     if (b1.rotates() && b1.invMass > 0.0) b1.omega -= b1.applyInverseInertia(p);
     return p;

@@ -35,21 +35,23 @@ void addArc(DebugDrawList& list, const Vec3& centre, const Vec3& b, const Vec3& 
 void addLimits(DebugDrawList& list, const Joint& joint, const Body& body0, const Vec3& anchor0, double r) {
     const Mat3 axes = worldAxes(body0, joint.frame0);
     const Vec3 a = axes.col(0), b = axes.col(1), c = axes.col(2);
-    switch (joint.type) {
+    switch (joint.type()) {
         case JointType::Hinge:
-            if (joint.hasLimits) addArc(list, anchor0, b, c, r, joint.limits.lower, joint.limits.upper);
+            if (const HingeJoint& hinge = joint.hinge(); hinge.hasLimits)
+                addArc(list, anchor0, b, c, r, hinge.limits.lower, hinge.limits.upper);
             break;
         case JointType::Prismatic:
-            if (joint.hasLimits) {
-                const Vec3 lo = anchor0 + joint.limits.lower * a, hi = anchor0 + joint.limits.upper * a;
+            if (const PrismaticJoint& prismatic = joint.prismatic(); prismatic.hasLimits) {
+                const Vec3 lo = anchor0 + prismatic.limits.lower * a, hi = anchor0 + prismatic.limits.upper * a;
                 list.line(lo, hi, DebugLayer::JointLimit);
                 for (const Vec3& end : {lo, hi}) list.line(end - 0.3 * r * b, end + 0.3 * r * b, DebugLayer::JointLimit);
             }
             break;
-        case JointType::Spherical:
-            if (joint.hasSwingLimit) {
+        case JointType::Spherical: {
+            const SphericalJoint& spherical = joint.spherical();
+            if (spherical.hasSwingLimit) {
                 // The cone axis a of body 0 may turn within: its rim and four generatrices.
-                const double swing = std::clamp(joint.swingLimit, 0.0, kPi);
+                const double swing = std::clamp(spherical.swingLimit, 0.0, kPi);
                 const Vec3 centre = anchor0 + r * std::cos(swing) * a;
                 const double rim = r * std::sin(swing);
                 Vec3 previous = centre + rim * b;
@@ -61,8 +63,10 @@ void addLimits(DebugDrawList& list, const Joint& joint, const Body& body0, const
                     previous = next;
                 }
             }
-            if (joint.hasTwistLimits) addArc(list, anchor0, b, c, 0.6 * r, joint.twistLimits.lower, joint.twistLimits.upper);
+            if (spherical.hasTwistLimits)
+                addArc(list, anchor0, b, c, 0.6 * r, spherical.twistLimits.lower, spherical.twistLimits.upper);
             break;
+        }
         default: break;
     }
 }
@@ -123,12 +127,12 @@ void drawWorld(const World& world, const DebugDrawOptions& options, DebugDrawLis
     if (wants(DebugLayer::JointForce) && options.forceScale > 0.0 && invH2 > 0.0)
         for (const Joint& joint : world.joints())
             if (joint.alive)
-                addScaledArrow(list, bodies[joint.body1].pointToWorld(joint.anchor1), -joint.linearImpulse * invH2,
+                addScaledArrow(list, bodies[joint.body1].pointToWorld(joint.anchor1), -joint.linearImpulse() * invH2,
                                options.forceScale, options.longestArrow, DebugLayer::JointForce);
     if (wants(DebugLayer::JointTorque) && options.torqueScale > 0.0 && invH2 > 0.0)
         for (const Joint& joint : world.joints())
             if (joint.alive)
-                addScaledArrow(list, bodies[joint.body1].pointToWorld(joint.anchor1), -joint.angularImpulse * invH2,
+                addScaledArrow(list, bodies[joint.body1].pointToWorld(joint.anchor1), -joint.angularImpulse() * invH2,
                                options.torqueScale, options.longestArrow, DebugLayer::JointTorque);
     if (wants(DebugLayer::Contact)) {
         const std::span<const Contact> contacts = world.contacts();

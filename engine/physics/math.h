@@ -16,7 +16,7 @@ using Quat = Eigen::Quaterniond;
 inline constexpr double kDirectionEpsilon = 1e-12;
 
 /// Turns q by the small world-space rotation vector `rotation` with the linearised update of
-/// Algorithm 2 and Eqs. 8-9: q <- q + 1/2 [rotation, 0] q, then renormalises.
+/// Algorithm 2, Eq. 8 and Eq. 9: q <- q + 1/2 [rotation, 0] q, then renormalises.
 inline void addRotation(Quat& q, const Vec3& rotation) {
     const Quat dq(0.0, rotation.x(), rotation.y(), rotation.z());
     const Quat product = dq * q;

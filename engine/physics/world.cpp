@@ -3,14 +3,19 @@
 #include "physics/collision/narrowphase.h"
 #include "physics/collision/shape_bounds.h"
 #include "physics/joints/joint_frame.h"
-#include "physics/joints/joint_parts.h"
+#include "physics/joints/joint_geometry.h"
 #include "physics/joints/joint_solver.h"
 
 #include <Eigen/LU>
 
 #include <algorithm>
+#include <cassert>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <stdexcept>
+#include <string>
 
 namespace substep {
 namespace {
@@ -38,7 +43,79 @@ Vec3 implicitGyroscopicStep(const Vec3& omega, const Vec3& inertia, double h) {
     return omega - jacobian.inverse() * residual;
 }
 
+/// The type's own parameters from its definition (`joint` has its frames already, for the
+/// hinge motor's starting angle). Keys a type does not use are ignored (the loader rejects
+/// them in files).
+JointModel makeJointModel(const JointDef& def, const Joint& joint, const Body* bodies) {
+    // A velocity motor starts from the current hinge angle; a position drive from its target.
+    JointDrive drive = JointDrive::None;
+    double target = 0.0;
+    if (def.targetVelocity) {
+        drive = JointDrive::Velocity;
+        target = def.type == JointType::Hinge ? hingeAngle(joint, bodies) : 0.0;
+    } else if (def.targetAngle || def.targetOffset) {
+        drive = JointDrive::Position;
+        target = def.targetAngle ? *def.targetAngle : *def.targetOffset;
+    }
+    switch (def.type) {
+        case JointType::Distance: return DistanceJoint{.maxDistance = def.maxDistance};
+        case JointType::Fixed: return FixedJoint{};
+        case JointType::Hinge:
+            return HingeJoint{.hasLimits = def.limits.has_value(),
+                              .limits = def.limits.value_or(Range{}),
+                              .limitCompliance = def.limitCompliance,
+                              .drive = drive,
+                              .target = target,
+                              .targetVelocity = def.targetVelocity.value_or(0.0),
+                              .driveCompliance = def.driveCompliance};
+        case JointType::Spherical:
+            return SphericalJoint{.hasSwingLimit = def.swingLimit.has_value(),
+                                  .swingLimit = def.swingLimit.value_or(0.0),
+                                  .swingCompliance = def.limitCompliance,
+                                  .hasTwistLimits = def.twistLimits.has_value(),
+                                  .twistLimits = def.twistLimits.value_or(Range{}),
+                                  .twistCompliance = def.twistCompliance.value_or(def.limitCompliance)};
+        case JointType::Prismatic:
+            return PrismaticJoint{.hasLimits = def.limits.has_value(),
+                                  .limits = def.limits.value_or(Range{}),
+                                  .limitCompliance = def.limitCompliance,
+                                  .drive = drive == JointDrive::Position ? drive : JointDrive::None,
+                                  .target = target,
+                                  .driveCompliance = def.driveCompliance};
+    }
+    return DistanceJoint{};
+}
+
 }  // namespace
+
+void World::setJointParameters(Joint& joint, const JointDef& def) {
+    // Anchors and frames go from each body's user frame into its principal frame; the world's
+    // are already in world coordinates.
+    const Body& b0 = bodies_[joint.body0];
+    const Body& b1 = bodies_[joint.body1];
+    joint.anchor0 = b0.userRotation * def.anchor0 + b0.userOrigin;
+    joint.anchor1 = b1.userRotation * def.anchor1 + b1.userOrigin;
+    joint.frame0 = (b0.userRotation * jointFrame(def.axis0, def.normal0)).normalized();
+    joint.frame1 = (b1.userRotation * jointFrame(def.axis1, def.normal1)).normalized();
+    joint.compliance = def.compliance;
+    joint.model = makeJointModel(def, joint, bodies_.data());
+    joint.linearDamping = def.linearDamping;
+    joint.angularDamping = def.angularDamping;
+    joint.collide = def.collide;
+}
+
+void World::invalidHandle(const char* what, uint32_t index, uint32_t generation) const {
+    const std::string message = std::string("World::") + what + ": invalid or stale handle {index " +
+                                std::to_string(index) + ", generation " + std::to_string(generation) +
+                                "} (destroyed, never created, or from another world)";
+#ifndef NDEBUG
+    std::fputs((message + "\n").c_str(), stderr);
+    assert(!"invalid handle");
+    std::abort();
+#else
+    throw std::invalid_argument(message);
+#endif
+}
 
 World::World(const WorldSettings& settings) : settings_(settings) {
     // Index 0 is the world itself: a static body at the origin that joints "to the world"
@@ -79,7 +156,6 @@ void World::destroyBody(BodyId id) {
 
 JointId World::createJoint(const JointDef& def) {
     Joint joint;
-    joint.type = def.type;
     joint.body0 = def.body0.isNull() ? 0 : def.body0.index;
     joint.body1 = def.body1.isNull() ? 0 : def.body1.index;
     setJointParameters(joint, def);
@@ -105,16 +181,6 @@ void World::destroyJoint(JointId id) {
     joints_[id.index] = Joint{};
     freeJoints_.push_back(id.index);
     jointsChanged_ = true;
-}
-
-bool World::isValid(BodyId id) const {
-    return !id.isNull() && id.index < bodies_.size() && bodies_[id.index].alive &&
-           bodies_[id.index].generation == id.generation;
-}
-
-bool World::isValid(JointId id) const {
-    return !id.isNull() && id.index < joints_.size() && joints_[id.index].alive &&
-           joints_[id.index].generation == id.generation;
 }
 
 void World::step(double dt) {
@@ -151,11 +217,7 @@ void World::step(double dt) {
     lap(stepTimes_.broadphase);
     for (int s = 0; s < substeps; ++s) {
         // λ is zeroed before each substep's solve (paper 3.3.1); motors advance their target.
-        for (Joint& joint : joints_) {
-            joint.resetMultipliers();
-            if (joint.drive == Joint::Drive::Velocity)
-                joint.target = wrapAngle(joint.target + h * joint.targetVelocity);
-        }
+        for (Joint& joint : joints_) beginJointSubstep(joint, h);
         integrate(h);
         lap(stepTimes_.integrate);
         if (!contactPairs_.empty()) findContacts();

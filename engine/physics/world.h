@@ -73,8 +73,22 @@ public:
     JointId createJoint(const JointDef& def);
     void destroyJoint(JointId id);
 
-    bool isValid(BodyId id) const;
-    bool isValid(JointId id) const;
+    /// Whether the handle names a live body (joint) of this world.
+    bool isValid(BodyId id) const {
+        return !id.isNull() && id.index < bodies_.size() && bodies_[id.index].alive &&
+               bodies_[id.index].generation == id.generation;
+    }
+    bool isValid(JointId id) const {
+        return !id.isNull() && id.index < joints_.size() && joints_[id.index].alive &&
+               joints_[id.index].generation == id.generation;
+    }
+    /// The body or joint a handle names. A null, destroyed (stale generation) or foreign handle
+    /// is an error: it asserts in a debug build and throws std::invalid_argument otherwise,
+    /// naming the handle. The solver indexes storage directly and pays nothing for the check.
+    const Body& body(BodyId id) const { return bodies_[checked(id)]; }
+    Body& body(BodyId id) { return bodies_[checked(id)]; }
+    const Joint& joint(JointId id) const { return joints_[checked(id)]; }
+    Joint& joint(JointId id) { return joints_[checked(id)]; }
 
     /// Gives a live joint the parameters of `def` (anchors, frames, compliances, limits, drives,
     /// damping, collide; not its bodies or type), keeping its running state: a motor keeps the
@@ -89,10 +103,6 @@ public:
     /// Sets a body's friction, restitution and whether it collides.
     void setBodySurface(BodyId id, double staticFriction, double dynamicFriction,
                         double restitution, bool collide);
-    const Body& body(BodyId id) const { return bodies_[id.index]; }
-    Body& body(BodyId id) { return bodies_[id.index]; }
-    const Joint& joint(JointId id) const { return joints_[id.index]; }
-    Joint& joint(JointId id) { return joints_[id.index]; }
 
     /// Advances one frame of length dt in `settings().substeps` substeps.
     void step(double dt);
@@ -127,8 +137,17 @@ public:
     std::span<const Contact> contacts() const { return contacts_; }
 
 private:
-    /// Copies a definition's parameters into a joint whose bodies are set (world_edits.cpp).
+    /// Copies a definition's parameters into a joint whose bodies are set.
     void setJointParameters(Joint& joint, const JointDef& def);
+    uint32_t checked(BodyId id) const {
+        if (!isValid(id)) [[unlikely]] invalidHandle("body", id.index, id.generation);
+        return id.index;
+    }
+    uint32_t checked(JointId id) const {
+        if (!isValid(id)) [[unlikely]] invalidHandle("joint", id.index, id.generation);
+        return id.index;
+    }
+    [[noreturn]] void invalidHandle(const char* what, uint32_t index, uint32_t generation) const;
     void repairLargeViolations(double h);
     void collectContactPairs(double dt);
     void findContacts();

@@ -5,55 +5,22 @@
 
 #include "physics/world.h"
 
-#include "physics/joints/joint_frame.h"
-#include "physics/joints/joint_parts.h"
 
 #include <stdexcept>
 
 namespace substep {
 
-void World::setJointParameters(Joint& joint, const JointDef& def) {
-    // Anchors and frames go from each body's user frame into its principal frame; the world's
-    // are already in world coordinates.
-    const Body& b0 = bodies_[joint.body0];
-    const Body& b1 = bodies_[joint.body1];
-    joint.anchor0 = b0.userRotation * def.anchor0 + b0.userOrigin;
-    joint.anchor1 = b1.userRotation * def.anchor1 + b1.userOrigin;
-    joint.frame0 = (b0.userRotation * jointFrame(def.axis0, def.normal0)).normalized();
-    joint.frame1 = (b1.userRotation * jointFrame(def.axis1, def.normal1)).normalized();
-    joint.compliance = def.compliance;
-    joint.maxDistance = def.maxDistance;
-    joint.hasLimits = def.limits.has_value();
-    if (def.limits) joint.limits = *def.limits;
-    joint.limitCompliance = def.limitCompliance;
-    joint.driveCompliance = def.driveCompliance;
-    if (def.targetVelocity) {
-        // A motor keeps the angle it has reached when only its speed changes.
-        if (joint.drive != Joint::Drive::Velocity)
-            joint.target = def.type == JointType::Hinge ? hingeAngle(joint, bodies_.data()) : 0.0;
-        joint.drive = Joint::Drive::Velocity;
-        joint.targetVelocity = *def.targetVelocity;
-    } else if (def.targetAngle || def.targetOffset) {
-        joint.drive = Joint::Drive::Position;
-        joint.target = def.targetAngle ? *def.targetAngle : *def.targetOffset;
-    } else {
-        joint.drive = Joint::Drive::None;
-    }
-    joint.hasSwingLimit = def.swingLimit.has_value();
-    joint.swingLimit = def.swingLimit.value_or(0.0);
-    joint.hasTwistLimits = def.twistLimits.has_value();
-    if (def.twistLimits) joint.twistLimits = *def.twistLimits;
-    joint.twistCompliance = def.twistCompliance.value_or(def.limitCompliance);
-    joint.linearDamping = def.linearDamping;
-    joint.angularDamping = def.angularDamping;
-    joint.collide = def.collide;
-}
-
 void World::updateJoint(JointId id, const JointDef& def) {
     Joint& joint = this->joint(id);
-    if (def.type != joint.type) throw std::invalid_argument("World::updateJoint: a joint keeps its type");
+    if (def.type != joint.type()) throw std::invalid_argument("World::updateJoint: a joint keeps its type");
     const bool collided = joint.collide;
+    // A motor keeps the angle it has reached when only its speed changes; everything else is the
+    // definition's (the parts' multipliers start from zero every substep anyway).
+    const HingeJoint* hinge = joint.type() == JointType::Hinge ? &joint.hinge() : nullptr;
+    const bool wasMotor = hinge != nullptr && hinge->drive == JointDrive::Velocity;
+    const double reached = wasMotor ? hinge->target : 0.0;
     setJointParameters(joint, def);
+    if (wasMotor && joint.hinge().drive == JointDrive::Velocity) joint.hinge().target = reached;
     if (joint.collide != collided) jointsChanged_ = true;
 }
 

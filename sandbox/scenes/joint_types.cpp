@@ -13,7 +13,6 @@
 #include "ecs/components.h"
 #include "ecs/joint_pose.h"
 
-#include "physics/joints/joint_parts.h"
 
 #include <algorithm>
 #include <cmath>

@@ -8,6 +8,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
+#include <regex>
+#include <stdexcept>
+#include <string>
 
 namespace substep {
 namespace {
@@ -81,6 +85,45 @@ TEST(WorldHandlesTest, ReusedSlotGetsANewGeneration) {
     EXPECT_TRUE(world.isValid(reused));
     world.destroyJoint(joint);  // stale: must not destroy the reused joint
     EXPECT_TRUE(world.isValid(reused));
+}
+
+// World::body() and joint() name the handle they refuse: null, out of range, destroyed, or
+// stale after its slot was reused by another body (the case that used to hand back the new
+// occupant silently). A debug build asserts; otherwise the call throws. `pattern` is a regular
+// expression ('.' for the braces).
+void expectRefused(const std::function<void()>& call, const std::string& pattern) {
+#ifdef NDEBUG
+    try {
+        call();
+        ADD_FAILURE() << "no error for: " << pattern;
+    } catch (const std::invalid_argument& error) {
+        EXPECT_TRUE(std::regex_search(error.what(), std::regex(pattern))) << error.what();
+    }
+#else
+    EXPECT_DEATH(call(), message);
+#endif
+}
+
+TEST(WorldHandlesTest, AccessorsRefuseInvalidAndStaleHandles) {
+    World world;
+    const BodyId first = world.createBody(boxDef(Vec3(0.1, 0.1, 0.1), 1.0, Vec3::Zero()));
+    const JointId rope = world.createJoint({.type = JointType::Distance, .body1 = first});
+    world.destroyBody(first);  // takes the joint with it
+    const BodyId second = world.createBody(boxDef(Vec3(0.2, 0.2, 0.2), 2.0, Vec3::Zero()));
+    ASSERT_EQ(second.index, first.index);
+    const World& view = world;
+
+    expectRefused([&] { (void)world.body(BodyId{}); }, "World::body: invalid or stale handle .index 0, generation 0.");
+    expectRefused([&] { (void)view.body(BodyId{9, 3}); }, "World::body: invalid or stale handle .index 9, generation 3.");
+    expectRefused([&] { (void)world.body(first); }, "World::body: invalid or stale handle");
+    expectRefused([&] { (void)view.body(first); }, "World::body: invalid or stale handle");
+    expectRefused([&] { (void)world.joint(rope); }, "World::joint: invalid or stale handle");
+    expectRefused([&] { (void)view.joint(JointId{}); }, "World::joint: invalid or stale handle");
+
+    // Live handles still reach their objects.
+    EXPECT_DOUBLE_EQ(world.body(second).mass, 2.0);
+    const JointId fixed = world.createJoint({.type = JointType::Fixed, .body1 = second});
+    EXPECT_EQ(view.joint(fixed).type(), JointType::Fixed);
 }
 
 // --- Free fall ------------------------------------------------------------------------------

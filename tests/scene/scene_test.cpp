@@ -72,14 +72,14 @@ TEST(BuildScene, JointBodyNamesResolve) {
     ASSERT_EQ(s.world().joints().size(), 3u);
 
     const Joint& rope = s.world().joint(s.namedJointIds()[0].second);
-    EXPECT_EQ(rope.type, JointType::Distance);
+    EXPECT_EQ(rope.type(), JointType::Distance);
     EXPECT_EQ(rope.body0, ceiling.index);
     EXPECT_EQ(rope.body1, bob.index);
-    EXPECT_EQ(rope.maxDistance, 1.0);
+    EXPECT_EQ(rope.distance().maxDistance, 1.0);
 
     // "world" and "" both mean the world's anchor body, index 0.
     const Joint& unnamed = s.world().joints()[1];
-    EXPECT_EQ(unnamed.type, JointType::Spherical);
+    EXPECT_EQ(unnamed.type(), JointType::Spherical);
     EXPECT_EQ(unnamed.body0, 0u);
     EXPECT_EQ(unnamed.body1, bob.index);
     const Joint& pin = s.world().joint(s.namedJointIds()[1].second);

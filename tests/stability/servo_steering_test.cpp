@@ -94,11 +94,11 @@ struct Steering {
         return w.omega.dot(test::userAxis(w, Vec3::UnitZ()));
     }
     /// The servo's target angle (rad), advanced by the motor.
-    double target() const { return world.joint(servo).target; }
+    double target() const { return world.joint(servo).hinge().target; }
     /// Sets the motor speed that brings the target to `angle` within one frame, at most
     /// kServoSpeed.
     void command(double angle) {
-        Joint& j = world.joint(servo);
+        HingeJoint& j = world.joint(servo).hinge();
         j.targetVelocity = std::clamp((angle - j.target) / kDt, -kServoSpeed, kServoSpeed);
     }
 };

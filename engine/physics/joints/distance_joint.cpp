@@ -8,31 +8,34 @@
 //   The correction moves body 0's anchor along Δx (ERRATA item 1), so a stretched joint has
 //   λ > 0 and pulls with f = λ/h² (Eq. 10). Coincident anchors give Δr = 0: nothing to correct.
 
-#include "physics/joints/joint_parts.h"
+#include "physics/joints/joint_geometry.h"
 
 namespace substep {
 namespace {
 
 /// The correction Δx and the violation |Δx| of a distance joint on the current state.
-Vec3 distanceCorrection(const Joint& joint, const JointAnchors& anchors) {
+Vec3 distanceCorrection(const DistanceJoint& distance, const JointAnchors& anchors) {
     const Vec3 offset = anchors.p1 - anchors.p0;
-    if (joint.maxDistance <= 0.0) return offset;
+    if (distance.maxDistance <= 0.0) return offset;
     const double length = offset.norm();
-    if (length <= joint.maxDistance) return Vec3::Zero();  // slack rope
-    return offset * ((length - joint.maxDistance) / length);
+    if (length <= distance.maxDistance) return Vec3::Zero();  // slack rope
+    // Eq. 25: Δx = Δr/|Δr| (|Δr| − d_max).
+    return offset * ((length - distance.maxDistance) / length);
 }
 
 }  // namespace
 
-void solveDistanceJoint(Joint& joint, SolverContext& ctx) {
-    if (joint.maxDistance <= 0.0) return solveAttachment(joint, ctx);
+void solveDistanceJoint(const Joint& joint, DistanceJoint& distance, SolverContext& ctx) {
+    if (distance.maxDistance <= 0.0)
+        return distance.attachment.solve(ctx, joint.body0, joint.body1, joint.anchor0, joint.anchor1,
+                                         joint.compliance);
     const JointAnchors anchors = jointAnchors(joint, ctx.bodies);
-    solvePositionPart(joint, ctx, anchors, distanceCorrection(joint, anchors), joint.compliance,
-                      joint.lambdaAttach);
+    distance.rope.solve(ctx, joint.body0, joint.body1, distanceCorrection(distance, anchors), anchors.r0,
+                        anchors.r1, joint.compliance);
 }
 
-JointEvaluation evaluateDistanceJoint(const Joint& joint, const Body* bodies) {
-    const double violation = distanceCorrection(joint, jointAnchors(joint, bodies)).norm();
+JointEvaluation evaluateDistanceJoint(const Joint& joint, const DistanceJoint& distance, const Body* bodies) {
+    const double violation = distanceCorrection(distance, jointAnchors(joint, bodies)).norm();
     return {.error = violation, .elasticEnergy = elasticEnergy(violation, joint.compliance)};
 }
 

@@ -9,7 +9,7 @@
 //   Drive (Eq. 21): b_target = rot(a0, α) b0; body 0 turns by the rotation taking b_target onto
 //   b1, with the drive compliance. A velocity motor advances α by h·v every substep.
 //   Limits: Algorithm 3 with [n, n0, n1] = [a0, b0, b1] (ERRATA items 3-4).
-//   Drive and limits use b1 projected onto the plane normal to a0 (as Eqs. 23-24 do for twist),
+//   Drive and limits use b1 projected onto the plane normal to a0 (as Eq. 23 and Eq. 24 do for twist),
 //   so their corrections turn about a0 alone. Taken as it is, b1 carries the axis misalignment
 //   the alignment part has yet to remove, and the correction then also turns about an axis in the
 //   hinge plane, where a thin bar's inertia is tiny: alignment and drive fight every substep and
@@ -17,7 +17,7 @@
 //   reached 1700 rad/s before this projection).
 //   Position: the attachment Δx = p1 − p0.
 
-#include "physics/joints/joint_parts.h"
+#include "physics/joints/joint_geometry.h"
 
 namespace substep {
 
@@ -41,47 +41,47 @@ double hingeAngle(const Joint& joint, const Body* bodies) {
     return signedAngle(f0.col(0), f0.col(1), f1.col(1));
 }
 
-void solveHingeJoint(Joint& joint, SolverContext& ctx) {
+void solveHingeJoint(const Joint& joint, HingeJoint& hinge, SolverContext& ctx) {
     {
         const Vec3 a0 = worldFrame0(joint, ctx.bodies) * Vec3::UnitX();
         const Vec3 a1 = worldFrame1(joint, ctx.bodies) * Vec3::UnitX();
-        const Vec3 rotation = rotationBetween(a0, a1);
+        const Vec3 rotation = rotationBetween(a0, a1);  // Eq. 20, with the exact angle
         // Block form over the two directions normal to the hinge axis, so the alignment never
         // turns the hinge itself (applyRotationCorrection).
         const Vec3 free = (a0 + a1).norm() > 1e-9 ? Vec3((a0 + a1).normalized()) : a0;
-        joint.angularImpulse += applyRotationCorrection(ctx, joint.body0, joint.body1, rotation,
-                                                        0.0, joint.lambdaRotation, &free);
+        hinge.alignment.solve(ctx, joint.body0, joint.body1, rotation, 0.0, &free);
     }
     Vec3 b1;
-    if (joint.drive != Joint::Drive::None) {
+    if (hinge.drive != JointDrive::None) {
         const Mat3 f0 = worldFrame0(joint, ctx.bodies).toRotationMatrix();
         if (normalInHingePlane(f0.col(0), worldFrame1(joint, ctx.bodies) * Vec3::UnitY(), b1)) {
-            const Vec3 target = Eigen::AngleAxisd(joint.target, f0.col(0)) * f0.col(1);
-            solveRotationPart(joint, ctx, rotationBetween(target, b1), joint.driveCompliance,
-                              joint.lambdaDrive);
+            // Eq. 21: b_target = rot(a0, α) b0, turned onto b1.
+            const Vec3 target = Eigen::AngleAxisd(hinge.target, f0.col(0)) * f0.col(1);
+            hinge.drivePart.solve(ctx, joint.body0, joint.body1, rotationBetween(target, b1),
+                                  hinge.driveCompliance);
         }
     }
-    if (joint.hasLimits) {
+    if (hinge.hasLimits) {
         const Mat3 f0 = worldFrame0(joint, ctx.bodies).toRotationMatrix();
         if (normalInHingePlane(f0.col(0), worldFrame1(joint, ctx.bodies) * Vec3::UnitY(), b1))
-            solveAngleLimit(joint, ctx, f0.col(0), f0.col(1), b1, joint.limits.lower,
-                            joint.limits.upper, joint.limitCompliance, joint.lambdaLimit);
+            hinge.limit.solveLimit(ctx, joint.body0, joint.body1, f0.col(0), f0.col(1), b1,
+                                   hinge.limits.lower, hinge.limits.upper, hinge.limitCompliance);
     }
-    solveAttachment(joint, ctx);
+    hinge.attachment.solve(ctx, joint.body0, joint.body1, joint.anchor0, joint.anchor1, joint.compliance);
 }
 
-JointEvaluation evaluateHingeJoint(const Joint& joint, const Body* bodies) {
+JointEvaluation evaluateHingeJoint(const Joint& joint, const HingeJoint& hinge, const Body* bodies) {
     const JointAnchors anchors = jointAnchors(joint, bodies);
     const double gap = (anchors.p1 - anchors.p0).norm();
     double energy = elasticEnergy(gap, joint.compliance);
     const double angle = hingeAngle(joint, bodies);
-    if (joint.drive != Joint::Drive::None)
-        energy += elasticEnergy(wrapAngle(angle - joint.target), joint.driveCompliance);
-    if (joint.hasLimits) {
-        const double excess = angle < joint.limits.lower   ? joint.limits.lower - angle
-                              : angle > joint.limits.upper ? angle - joint.limits.upper
+    if (hinge.drive != JointDrive::None)
+        energy += elasticEnergy(wrapAngle(angle - hinge.target), hinge.driveCompliance);
+    if (hinge.hasLimits) {
+        const double excess = angle < hinge.limits.lower   ? hinge.limits.lower - angle
+                              : angle > hinge.limits.upper ? angle - hinge.limits.upper
                                                            : 0.0;
-        energy += elasticEnergy(excess, joint.limitCompliance);
+        energy += elasticEnergy(excess, hinge.limitCompliance);
     }
     return {.error = gap, .elasticEnergy = energy};
 }

@@ -1,85 +1,109 @@
 #pragma once
-/// Parts that joints are assembled from (as Jolt builds constraints from constraint parts):
-/// the attachment, the orientation lock and the angle limit of Algorithm 3. Each reads the
-/// bodies' current state, so every part sees the corrections made before it (non-linear
-/// Gauss-Seidel, paper section 1).
+/// The parts joints are assembled from, as Jolt assembles constraints from its constraint parts:
+/// each part owns its Lagrange multiplier λ (paper 3.3.1, zeroed every substep) and the impulse
+/// it gave body 0 in the current substep, and moves the bodies through one of the correction
+/// operations of correction.h. A joint type is a few named parts; resetting multipliers and
+/// reading forces and torques loop over them (Joint::resetMultipliers, Joint::linearImpulse).
+///
+/// Each part reads the bodies' current state when it is solved, so every part sees the
+/// corrections made before it (non-linear Gauss-Seidel, paper section 1).
+///
+///   PointPart     an attachment, 3.4.2 (vector λ, block form of the positional correction)
+///   AxisPart      a positional correction along one direction, 3.3.1 (scalar λ)
+///   RotationPart  an orientation lock or axis alignment (vector λ, block angular correction)
+///   AnglePart     an angular correction about one axis, 3.3.2, or Algorithm 3's angle limit
+/// The first two give forces (Eq. 10), the last two torques (Eq. 17).
 
 #include "physics/correction.h"
-#include "physics/joints/joint.h"
+
+#include <cmath>
 
 namespace substep {
 
-/// World anchor points of a joint and their offsets from the centres of mass.
-struct JointAnchors {
-    Vec3 p0, p1;  ///< world points
-    Vec3 r0, r1;  ///< offsets from the centres of mass
+/// Attachment (3.4.2): makes body 0's anchor coincide with body 1's, Δx = Δr = p1 − p0, with
+/// the full 3 x 3 inverse mass (applyPointCorrection explains why).
+struct PointPart {
+    static constexpr bool kAngular = false;
+    Vec3 lambda = Vec3::Zero();   ///< vector multiplier
+    Vec3 impulse = Vec3::Zero();  ///< given to body 0 this substep
+
+    void reset() {
+        lambda.setZero();
+        impulse.setZero();
+    }
+    /// Anchors in the bodies' principal frames (Joint::anchor0, anchor1).
+    void solve(SolverContext& ctx, uint32_t body0, uint32_t body1, const Vec3& anchor0,
+               const Vec3& anchor1, double compliance) {
+        impulse += applyAttachmentCorrection(ctx, body0, body1, anchor0, anchor1, compliance, lambda);
+    }
 };
 
-inline JointAnchors jointAnchors(const Joint& joint, const Body* bodies) {
-    const Body& b0 = bodies[joint.body0];
-    const Body& b1 = bodies[joint.body1];
-    JointAnchors a;
-    a.r0 = b0.toWorld(joint.anchor0);
-    a.r1 = b1.toWorld(joint.anchor1);
-    a.p0 = b0.x + a.r0;
-    a.p1 = b1.x + a.r1;
-    return a;
-}
+/// Positional correction (3.3.1, Eq. 2 to Eq. 9 in applyPositionalCorrection): moves the
+/// point at offset r0 of body 0 by `delta` relative to the point at r1 of body 1.
+struct AxisPart {
+    static constexpr bool kAngular = false;
+    double lambda = 0.0;
+    Vec3 impulse = Vec3::Zero();  ///< given to body 0 this substep
 
-/// The joint frames in world space: columns are the axes a, b, c.
-inline Quat worldFrame0(const Joint& joint, const Body* bodies) {
-    return bodies[joint.body0].q * joint.frame0;
-}
-inline Quat worldFrame1(const Joint& joint, const Body* bodies) {
-    return bodies[joint.body1].q * joint.frame1;
-}
+    void reset() {
+        lambda = 0.0;
+        impulse.setZero();
+    }
+    void solve(SolverContext& ctx, uint32_t body0, uint32_t body1, const Vec3& delta,
+               const Vec3& r0, const Vec3& r1, double compliance) {
+        impulse += applyPositionalCorrection(ctx, body0, body1, delta, r0, r1, compliance, lambda);
+    }
+};
 
-/// Positional part, 3.4.2: moves body 0's anchor by `delta` relative to body 1's anchor.
-inline void solvePositionPart(Joint& joint, SolverContext& ctx, const JointAnchors& anchors,
-                              const Vec3& delta, double compliance, double& lambda) {
-    joint.linearImpulse += applyPositionalCorrection(ctx, joint.body0, joint.body1, delta,
-                                                     anchors.r0, anchors.r1, compliance, lambda);
-}
+/// Orientation lock or axis alignment in block form (applyRotationCorrection says why): turns
+/// body 0 by the world rotation vector `rotation` relative to body 1; with `freeAxis`, only
+/// about the two directions normal to it.
+struct RotationPart {
+    static constexpr bool kAngular = true;
+    Vec3 lambda = Vec3::Zero();   ///< vector multiplier
+    Vec3 impulse = Vec3::Zero();  ///< angular, given to body 0 this substep
 
-/// Attachment, 3.4.2: Δx = Δr = p1 − p0 (a zero-rest-length spring when compliant), projected
-/// with the full 3 x 3 inverse mass (applyPointCorrection explains why).
-inline void solveAttachment(Joint& joint, SolverContext& ctx) {
-    joint.linearImpulse +=
-        applyAttachmentCorrection(ctx, joint.body0, joint.body1, joint.anchor0, joint.anchor1,
-                                  joint.compliance, joint.lambdaPoint);
-}
+    void reset() {
+        lambda.setZero();
+        impulse.setZero();
+    }
+    void solve(SolverContext& ctx, uint32_t body0, uint32_t body1, const Vec3& rotation,
+               double compliance, const Vec3* freeAxis = nullptr) {
+        impulse += applyRotationCorrection(ctx, body0, body1, rotation, compliance, lambda, freeAxis);
+    }
+};
 
-/// Angular part, 3.3.2: turns body 0 by `rotation` relative to body 1.
-inline void solveRotationPart(Joint& joint, SolverContext& ctx, const Vec3& rotation,
-                              double compliance, double& lambda) {
-    joint.angularImpulse += applyAngularCorrection(ctx, joint.body0, joint.body1, rotation,
-                                                   compliance, lambda);
-}
+/// Angular correction (3.3.2, Eq. 11 to Eq. 16 in applyAngularCorrection): turns body 0 by
+/// `rotation` relative to body 1; or, as a limit, Algorithm 3.
+struct AnglePart {
+    static constexpr bool kAngular = true;
+    double lambda = 0.0;
+    Vec3 impulse = Vec3::Zero();  ///< angular, given to body 0 this substep
 
-/// Hard orientation lock (Eqs. 18-19, with the exact rotation vector): turns body 0's joint
-/// frame onto body 1's, in block form (applyRotationCorrection says why).
-inline void solveOrientationLock(Joint& joint, SolverContext& ctx) {
-    const Quat difference = worldFrame1(joint, ctx.bodies) * worldFrame0(joint, ctx.bodies).conjugate();
-    joint.angularImpulse += applyRotationCorrection(ctx, joint.body0, joint.body1,
-                                                    rotationVector(difference), 0.0,
-                                                    joint.lambdaRotation);
-}
-
-/// Algorithm 3 (with ERRATA items 3-4): keeps the angle from n0 to n1 about n inside
-/// [lower, upper]. n, n0, n1 are unit vectors, n0 and n1 perpendicular to n.
-inline void solveAngleLimit(Joint& joint, SolverContext& ctx, const Vec3& n, const Vec3& n0,
-                            const Vec3& n1, double lower, double upper, double compliance,
-                            double& lambda) {
-    const double phi = signedAngle(n, n0, n1);
-    if (phi >= lower && phi <= upper) return;
-    const double clamped = phi < lower ? lower : upper;
-    // n0 and n1 lie in the plane normal to n, so the turn from the limit's direction to n1 is
-    // about n by the excess, taken the short way round: no need to build that direction.
-    double excess = phi - clamped;
-    if (excess > M_PI) excess -= 2.0 * M_PI;
-    if (excess <= -M_PI) excess += 2.0 * M_PI;
-    solveRotationPart(joint, ctx, excess * n, compliance, lambda);
-}
+    void reset() {
+        lambda = 0.0;
+        impulse.setZero();
+    }
+    void solve(SolverContext& ctx, uint32_t body0, uint32_t body1, const Vec3& rotation,
+               double compliance) {
+        impulse += applyAngularCorrection(ctx, body0, body1, rotation, compliance, lambda);
+    }
+    /// Algorithm 3 (with ERRATA items 3-4): keeps the angle from n0 to n1 about n inside
+    /// [lower, upper]. n, n0, n1 are unit vectors, n0 and n1 perpendicular to n.
+    void solveLimit(SolverContext& ctx, uint32_t body0, uint32_t body1, const Vec3& n,
+                    const Vec3& n0, const Vec3& n1, double lower, double upper, double compliance) {
+        // Algorithm 3: φ = asin((n1 × n2)·n), taken as the full signed angle (ERRATA item 3).
+        const double phi = signedAngle(n, n0, n1);
+        if (phi >= lower && phi <= upper) return;
+        const double clamped = phi < lower ? lower : upper;
+        // n0 and n1 lie in the plane normal to n, so the turn from the limit's direction to n1
+        // is about n by the excess, taken the short way round: no need to build that direction.
+        double excess = phi - clamped;
+        if (excess > M_PI) excess -= 2.0 * M_PI;
+        if (excess <= -M_PI) excess += 2.0 * M_PI;
+        solve(ctx, body0, body1, excess * n, compliance);
+    }
+};
 
 /// How far the angle from n0 to n1 about n lies outside [lower, upper] (rad).
 inline double angleLimitViolation(const Vec3& n, const Vec3& n0, const Vec3& n1, double lower,
@@ -92,26 +116,5 @@ inline double angleLimitViolation(const Vec3& n, const Vec3& n0, const Vec3& n1,
 inline double elasticEnergy(double violation, double compliance) {
     return compliance > 0.0 ? violation * violation / (2.0 * compliance) : 0.0;
 }
-
-/// Per-type solve and evaluation functions (one file each).
-struct JointEvaluation {
-    double error = 0.0;          ///< positional violation (m)
-    double elasticEnergy = 0.0;  ///< J
-};
-
-void solveDistanceJoint(Joint& joint, SolverContext& ctx);
-void solveFixedJoint(Joint& joint, SolverContext& ctx);
-void solveHingeJoint(Joint& joint, SolverContext& ctx);
-void solveSphericalJoint(Joint& joint, SolverContext& ctx);
-void solvePrismaticJoint(Joint& joint, SolverContext& ctx);
-
-JointEvaluation evaluateDistanceJoint(const Joint& joint, const Body* bodies);
-JointEvaluation evaluateFixedJoint(const Joint& joint, const Body* bodies);
-JointEvaluation evaluateHingeJoint(const Joint& joint, const Body* bodies);
-JointEvaluation evaluateSphericalJoint(const Joint& joint, const Body* bodies);
-JointEvaluation evaluatePrismaticJoint(const Joint& joint, const Body* bodies);
-
-/// The hinge angle (rad, right-hand rule about body 0's axis) of body 1 relative to body 0.
-double hingeAngle(const Joint& joint, const Body* bodies);
 
 }  // namespace substep

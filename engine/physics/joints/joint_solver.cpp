@@ -1,6 +1,6 @@
 #include "physics/joints/joint_solver.h"
 
-#include "physics/joints/joint_parts.h"
+#include "physics/joints/joint_geometry.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,12 +8,12 @@
 namespace substep {
 
 void solveJointPositions(Joint& joint, SolverContext& ctx) {
-    switch (joint.type) {
-        case JointType::Distance: solveDistanceJoint(joint, ctx); break;
-        case JointType::Fixed: solveFixedJoint(joint, ctx); break;
-        case JointType::Hinge: solveHingeJoint(joint, ctx); break;
-        case JointType::Spherical: solveSphericalJoint(joint, ctx); break;
-        case JointType::Prismatic: solvePrismaticJoint(joint, ctx); break;
+    switch (joint.model.index()) {
+        case 0: solveDistanceJoint(joint, *std::get_if<DistanceJoint>(&joint.model), ctx); break;
+        case 1: solveFixedJoint(joint, *std::get_if<FixedJoint>(&joint.model), ctx); break;
+        case 2: solveHingeJoint(joint, *std::get_if<HingeJoint>(&joint.model), ctx); break;
+        case 3: solveSphericalJoint(joint, *std::get_if<SphericalJoint>(&joint.model), ctx); break;
+        case 4: solvePrismaticJoint(joint, *std::get_if<PrismaticJoint>(&joint.model), ctx); break;
     }
 }
 
@@ -35,23 +35,24 @@ void solveJointVelocities(const Joint& joint, Body* bodies, double h) {
 
 JointReadout readJoint(const Joint& joint, const Body* bodies, double h) {
     JointEvaluation evaluation;
-    switch (joint.type) {
-        case JointType::Distance: evaluation = evaluateDistanceJoint(joint, bodies); break;
-        case JointType::Fixed: evaluation = evaluateFixedJoint(joint, bodies); break;
-        case JointType::Hinge: evaluation = evaluateHingeJoint(joint, bodies); break;
-        case JointType::Spherical: evaluation = evaluateSphericalJoint(joint, bodies); break;
-        case JointType::Prismatic: evaluation = evaluatePrismaticJoint(joint, bodies); break;
+    switch (joint.model.index()) {
+        case 0: evaluation = evaluateDistanceJoint(joint, *std::get_if<DistanceJoint>(&joint.model), bodies); break;
+        case 1: evaluation = evaluateFixedJoint(joint, *std::get_if<FixedJoint>(&joint.model), bodies); break;
+        case 2: evaluation = evaluateHingeJoint(joint, *std::get_if<HingeJoint>(&joint.model), bodies); break;
+        case 3: evaluation = evaluateSphericalJoint(joint, *std::get_if<SphericalJoint>(&joint.model), bodies); break;
+        case 4: evaluation = evaluatePrismaticJoint(joint, *std::get_if<PrismaticJoint>(&joint.model), bodies); break;
     }
+    // Eq. 10: f = λn/h², and Eq. 17: τ = λn/h², summed over the joint's parts.
     const double invH2 = h > 0.0 ? 1.0 / (h * h) : 0.0;
-    return {.force = joint.linearImpulse.norm() * invH2,
-            .torque = joint.angularImpulse.norm() * invH2,
+    return {.force = joint.linearImpulse().norm() * invH2,
+            .torque = joint.angularImpulse().norm() * invH2,
             .error = evaluation.error,
             .elasticEnergy = evaluation.elasticEnergy,
             .coordinate = jointCoordinate(joint, bodies)};
 }
 
 double jointCoordinate(const Joint& joint, const Body* bodies) {
-    switch (joint.type) {
+    switch (joint.type()) {
         case JointType::Hinge: return hingeAngle(joint, bodies);
         case JointType::Spherical: {
             const Vec3 a0 = worldFrame0(joint, bodies) * Vec3::UnitX();

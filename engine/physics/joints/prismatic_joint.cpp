@@ -9,7 +9,7 @@
 //   The paper folds all limits into one projection; here the parts keep separate compliances
 //   and multipliers, so a soft limit and a hard attachment can coexist.
 
-#include "physics/joints/joint_parts.h"
+#include "physics/joints/joint_geometry.h"
 
 namespace substep {
 namespace {
@@ -36,46 +36,53 @@ JointAnchors slidingAnchors(const Joint& joint, const Body* bodies) {
     return anchors;
 }
 
-double limitExcess(const Joint& joint, double offset) {
-    if (!joint.hasLimits) return 0.0;
-    if (offset < joint.limits.lower) return offset - joint.limits.lower;
-    if (offset > joint.limits.upper) return offset - joint.limits.upper;
+double limitExcess(const PrismaticJoint& prismatic, double offset) {
+    if (!prismatic.hasLimits) return 0.0;
+    if (offset < prismatic.limits.lower) return offset - prismatic.limits.lower;
+    if (offset > prismatic.limits.upper) return offset - prismatic.limits.upper;
     return 0.0;
 }
 
 }  // namespace
 
-void solvePrismaticJoint(Joint& joint, SolverContext& ctx) {
-    solveOrientationLock(joint, ctx);
+void solvePrismaticJoint(const Joint& joint, PrismaticJoint& prismatic, SolverContext& ctx) {
+    {
+        // Hard orientation lock: Eq. 18 on the joint frames, Eq. 19 with the exact angle.
+        const Quat difference = worldFrame1(joint, ctx.bodies) * worldFrame0(joint, ctx.bodies).conjugate();
+        prismatic.orientation.solve(ctx, joint.body0, joint.body1, rotationVector(difference), 0.0);
+    }
     {
         const JointAnchors anchors = slidingAnchors(joint, ctx.bodies);
         const SlideState s = slideState(joint, ctx.bodies, anchors);
-        solvePositionPart(joint, ctx, anchors, s.offAxis, joint.compliance, joint.lambdaAttach);
+        prismatic.offAxis.solve(ctx, joint.body0, joint.body1, s.offAxis, anchors.r0, anchors.r1,
+                                joint.compliance);
     }
-    if (joint.hasLimits) {
+    if (prismatic.hasLimits) {
         const JointAnchors anchors = slidingAnchors(joint, ctx.bodies);
         const SlideState s = slideState(joint, ctx.bodies, anchors);
-        const double excess = limitExcess(joint, s.offset);
+        const double excess = limitExcess(prismatic, s.offset);
         if (excess != 0.0)
-            solvePositionPart(joint, ctx, anchors, s.axis * excess, joint.limitCompliance,
-                              joint.lambdaLimit);
+            prismatic.limit.solve(ctx, joint.body0, joint.body1, s.axis * excess, anchors.r0,
+                                  anchors.r1, prismatic.limitCompliance);
     }
-    if (joint.drive == Joint::Drive::Position) {
+    if (prismatic.drive == JointDrive::Position) {
         const JointAnchors anchors = slidingAnchors(joint, ctx.bodies);
         const SlideState s = slideState(joint, ctx.bodies, anchors);
-        solvePositionPart(joint, ctx, anchors, s.axis * (s.offset - joint.target),
-                          joint.driveCompliance, joint.lambdaDrive);
+        // Eq. 25 with d_target: the offset along the axis pulled to the target.
+        prismatic.drivePart.solve(ctx, joint.body0, joint.body1, s.axis * (s.offset - prismatic.target),
+                                  anchors.r0, anchors.r1, prismatic.driveCompliance);
     }
 }
 
-JointEvaluation evaluatePrismaticJoint(const Joint& joint, const Body* bodies) {
+JointEvaluation evaluatePrismaticJoint(const Joint& joint, const PrismaticJoint& prismatic,
+                                       const Body* bodies) {
     const SlideState s = slideState(joint, bodies, jointAnchors(joint, bodies));
     const double offAxis = s.offAxis.norm();
-    const double excess = std::abs(limitExcess(joint, s.offset));
+    const double excess = std::abs(limitExcess(prismatic, s.offset));
     double energy = elasticEnergy(offAxis, joint.compliance) +
-                    elasticEnergy(excess, joint.limitCompliance);
-    if (joint.drive == Joint::Drive::Position)
-        energy += elasticEnergy(s.offset - joint.target, joint.driveCompliance);
+                    elasticEnergy(excess, prismatic.limitCompliance);
+    if (prismatic.drive == JointDrive::Position)
+        energy += elasticEnergy(s.offset - prismatic.target, prismatic.driveCompliance);
     return {.error = offAxis + excess, .elasticEnergy = energy};
 }
 

@@ -1,16 +1,16 @@
-// Spherical (ball-in-socket) joint (paper 3.4.1, Eqs. 22-24): free rotation about the anchor,
+// Spherical (ball-in-socket) joint (paper 3.4.1, Eq. 22, Eq. 23, Eq. 24): free rotation about the anchor,
 // with optional swing and twist limits that are decoupled.
 //
 //   Swing: the angle between the axes a0 and a1, limited to [0, swing] by Algorithm 3 with
 //   [n, n0, n1] = [a0 × a1 / |a0 × a1|, a0, a1]. Parallel axes need no swing correction;
 //   anti-parallel axes have no unique swing plane, so any perpendicular of a0 is used.
 //   Twist: about n = (a0 + a1)/|a0 + a1| (Eq. 22), between the normals with their n-component
-//   removed and then normalised (Eqs. 23-24, ERRATA item 5). Twist is undefined when the axes
+//   removed and then normalised (Eq. 23, Eq. 24, ERRATA item 5). Twist is undefined when the axes
 //   are anti-parallel (a0 + a1 = 0) or a normal lies along n; the twist limit waits until the
 //   swing brings the axes back below about 177°.
 //   Position: the attachment Δx = p1 − p0.
 
-#include "physics/joints/joint_parts.h"
+#include "physics/joints/joint_geometry.h"
 
 namespace substep {
 namespace {
@@ -31,65 +31,66 @@ bool swingAxis(const Vec3& a0, const Vec3& a1, Vec3& n) {
 /// |a0 + a1| below which twist is treated as undefined (a swing beyond about 177°).
 constexpr double kTwistUndefinedBelow = 0.05;
 
-/// Twist axis and the two projected normals (Eqs. 22-24); false where twist is undefined.
+/// Twist axis (Eq. 22) and the two projected normals (Eq. 23, Eq. 24); false where twist is
+/// undefined.
 bool twistFrame(const Mat3& f0, const Mat3& f1, Vec3& n, Vec3& n0, Vec3& n1) {
-    n = f0.col(0) + f1.col(0);
+    n = f0.col(0) + f1.col(0);  // Eq. 22
     const double length = n.norm();
     // Near a half-turn swing n swings round faster than any substep can follow (a swing within
     // 1e-3 of 180° turned 9.8 J into 1.7 MJ): twist is left alone beyond about 177°.
     if (length < kTwistUndefinedBelow) return false;
     n /= length;
-    n0 = f0.col(1) - n.dot(f0.col(1)) * n;
-    n1 = f1.col(1) - n.dot(f1.col(1)) * n;
+    n0 = f0.col(1) - n.dot(f0.col(1)) * n;  // Eq. 23
+    n1 = f1.col(1) - n.dot(f1.col(1)) * n;  // Eq. 24
     const double l0 = n0.norm();
     const double l1 = n1.norm();
     if (l0 < 1e-9 || l1 < 1e-9) return false;
-    n0 /= l0;
-    n1 /= l1;
+    n0 /= l0;  // Eq. 23's "n1 ← |n1|": normalised (ERRATA item 5)
+    n1 /= l1;  // Eq. 24 likewise
     return true;
 }
 
 }  // namespace
 
-void solveSphericalJoint(Joint& joint, SolverContext& ctx) {
-    if (joint.hasSwingLimit) {
+void solveSphericalJoint(const Joint& joint, SphericalJoint& spherical, SolverContext& ctx) {
+    if (spherical.hasSwingLimit) {
         const Vec3 a0 = worldFrame0(joint, ctx.bodies) * Vec3::UnitX();
         const Vec3 a1 = worldFrame1(joint, ctx.bodies) * Vec3::UnitX();
         Vec3 n;
         if (swingAxis(a0, a1, n))
-            solveAngleLimit(joint, ctx, n, a0, a1, -joint.swingLimit, joint.swingLimit,
-                            joint.limitCompliance, joint.lambdaLimit);
+            spherical.swing.solveLimit(ctx, joint.body0, joint.body1, n, a0, a1, -spherical.swingLimit,
+                                       spherical.swingLimit, spherical.swingCompliance);
     }
-    if (joint.hasTwistLimits) {
+    if (spherical.hasTwistLimits) {
         const Mat3 f0 = worldFrame0(joint, ctx.bodies).toRotationMatrix();
         const Mat3 f1 = worldFrame1(joint, ctx.bodies).toRotationMatrix();
         Vec3 n, n0, n1;
         if (twistFrame(f0, f1, n, n0, n1))
-            solveAngleLimit(joint, ctx, n, n0, n1, joint.twistLimits.lower,
-                            joint.twistLimits.upper, joint.twistCompliance, joint.lambdaTwist);
+            spherical.twist.solveLimit(ctx, joint.body0, joint.body1, n, n0, n1, spherical.twistLimits.lower,
+                                       spherical.twistLimits.upper, spherical.twistCompliance);
     }
-    solveAttachment(joint, ctx);
+    spherical.attachment.solve(ctx, joint.body0, joint.body1, joint.anchor0, joint.anchor1, joint.compliance);
 }
 
-JointEvaluation evaluateSphericalJoint(const Joint& joint, const Body* bodies) {
+JointEvaluation evaluateSphericalJoint(const Joint& joint, const SphericalJoint& spherical, const Body* bodies) {
     const JointAnchors anchors = jointAnchors(joint, bodies);
     const double gap = (anchors.p1 - anchors.p0).norm();
     double energy = elasticEnergy(gap, joint.compliance);
     const Mat3 f0 = worldFrame0(joint, bodies).toRotationMatrix();
     const Mat3 f1 = worldFrame1(joint, bodies).toRotationMatrix();
-    if (joint.hasSwingLimit) {
+    if (spherical.hasSwingLimit) {
         Vec3 n;
         if (swingAxis(f0.col(0), f1.col(0), n))
             energy += elasticEnergy(angleLimitViolation(n, f0.col(0), f1.col(0),
-                                                        -joint.swingLimit, joint.swingLimit),
-                                    joint.limitCompliance);
+                                                        -spherical.swingLimit, spherical.swingLimit),
+                                    spherical.swingCompliance);
     }
-    if (joint.hasTwistLimits) {
+    if (spherical.hasTwistLimits) {
         Vec3 n, n0, n1;
         if (twistFrame(f0, f1, n, n0, n1))
-            energy += elasticEnergy(angleLimitViolation(n, n0, n1, joint.twistLimits.lower,
-                                                        joint.twistLimits.upper),
-                                    joint.twistCompliance);
+            energy += elasticEnergy(angleLimitViolation(n, n0, n1, spherical.twistLimits.lower,
+                                                        spherical.twistLimits.upper),
+                                    spherical.twistCompliance);
     }
     return {.error = gap, .elasticEnergy = energy};
 }
