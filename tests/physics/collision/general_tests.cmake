@@ -1,0 +1,3 @@
+# The general convex pair: GJK/EPA against brute force, the manifold, convex shapes on meshes,
+# heightfields and splines, and the narrowphase table with no empty cell.
+physics_add_test(gjk_epa_test SOURCES collision/gjk_epa_test.cpp LIBS substep_physics)
