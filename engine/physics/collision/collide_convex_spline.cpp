@@ -105,6 +105,17 @@ void addPipeContact(const ConvexSupport& s, const Vec3& x, const Vec3& tangent, 
         const double angle = 2.0 * M_PI * k / kPipeDirections;
         tryDirection(std::cos(angle) * e + std::sin(angle) * f);
     }
+    // The farthest point across the curve is extreme in its own direction: turn u towards the
+    // best point found until it stays (a corner of a box in a round pipe).
+    for (int round = 0; round < kClosestRounds; ++round) {
+        Vec3 across = best.point0 - x;
+        across -= across.dot(t) * t;
+        const double length = across.norm();
+        if (!(length > kDirectionEpsilon)) break;
+        const Vec3 before = best.point0;
+        tryDirection(across / length);
+        if ((best.point0 - before).squaredNorm() == 0.0) break;
+    }
     if (best.depth < -margin) return;
     best.feature = feature;
     candidates.add(best);

@@ -58,10 +58,19 @@ void addTriangleContacts(const ConvexSupport& s, const ContactTriangle& tri, dou
     if (!solidBelow && n.dot(s.support(n) - tri.v[0]) + s.radius < 0.0) return;
 
     const ConvexSupport triangle = triangleSupport(tri);
-    ConvexDistance deepest = convexDistance(s, triangle, margin + s.radius);
-    if (deepest.beyondCutoff) return;
+    ConvexDistance deepest;
+    bool faceNormal = false;
+    if (solidBelow && n.dot(s.centre - tri.v[0]) < 0.0 &&
+        closestOnTriangle(s.centre, tri.v[0], tri.v[1], tri.v[2]).feature ==
+            TriangleFeature::Face) {
+        // Sunk with its centre under this triangle: up along the face normal, however deep.
+        faceNormal = true;
+    } else {
+        deepest = convexDistance(s, triangle, margin + s.radius);
+        if (deepest.beyondCutoff) return;
+    }
     const double along = deepest.normal.dot(n);
-    bool faceNormal = along <= 0.0;  // pushing the shape through the triangle: never
+    if (!faceNormal) faceNormal = along <= 0.0;  // pushing the shape through the triangle: never
     if (!faceNormal && along < 1.0 - 1e-9) {
         const double step = std::max(deepest.separation, kFeatureProbe * s.size());
         faceNormal = onInactiveFeature(tri, deepest.pointB + step * deepest.normal);

@@ -305,3 +305,42 @@ TEST(GeneralPairWorld, BoxSlidesDownSplineRailsAtGSinThetaWithoutFallingThrough)
 
 }  // namespace
 }  // namespace substep
+
+namespace substep {
+namespace {
+
+TEST(GeneralPairSpline, ABoxInAPipeTouchesWhereItsCornerReachesTheWall) {
+    // A 0.2 m cube in a straight pipe of radius 0.2 along x, 1 cm below the axis' level of
+    // touching: its lower corners are sqrt(0.21² + 0.1²) from the axis, beyond the wall by that
+    // less 0.2, pushed back towards the axis.
+    const double R = 0.2;
+    const Shape pipe = splineShape(makeSplineTube({Vec3(-2, 0, 0), Vec3(0, 0, 0), Vec3(2, 0, 0)}, R, false, true));
+    const Shape cube = boxShape(Vec3(0.2, 0.2, 0.2));
+    ContactManifold m;
+    collide(cube, {Vec3(0.3, -0.11, 0), Quat::Identity()}, pipe, {}, 0.005, m);
+    ASSERT_GT(m.count, 0);
+    const ContactPoint* deepest = deepestPoint(m);
+    const double reach = std::hypot(0.21, 0.1);
+    EXPECT_NEAR(deepest->depth, reach - R, 1e-9);
+    EXPECT_NEAR(std::abs(deepest->normal.z()), 0.1 / reach, 1e-9);
+    EXPECT_NEAR(deepest->normal.y(), 0.21 / reach, 1e-9);
+    // Centred in the pipe it touches nothing.
+    collide(cube, {Vec3(0.3, 0, 0), Quat::Identity()}, pipe, {}, 0.005, m);
+    EXPECT_EQ(m.count, 0);
+}
+
+TEST(GeneralPairMesh, AShapeBehindAOneSidedMeshIsLetGoAndAHeightfieldPushesUp) {
+    // 30 cm under a ground mesh, wholly behind its triangles: no contact. Under a heightfield,
+    // which is solid below, pushed up along the face normal by its whole depth.
+    const Shape can = cylinderShape(0.15, 0.2);
+    ContactManifold m;
+    collide(can, {Vec3(0.2, -0.3, 0.1), Quat::Identity()}, groundMesh(2.0), {}, 0.005, m);
+    EXPECT_EQ(m.count, 0);
+    collide(can, {Vec3(0.2, -0.3, 0.1), Quat::Identity()}, flatHeightfield(4.0, 5), {}, 0.005, m);
+    ASSERT_GT(m.count, 0);
+    EXPECT_NEAR(deepestPoint(m)->depth, 0.4, 1e-9);
+    EXPECT_NEAR(deepestPoint(m)->normal.y(), 1.0, 1e-12);
+}
+
+}  // namespace
+}  // namespace substep
