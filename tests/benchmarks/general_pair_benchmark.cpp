@@ -4,6 +4,7 @@
 // exists, the same pose runs through the table (Special) and through the general pair (General).
 //   taskset -c 0 build/bin/substep_benchmarks --benchmark_filter='Special|General'
 
+#include "physics/collision/collide_convex.h"
 #include "physics/collision/convex_manifold.h"
 #include "physics/collision/convex_mesh_shape.h"
 #include "physics/collision/heightfield.h"
@@ -98,6 +99,13 @@ void General(benchmark::State& state, const Shape& a, const Pose& pa, const Shap
     runPair(state, collideGeneralConvex, a, pa, b, pb);
 }
 
+/// The hull's own separating-axis routines, called directly (the table sends capsule–hull and
+/// large hull pairs to the general pair).
+void SeparatingAxes(benchmark::State& state, CollideFunction function, const Shape& a,
+                    const Pose& pa, const Shape& b, const Pose& pb) {
+    runPair(state, function, a, pa, b, pb);
+}
+
 const Pose kOrigin{};
 const Pose kResting{Vec3(0.05, 0.599, -0.03), turn(0.02, Vec3(0.1, 1, 0.2))};  // on a unit box
 const Pose kTilted{Vec3(0.05, 0.62, -0.03), turn(0.5, Vec3(1, 0, 0.3))};
@@ -128,6 +136,9 @@ BOTH(cylinder_box_tilted, kCan, kTilted, kUnitBox, kOrigin);
 BOTH(cylinder_sphere, kCan, Pose{Vec3(0.05, 0.0, 0.0), Quat::Identity()}, sphereShape(0.1), Pose{Vec3(0.05, 0.195, 0), Quat::Identity()});
 BOTH(capsule_capsule, kCapsule, Pose{Vec3(0, 0.195, 0), turn(1.0, Vec3::UnitZ())}, kCapsule, kOrigin);
 BOTH(pebble_pebble, pebble(), Pose{Vec3(0.02, 0.195, 0), turn(0.3, Vec3(1, 1, 0))}, pebble(), kOrigin);
+BENCHMARK_CAPTURE(SeparatingAxes, capsule_hull_lying, collideCapsuleConvex, kCapsule, Pose{Vec3(0.1, 0.595, 0), turn(M_PI / 2, Vec3::UnitZ())}, kUnitHull, kOrigin);
+BENCHMARK_CAPTURE(SeparatingAxes, capsule_hull_tilted, collideCapsuleConvex, kCapsule, Pose{Vec3(0.1, 0.7, 0), turn(0.6, Vec3::UnitZ())}, kUnitHull, kOrigin);
+BENCHMARK_CAPTURE(SeparatingAxes, pebble_pebble, collideConvexConvex, pebble(), Pose{Vec3(0.02, 0.195, 0), turn(0.3, Vec3(1, 1, 0))}, pebble(), kOrigin);
 
 // Pairs only the general routine serves.
 BENCHMARK_CAPTURE(Special, cylinder_cylinder_flat, kCan, Pose{Vec3(0.05, 0.199, 0), Quat::Identity()}, kCan, kOrigin);
