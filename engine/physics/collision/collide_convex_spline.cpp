@@ -80,7 +80,7 @@ void addBallContacts(const ConvexSupport& s, const Vec3& x, double R, double mar
 /// A pipe: the shape's farthest reach across the tangent at curve point x, pushed back inside
 /// when it passes the wall.
 void addPipeContact(const ConvexSupport& s, const Vec3& x, const Vec3& tangent, double R,
-                    double margin, uint32_t feature, Candidates& candidates) {
+                    double slab, double margin, uint32_t feature, Candidates& candidates) {
     const double length = tangent.norm();
     if (!(length > kDirectionEpsilon)) return;
     const Vec3 t = tangent / length;
@@ -117,6 +117,9 @@ void addPipeContact(const ConvexSupport& s, const Vec3& x, const Vec3& tangent, 
         if ((best.point0 - before).squaredNorm() == 0.0) break;
     }
     if (best.depth < -margin) return;
+    // The sample whose slab across the curve holds the point reports it (so a shape reaching
+    // past an open end, or along a bend, is measured where it actually is).
+    if (std::abs((best.point0 - x).dot(t)) > slab) return;
     best.feature = feature;
     candidates.add(best);
 }
@@ -157,6 +160,9 @@ void collideConvexSpline(const Shape& a, const Pose& pa, const Shape& b, const P
         const int samples =
             std::clamp(static_cast<int>(std::ceil(chord / spacing)), 1, kMaxSamplesPerSegment);
         const uint32_t base = static_cast<uint32_t>(i) << 12;
+        // Half the distance between samples, with overlap (a point reported twice is merged
+        // by the reduction; one reported by none would be missed).
+        const double slab = 0.75 * chord / samples;
         for (int k = 0; k <= samples; ++k) {
             const double t = static_cast<double>(k) / samples;
             const Vec3 x = segment.point(t);
@@ -164,7 +170,13 @@ void collideConvexSpline(const Shape& a, const Pose& pa, const Shape& b, const P
                 continue;
             }
             if (tube.hollow) {
-                addPipeContact(s, x, segment.tangent(t), R, margin, base + k, candidates);
+                // Past an open end the pipe is gone: a shape whose centre is beyond it leaves.
+                const Vec3 tangent = segment.tangent(t);
+                if ((tube.isCurveStart(i, t) && (s.centre - x).dot(tangent) < 0.0) ||
+                    (tube.isCurveEnd(i, t) && (s.centre - x).dot(tangent) > 0.0)) {
+                    continue;
+                }
+                addPipeContact(s, x, tangent, R, slab, margin, base + k, candidates);
             } else {
                 addBallContacts(s, x, R, margin, base + k, candidates);
             }

@@ -28,8 +28,9 @@ void collideConvexHeightfield(const Shape& a, const Pose& pa, const Shape& b, co
 /// ball of the tube's radius meets the shape through the general pair, and the closest point of
 /// the curve to the shape (alternating closest points, cubic_segment.h) is added, so a box
 /// lying along a rail rests on the ends of its stretch and a hull on a wire at its lowest point.
-/// Hollow tube (a pipe): the shape's support points across the curve's tangent at the samples,
-/// pushed back inside where they reach beyond the wall.
+/// Hollow tube (a pipe): the shape's farthest point across the curve's tangent at each sample,
+/// pushed back inside where it reaches beyond the wall, reported by the sample whose slab across
+/// the curve holds it; nothing holds a shape past an open end.
 void collideConvexSpline(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb,
                          double margin, ContactManifold& out);
 

@@ -324,8 +324,10 @@ TEST(GeneralPairSpline, ABoxInAPipeTouchesWhereItsCornerReachesTheWall) {
     EXPECT_NEAR(deepest->depth, reach - R, 1e-9);
     EXPECT_NEAR(std::abs(deepest->normal.z()), 0.1 / reach, 1e-9);
     EXPECT_NEAR(deepest->normal.y(), 0.21 / reach, 1e-9);
-    // Centred in the pipe it touches nothing.
+    // Centred in the pipe it touches nothing; out past the open end, nothing holds it.
     collide(cube, {Vec3(0.3, 0, 0), Quat::Identity()}, pipe, {}, 0.005, m);
+    EXPECT_EQ(m.count, 0);
+    collide(cube, {Vec3(2.15, -0.11, 0), Quat::Identity()}, pipe, {}, 0.005, m);
     EXPECT_EQ(m.count, 0);
 }
 
