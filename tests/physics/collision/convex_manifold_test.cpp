@@ -346,3 +346,46 @@ TEST(GeneralPairMesh, AShapeBehindAOneSidedMeshIsLetGoAndAHeightfieldPushesUp) {
 
 }  // namespace
 }  // namespace substep
+
+namespace substep {
+namespace {
+
+/// Slides `shape` frictionless across `ground` at 1.65 m/s for 1.5 s: no edge may catch it
+/// (speed kept within 0.5 %, no lift, no spin).
+void expectSlidesFreely(const std::string& name, const Shape& shape, const Shape& ground) {
+    World world({.gravity = Vec3(0, -10, 0), .substeps = 20});
+    world.createBody({.shape = ground, .type = BodyType::Static, .staticFriction = 0.0, .dynamicFriction = 0.0});
+    const Vec3 velocity(1.5, 0.0, 0.7);
+    const BodyId body = world.createBody({.shape = shape,
+                                          .density = 1000.0,
+                                          .position = Vec3(-1.5, 0.1, -0.8),
+                                          .velocity = velocity,
+                                          .staticFriction = 0.0,
+                                          .dynamicFriction = 0.0});
+    for (int frame = 0; frame < 90; ++frame)
+        world.step(1.0 / 60.0);
+    const Body& b = world.body(body);
+    EXPECT_NEAR(b.v.norm(), velocity.norm(), 0.005 * velocity.norm()) << name;
+    EXPECT_LT(std::abs(b.v.y()), 1e-3) << name;
+    EXPECT_LT(b.omega.norm(), 1e-2) << name;
+    EXPECT_NEAR(b.userPosition().y(), 0.1, 1e-3) << name;
+}
+
+TEST(GeneralPairWorld, ShapesSlideAcrossInternalEdgesWithoutCatching) {
+    // Diagonally across the 25 cm cells of a flat heightfield (many internal edges and
+    // diagonals) and the diagonal of a two-triangle mesh.
+    const Shape field = flatHeightfield(8.0, 33);
+    expectSlidesFreely("hull on a heightfield", boxHull(Vec3(0.3, 0.2, 0.3)), field);
+    expectSlidesFreely("hull on a mesh", boxHull(Vec3(0.3, 0.2, 0.3)), groundMesh(4.0));
+    expectSlidesFreely("cylinder on a mesh", cylinderShape(0.15, 0.2), groundMesh(4.0));
+}
+
+// Open: a flat cylinder sliding frictionless across the heightfield's cells is kicked once
+// (frame 31: 1.5 -> 1.09 m/s along x and 6.3 rad/s about y) although every contact normal
+// along its path is vertical (checked pose by pose); not yet explained.
+TEST(GeneralPairWorld, DISABLED_CylinderSlidesAcrossHeightfieldCellsWithoutCatching) {
+    expectSlidesFreely("cylinder on a heightfield", cylinderShape(0.15, 0.2), flatHeightfield(8.0, 33));
+}
+
+}  // namespace
+}  // namespace substep
