@@ -4,7 +4,7 @@
 /// the general convex pair (convex_manifold.h). The narrowphase table uses them for the pairs
 /// that have no special routine (cylinders and hulls on meshes, heightfields and splines;
 /// boxes on splines). Conventions as collide_curved.h: `out` cleared and filled in world
-/// coordinates, the normal from b towards a, the deepest kMaxContactPoints kept.
+/// coordinates, the normal from b towards a, at most 4 points: those spanning the patch.
 
 #include "physics/collision/contact_manifold.h"
 #include "physics/collision/shape.h"
