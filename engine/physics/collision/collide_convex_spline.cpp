@@ -110,10 +110,10 @@ void addPipeContact(const ConvexSupport& s, const Vec3& x, const Vec3& tangent, 
     for (int round = 0; round < kClosestRounds; ++round) {
         Vec3 across = best.point0 - x;
         across -= across.dot(t) * t;
-        const double length = across.norm();
-        if (!(length > kDirectionEpsilon)) break;
+        const double acrossLength = across.norm();
+        if (!(acrossLength > kDirectionEpsilon)) break;
         const Vec3 before = best.point0;
-        tryDirection(across / length);
+        tryDirection(across / acrossLength);
         if ((best.point0 - before).squaredNorm() == 0.0) break;
     }
     if (best.depth < -margin) return;
