@@ -11,8 +11,8 @@
 ///   angles of the cylinder's frame, so it rests on an area without rocking;
 /// - on its side (axis within kSideSine of the surface): the deepest rim point of each face,
 ///   the ends of the line it rests on, so a wheel rolls without tipping.
-/// Cylinder–cylinder, cylinder–capsule and cylinder against meshes, heightfields and splines
-/// have no pair function yet: they give no contact.
+/// Cylinder–cylinder, cylinder–capsule, cylinder–hull and cylinder against meshes, heightfields
+/// and splines go through the general convex pair (convex_manifold.h, collide_general.h).
 
 #include "physics/collision/contact_manifold.h"
 #include "physics/collision/shape.h"
