@@ -11,10 +11,16 @@
 #include "physics/joints/joint.h"
 #include "physics/math.h"
 
+#include <memory>
 #include <span>
 #include <vector>
 
 namespace substep {
+
+class SoftSystem;
+struct SoftBodyDef;
+struct SoftBodyReadout;
+struct SoftSurface;
 
 struct WorldSettings {
     Vec3 gravity = Vec3(0.0, -9.81, 0.0);
@@ -64,6 +70,9 @@ struct Energies {
 class World {
 public:
     explicit World(const WorldSettings& settings = {});
+    ~World();
+    World(World&&) noexcept;
+    World& operator=(World&&) noexcept;
 
     /// Creates a body from its definition; mass properties come from the shape unless the
     /// definition gives a mass. Inputs are assumed valid (the scene loader validates files).
@@ -75,6 +84,20 @@ public:
 
     bool isValid(BodyId id) const;
     bool isValid(JointId id) const;
+
+    /// Creates a soft body (engine/physics/soft/soft_body.h): its lattice, elements and
+    /// attachments to the bodies it names. Inputs are assumed valid.
+    SoftBodyId createSoftBody(const SoftBodyDef& def);
+    void destroySoftBody(SoftBodyId id);
+    bool isValid(SoftBodyId id) const;
+    /// Centre of mass, mean velocity, extent, volume of a soft body (zeros for a dead id).
+    SoftBodyReadout softBodyReadout(SoftBodyId id) const;
+    /// A soft body's current surface for drawing (positions, quads, triangles).
+    SoftSurface softBodySurface(SoftBodyId id) const;
+    /// A soft body's current particle positions (empty for a dead id).
+    std::span<const Vec3> softBodyPositions(SoftBodyId id) const;
+    /// The soft bodies' storage, or null while the world has never had one.
+    const SoftSystem* softBodies() const { return soft_.get(); }
     const Body& body(BodyId id) const { return bodies_[id.index]; }
     Body& body(BodyId id) { return bodies_[id.index]; }
     const Joint& joint(JointId id) const { return joints_[id.index]; }
@@ -143,6 +166,10 @@ private:
     StepTimes stepTimes_;
     bool anyDamping_ = false;
     bool repairPending_ = false;
+    /// Soft bodies, created with the first one: a world without them runs none of their stages.
+    std::unique_ptr<SoftSystem> soft_;
+    /// Whether soft bodies take part in this step.
+    bool hasSoftBodies() const;
 };
 
 }  // namespace substep
