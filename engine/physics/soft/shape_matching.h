@@ -44,29 +44,36 @@ inline constexpr int kRotationIterations = 4;
 /// (tr S 1 − S) δ = 2 u (Newton; quadratic convergence, one or two steps warm-started). Where
 /// tr S 1 − S is not positive definite (an inverted or collapsed element) the step is Müller et
 /// al.'s 2016 (Eq. 7) δ = 2 u / (|tr S| + ε), which always turns towards the closest rotation
-/// and stays put when A vanishes. `scale` is A's natural size (ℓ²), which sets ε.
-inline void extractRotation(const Mat3& a, double scale, Quat& rotation) {
+/// and stays put when A vanishes. `scale` is A's natural size (ℓ²), which sets ε. Returns the new rotation as a matrix; adds the
+/// world rotation vectors it turned by to `turned` when given.
+inline Mat3 extractRotation(const Mat3& a, double scale, Quat& rotation, Vec3* turned = nullptr) {
     const double epsilon = 1e-9 * scale;
+    Mat3 r = rotation.toRotationMatrix();
     for (int i = 0; i < kRotationIterations; ++i) {
-        const Mat3 r = rotation.toRotationMatrix();
         const Mat3 b = r.transpose() * a;
         const Vec3 twiceU(b(2, 1) - b(1, 2), b(0, 2) - b(2, 0), b(1, 0) - b(0, 1));
         const double trace = b.trace();
-        // M = tr S 1 − S, positive definite by its leading minors.
-        Mat3 m = -0.5 * (b + b.transpose());
-        m.diagonal().array() += trace;
-        const double minor1 = m(0, 0);
-        const double minor2 = m(0, 0) * m(1, 1) - m(0, 1) * m(1, 0);
-        const double det = m.determinant();
+        // M = tr S 1 − S (symmetric), solved by its adjugate; positive definite by its leading
+        // minors m00, c22 and det.
+        const double m00 = trace - b(0, 0), m11 = trace - b(1, 1), m22 = trace - b(2, 2);
+        const double m01 = -0.5 * (b(0, 1) + b(1, 0)), m02 = -0.5 * (b(0, 2) + b(2, 0));
+        const double m12 = -0.5 * (b(1, 2) + b(2, 1));
+        const double c00 = m11 * m22 - m12 * m12, c01 = m02 * m12 - m01 * m22, c02 = m01 * m12 - m02 * m11;
+        const double c11 = m00 * m22 - m02 * m02, c12 = m01 * m02 - m00 * m12, c22 = m00 * m11 - m01 * m01;
+        const double det = m00 * c00 + m01 * c01 + m02 * c02;
         const double floor = 1e-6 * std::abs(trace) + epsilon;
         Vec3 turn;
-        if (minor1 > floor && minor2 > floor * floor && det > floor * floor * floor)
-            turn = m.inverse() * twiceU;
-        else
+        if (m00 > floor && c22 > floor * floor && det > floor * floor * floor) {
+            turn = Vec3(c00 * twiceU.x() + c01 * twiceU.y() + c02 * twiceU.z(),
+                        c01 * twiceU.x() + c11 * twiceU.y() + c12 * twiceU.z(),
+                        c02 * twiceU.x() + c12 * twiceU.y() + c22 * twiceU.z()) / det;
+        } else {
             turn = twiceU / (std::abs(trace) + epsilon);
+        }
         const double angle2 = turn.squaredNorm();
         if (!(angle2 > 1e-24)) break;  // converged (or NaN: keep the last rotation)
         const Vec3 omega = r * turn;   // into the world frame
+        if (turned) *turned += omega;
         if (angle2 > 0.01) {
             // Far off (a fresh or inverted element): turn by the exact angle, capped at π.
             const double angle = std::sqrt(angle2);
@@ -74,8 +81,10 @@ inline void extractRotation(const Mat3& a, double scale, Quat& rotation) {
         } else {
             integrateRotation(rotation, omega);
         }
-        if (angle2 < 1e-16) break;  // Newton: the next step would be below 1e-16 rad
+        r = rotation.toRotationMatrix();
+        if (angle2 < 1e-6) break;  // Newton: what is left is about the square, 1e-6 rad
     }
+    return r;
 }
 
 /// The element's best-fit linear map A = Σ ⅛ x_j q_jᵀ (Σ q_j = 0 removes the centroid).
@@ -85,13 +94,12 @@ inline Mat3 shapeMatrix(const std::array<Vec3, 8>& x, const std::array<Vec3, 8>&
     return a * 0.125;
 }
 
-/// C = sqrt(Σ ⅛ |x_j − c − R q_j|²) for the given rotation; fills the deviations d_j.
+/// C = sqrt(Σ ⅛ |x_j − c − R q_j|²) for the rotation matrix r; fills the deviations d_j.
 inline double shapeMatchingError(const std::array<Vec3, 8>& x, const std::array<Vec3, 8>& rest,
-                                 const Quat& rotation, std::array<Vec3, 8>& deviation) {
+                                 const Mat3& r, std::array<Vec3, 8>& deviation) {
     Vec3 centre = Vec3::Zero();
     for (int j = 0; j < 8; ++j) centre += x[j];
     centre *= 0.125;
-    const Mat3 r = rotation.toRotationMatrix();
     double sum = 0.0;
     for (int j = 0; j < 8; ++j) {
         deviation[j] = x[j] - centre - r * rest[j];

@@ -76,12 +76,12 @@ TEST(ShapeMatching, ErrorVanishesForARigidMotionAndMeasuresAStretch) {
     Quat q = Quat::Identity();
     for (int call = 0; call < 4; ++call) extractRotation(shapeMatrix(x, rest), 0.75, q);
     std::array<Vec3, 8> d;
-    EXPECT_LT(shapeMatchingError(x, rest, q, d), 1e-9);
+    EXPECT_LT(shapeMatchingError(x, rest, q.toRotationMatrix(), d), 1e-9);
     // Compressed by δ along y: every corner is δ/2 from its goal, so C = δ/2.
     for (int n = 0; n < 8; ++n) x[n] = rest[n] + Vec3(0, -0.1 * rest[n].y(), 0);
     q = Quat::Identity();
     extractRotation(shapeMatrix(x, rest), 0.75, q);
-    EXPECT_NEAR(shapeMatchingError(x, rest, q, d), 0.05, 1e-12);
+    EXPECT_NEAR(shapeMatchingError(x, rest, q.toRotationMatrix(), d), 0.05, 1e-12);
     // det F − 1 for the same compression is −0.1.
     Mat3 aqq = Mat3::Zero();
     for (const Vec3& p : rest) aqq += 0.125 * p * p.transpose();
