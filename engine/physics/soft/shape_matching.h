@@ -44,9 +44,8 @@ inline constexpr int kRotationIterations = 4;
 /// (tr S 1 − S) δ = 2 u (Newton; quadratic convergence, one or two steps warm-started). Where
 /// tr S 1 − S is not positive definite (an inverted or collapsed element) the step is Müller et
 /// al.'s 2016 (Eq. 7) δ = 2 u / (|tr S| + ε), which always turns towards the closest rotation
-/// and stays put when A vanishes. `scale` is A's natural size (ℓ²), which sets ε. Returns the new rotation as a matrix; adds the
-/// world rotation vectors it turned by to `turned` when given.
-inline Mat3 extractRotation(const Mat3& a, double scale, Quat& rotation, Vec3* turned = nullptr) {
+/// and stays put when A vanishes. `scale` is A's natural size (ℓ²), which sets ε. Returns the new rotation as a matrix.
+inline Mat3 extractRotation(const Mat3& a, double scale, Quat& rotation) {
     const double epsilon = 1e-9 * scale;
     Mat3 r = rotation.toRotationMatrix();
     for (int i = 0; i < kRotationIterations; ++i) {
@@ -73,7 +72,6 @@ inline Mat3 extractRotation(const Mat3& a, double scale, Quat& rotation, Vec3* t
         const double angle2 = turn.squaredNorm();
         if (!(angle2 > 1e-24)) break;  // converged (or NaN: keep the last rotation)
         const Vec3 omega = r * turn;   // into the world frame
-        if (turned) *turned += omega;
         if (angle2 > 0.01) {
             // Far off (a fresh or inverted element): turn by the exact angle, capped at π.
             const double angle = std::sqrt(angle2);

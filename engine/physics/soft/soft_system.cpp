@@ -85,7 +85,6 @@ SoftBodyId SoftSystem::create(const SoftBodyDef& def, std::span<const Body> bodi
         restOffsets_.push_back(rest);
         volumeGradients_.push_back(gradients);
         rotations_.push_back(Quat::Identity());
-        turns_.push_back(Vec3::Zero());
         scale2_.push_back(std::max(scale2, 1e-18));
         compliance_.push_back(def.compliance * scale2 / safeVolume);
         volumeCompliance_.push_back(def.preserveVolume ? def.volumeCompliance / safeVolume : -1.0);
@@ -128,7 +127,7 @@ void SoftSystem::destroy(SoftBodyId id) {
     eraseParticles(x_), eraseParticles(xPrev_), eraseParticles(v_), eraseParticles(vPrev_);
     eraseParticles(mass_), eraseParticles(invMass_);
     eraseElements(elements_), eraseElements(restOffsets_), eraseElements(volumeGradients_);
-    eraseElements(rotations_), eraseElements(turns_), eraseElements(scale2_), eraseElements(compliance_);
+    eraseElements(rotations_), eraseElements(scale2_), eraseElements(compliance_);
     eraseElements(volumeCompliance_), eraseElements(elementDamping_), eraseElements(lambda_), eraseElements(volumeLambda_);
     // Later bodies' particles moved down by the removed count.
     for (HexElement& e : elements_)
@@ -172,7 +171,6 @@ void SoftSystem::integrate(double h, const Vec3& gravity) {
         x_[i] += h * v_[i];
     }
     std::fill(lambda_.begin(), lambda_.end(), 0.0);
-    predictRotations_ = true;
     std::fill(volumeLambda_.begin(), volumeLambda_.end(), 0.0);
     for (Attachment& a : attachments_) a.lambda = 0.0;
 }
@@ -184,22 +182,12 @@ void SoftSystem::solvePositions(SolverContext& ctx) {
 }
 
 void SoftSystem::solveElements(double invH2) {
-    // The first sweep of a substep starts each element's rotation extraction from its last
-    // rotation turned once more by the last substep's turn: a rolling tyre's elements then
-    // need one Newton step instead of two or three.
-    const bool predict = predictRotations_;
-    predictRotations_ = false;
     std::array<Vec3, 8> deviation;
     for (size_t e = 0; e < elements_.size(); ++e) {
         const HexElement& element = elements_[e];
         std::array<Vec3, 8> x = corners(x_, element);
         const std::array<Vec3, 8>& rest = restOffsets_[e];
-        Vec3& turn = turns_[e];
-        if (predict) {
-            if (turn.squaredNorm() < 0.01) integrateRotation(rotations_[e], turn);
-            turn.setZero();
-        }
-        const Mat3 r = extractRotation(shapeMatrix(x, rest), scale2_[e], rotations_[e], &turn);
+        const Mat3 r = extractRotation(shapeMatrix(x, rest), scale2_[e], rotations_[e]);
         const double c = shapeMatchingError(x, rest, r, deviation);
         double weighted = 0.0;  // Σ w_j |d_j|², so Σ w_j |∇_j C|² = weighted / (64 C²)
         for (int j = 0; j < 8; ++j) weighted += invMass_[element[j]] * deviation[j].squaredNorm();

@@ -131,8 +131,6 @@ private:
     std::vector<std::array<Vec3, 8>> restOffsets_;     ///< q_j, world rest frame at creation
     std::vector<std::array<Vec3, 8>> volumeGradients_; ///< b_j = ⅛ A_qq⁻¹ q_j
     std::vector<Quat> rotations_;                      ///< warm start of the rotation extraction
-    std::vector<Vec3> turns_;                          ///< each rotation's turn in the last substep
-    bool predictRotations_ = false;                    ///< set by integrate, for the first sweep
     std::vector<double> scale2_;                       ///< ℓ² = Σ ⅛ |q_j|²
     std::vector<double> compliance_;                   ///< α_e = α ℓ² / V (m/N)
     std::vector<double> volumeCompliance_;             ///< α_V / V; negative: no volume constraint
