@@ -21,4 +21,12 @@ struct JointId {
     friend bool operator==(JointId, JointId) = default;
 };
 
+/// A soft body (engine/physics/soft): its particles, elements and attachments.
+struct SoftBodyId {
+    uint32_t index = 0;
+    uint32_t generation = 0;
+    bool isNull() const { return generation == 0; }
+    friend bool operator==(SoftBodyId, SoftBodyId) = default;
+};
+
 }  // namespace substep

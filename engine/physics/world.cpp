@@ -5,6 +5,7 @@
 #include "physics/joints/joint_frame.h"
 #include "physics/joints/joint_geometry.h"
 #include "physics/joints/joint_solver.h"
+#include "physics/soft/soft_system.h"
 
 #include <Eigen/LU>
 
@@ -126,6 +127,33 @@ World::World(const WorldSettings& settings) : settings_(settings) {
     bodies_.push_back(anchor);
 }
 
+World::~World() = default;
+World::World(World&&) noexcept = default;
+World& World::operator=(World&&) noexcept = default;
+
+bool World::hasSoftBodies() const { return soft_ && !soft_->empty(); }
+
+SoftBodyId World::createSoftBody(const SoftBodyDef& def) {
+    if (!soft_) soft_ = std::make_unique<SoftSystem>();
+    return soft_->create(def, bodies_, nextGeneration_++);
+}
+
+void World::destroySoftBody(SoftBodyId id) {
+    if (soft_) soft_->destroy(id);
+}
+
+bool World::isValid(SoftBodyId id) const { return soft_ && soft_->isValid(id); }
+
+SoftBodyReadout World::softBodyReadout(SoftBodyId id) const {
+    return soft_ ? soft_->readout(id) : SoftBodyReadout{};
+}
+
+SoftSurface World::softBodySurface(SoftBodyId id) const { return soft_ ? soft_->surface(id) : SoftSurface{}; }
+
+std::span<const Vec3> World::softBodyPositions(SoftBodyId id) const {
+    return soft_ ? soft_->positions(id) : std::span<const Vec3>{};
+}
+
 BodyId World::createBody(const BodyDef& def) {
     Body body = makeBody(def);
     body.generation = nextGeneration_++;
@@ -150,6 +178,7 @@ void World::destroyBody(BodyId id) {
             destroyJoint({j, joint.generation});
     }
     if (collides(bodies_[id.index])) --collidingBodies_;
+    if (soft_) soft_->forgetBody(id.index);
     bodies_[id.index] = Body{};  // dead: static, never integrated
     freeBodies_.push_back(id.index);
 }
@@ -214,21 +243,29 @@ void World::step(double dt) {
 
     // Algorithm 2: pairs once per frame, their contacts on the current poses every substep.
     collectContactPairs(dt);
+    const bool soft = hasSoftBodies();
+    if (soft) soft_->collectCandidates(bodies_, dt, settings_.contactMargin, settings_.gravity);
     lap(stepTimes_.broadphase);
     for (int s = 0; s < substeps; ++s) {
         // λ is zeroed before each substep's solve (paper 3.3.1); motors advance their target.
         for (Joint& joint : joints_) beginJointSubstep(joint, h);
         integrate(h);
+        if (soft) soft_->integrate(h, settings_.gravity);
         lap(stepTimes_.integrate);
         if (!contactPairs_.empty()) findContacts();
+        if (soft) soft_->findContacts(bodies_, settings_.contactMargin);
         lap(stepTimes_.narrowphase);
         for (int i = 0; i < settings_.iterations; ++i) solvePositions(h);
         lap(stepTimes_.solve);
         deriveVelocities(h);
+        if (soft) soft_->deriveVelocities(h);
         lap(stepTimes_.integrate);
         if (settings_.velocityPass && (anyDamping_ || !contacts_.empty())) solveVelocities(h);
+        if (soft && settings_.velocityPass)
+            soft_->solveVelocities(bodies_.data(), h, settings_.gravity.norm());
         lap(stepTimes_.velocities);
     }
+    if (soft) soft_->damp(dt);
 }
 
 void World::collectContactPairs(double dt) {
@@ -380,6 +417,8 @@ void World::solvePositions(double h) {
     for (ContactPair& pair : contactPairs_)
         if (pair.count > 0)
             solveContactPositions(pair, std::span(contacts_).subspan(pair.first, pair.count), ctx);
+    // Soft bodies after the rigid ones: elements, attachments, then their contacts.
+    if (hasSoftBodies()) soft_->solvePositions(ctx);
     // Jacobi: every constraint saw the iteration's starting state; the gathered corrections
     // are summed. Averaging them, or splitting a body's mass among its joints, shifts the fixed
     // point: the joints' λ then no longer balance the weights they carry.
@@ -429,6 +468,12 @@ Energies World::energies() const {
     }
     for (const Joint& joint : joints_)
         if (joint.alive) e.elastic += readJoint(joint, bodies_.data(), lastSubstep_).elasticEnergy;
+    if (hasSoftBodies()) {
+        const SoftEnergies soft = soft_->energies(settings_.gravity);
+        e.kinetic += soft.kinetic;
+        e.potential += soft.potential;
+        e.elastic += soft.elastic;
+    }
     return e;
 }
 
@@ -444,19 +489,21 @@ double World::maxPenetration() const {
     for (const ContactPair& pair : contactPairs_)
         for (uint32_t i = pair.first; i < pair.first + pair.count; ++i)
             deepest = std::max(deepest, contactDepth(contacts_[i], bodies_[pair.body0], bodies_[pair.body1]));
+    if (hasSoftBodies()) deepest = std::max(deepest, soft_->maxPenetration(bodies_));
     return deepest;
 }
 
 int World::activeContactCount() const {
-    return static_cast<int>(std::count_if(contacts_.begin(), contacts_.end(),
-                                          [](const Contact& c) { return c.lambdaNormal > 0.0; }));
+    const int soft = hasSoftBodies() ? soft_->activeContactCount() : 0;
+    return soft + static_cast<int>(std::count_if(contacts_.begin(), contacts_.end(),
+                                                 [](const Contact& c) { return c.lambdaNormal > 0.0; }));
 }
 
 bool World::isFinite() const {
     return std::all_of(bodies_.begin(), bodies_.end(), [](const Body& b) {
         return b.x.allFinite() && b.q.coeffs().allFinite() && b.v.allFinite() &&
                b.omega.allFinite();
-    });
+    }) && (!hasSoftBodies() || soft_->isFinite());
 }
 
 }  // namespace substep

@@ -11,10 +11,16 @@
 #include "physics/joints/joint.h"
 #include "physics/math.h"
 
+#include <memory>
 #include <span>
 #include <vector>
 
 namespace substep {
+
+class SoftSystem;
+struct SoftBodyDef;
+struct SoftBodyReadout;
+struct SoftSurface;
 
 struct WorldSettings {
     Vec3 gravity = Vec3(0.0, -9.81, 0.0);
@@ -64,6 +70,9 @@ struct Energies {
 class World {
 public:
     explicit World(const WorldSettings& settings = {});
+    ~World();
+    World(World&&) noexcept;
+    World& operator=(World&&) noexcept;
 
     /// Creates a body from its definition; mass properties come from the shape unless the
     /// definition gives a mass. Inputs are assumed valid (the scene loader validates files).
@@ -103,6 +112,19 @@ public:
     /// Sets a body's friction, restitution and whether it collides.
     void setBodySurface(BodyId id, double staticFriction, double dynamicFriction,
                         double restitution, bool collide);
+    /// Creates a soft body (engine/physics/soft/soft_body.h): its lattice, elements and
+    /// attachments to the bodies it names. Inputs are assumed valid.
+    SoftBodyId createSoftBody(const SoftBodyDef& def);
+    void destroySoftBody(SoftBodyId id);
+    bool isValid(SoftBodyId id) const;
+    /// Centre of mass, mean velocity, extent, volume of a soft body (zeros for a dead id).
+    SoftBodyReadout softBodyReadout(SoftBodyId id) const;
+    /// A soft body's current surface for drawing (positions, quads, triangles).
+    SoftSurface softBodySurface(SoftBodyId id) const;
+    /// A soft body's current particle positions (empty for a dead id).
+    std::span<const Vec3> softBodyPositions(SoftBodyId id) const;
+    /// The soft bodies' storage, or null while the world has never had one.
+    const SoftSystem* softBodies() const { return soft_.get(); }
 
     /// Advances one frame of length dt in `settings().substeps` substeps.
     void step(double dt);
@@ -178,6 +200,10 @@ private:
     StepTimes stepTimes_;
     bool anyDamping_ = false;
     bool repairPending_ = false;
+    /// Soft bodies, created with the first one: a world without them runs none of their stages.
+    std::unique_ptr<SoftSystem> soft_;
+    /// Whether soft bodies take part in this step.
+    bool hasSoftBodies() const;
 };
 
 }  // namespace substep

@@ -1,0 +1,120 @@
+#include "physics/soft/lattice.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace substep {
+namespace {
+
+/// The six faces of an element by corner number, each counter-clockwise seen from outside:
+/// −u, +u, −v, +v, −w, +w.
+constexpr std::array<std::array<int, 4>, 6> kFaces = {{
+    {0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6},
+}};
+
+}  // namespace
+
+Lattice buildBoxLattice(const Vec3& size, const std::array<int, 3>& cells) {
+    Lattice lattice;
+    const int nx = std::max(cells[0], 1), ny = std::max(cells[1], 1), nz = std::max(cells[2], 1);
+    const auto index = [&](int i, int j, int k) {
+        return static_cast<uint32_t>(i + (nx + 1) * (j + (ny + 1) * k));
+    };
+    lattice.positions.reserve(static_cast<size_t>((nx + 1) * (ny + 1) * (nz + 1)));
+    for (int k = 0; k <= nz; ++k)
+        for (int j = 0; j <= ny; ++j)
+            for (int i = 0; i <= nx; ++i)
+                lattice.positions.emplace_back(size.x() * (double(i) / nx - 0.5),
+                                               size.y() * (double(j) / ny - 0.5),
+                                               size.z() * (double(k) / nz - 0.5));
+    lattice.inner.assign(lattice.positions.size(), 0);
+    lattice.elements.reserve(static_cast<size_t>(nx * ny * nz));
+    for (int k = 0; k < nz; ++k)
+        for (int j = 0; j < ny; ++j)
+            for (int i = 0; i < nx; ++i) {
+                HexElement e;
+                for (int n = 0; n < 8; ++n) e[n] = index(i + (n & 1), j + ((n >> 1) & 1), k + ((n >> 2) & 1));
+                lattice.elements.push_back(e);
+            }
+    return lattice;
+}
+
+Lattice buildTyreLattice(double outerRadius, double innerRadius, double width,
+                         const std::array<int, 3>& cells) {
+    Lattice lattice;
+    const int around = std::max(cells[0], 3), radial = std::max(cells[1], 1), across = std::max(cells[2], 1);
+    // Directions (around, radial, across) = (e_θ, e_r, y) are right-handed for the point
+    // (r cos θ, y, r sin θ): e_θ × e_r = y.
+    const auto index = [&](int a, int r, int c) {
+        return static_cast<uint32_t>((a % around) + around * (r + (radial + 1) * c));
+    };
+    for (int c = 0; c <= across; ++c)
+        for (int r = 0; r <= radial; ++r)
+            for (int a = 0; a < around; ++a) {
+                const double theta = 2.0 * M_PI * a / around;
+                const double radius = innerRadius + (outerRadius - innerRadius) * r / radial;
+                lattice.positions.emplace_back(radius * std::cos(theta),
+                                               width * (double(c) / across - 0.5),
+                                               radius * std::sin(theta));
+                lattice.inner.push_back(r == 0 ? 1 : 0);
+            }
+    for (int c = 0; c < across; ++c)
+        for (int r = 0; r < radial; ++r)
+            for (int a = 0; a < around; ++a) {
+                HexElement e;
+                for (int n = 0; n < 8; ++n) e[n] = index(a + (n & 1), r + ((n >> 1) & 1), c + ((n >> 2) & 1));
+                lattice.elements.push_back(e);
+            }
+    return lattice;
+}
+
+double hexVolume(const std::array<Vec3, 8>& x) {
+    // x(u, v, w) = Σ N_n x_n, trilinear; det J is at most quadratic in each of u, v, w, so the
+    // two-point Gauss rule per direction integrates it exactly.
+    const double g = 0.5 / std::sqrt(3.0);
+    const double points[2] = {0.5 - g, 0.5 + g};
+    double volume = 0.0;
+    for (double u : points)
+        for (double v : points)
+            for (double w : points) {
+                const double su[2] = {1.0 - u, u}, sv[2] = {1.0 - v, v}, sw[2] = {1.0 - w, w};
+                Vec3 du = Vec3::Zero(), dv = Vec3::Zero(), dw = Vec3::Zero();
+                for (int a = 0; a < 2; ++a)
+                    for (int b = 0; b < 2; ++b) {
+                        du += sv[a] * sw[b] * (x[1 + 2 * a + 4 * b] - x[0 + 2 * a + 4 * b]);
+                        dv += su[a] * sw[b] * (x[a + 2 + 4 * b] - x[a + 0 + 4 * b]);
+                        dw += su[a] * sv[b] * (x[a + 2 * b + 4] - x[a + 2 * b]);
+                    }
+                volume += du.dot(dv.cross(dw)) / 8.0;
+            }
+    return volume;
+}
+
+std::vector<std::array<uint32_t, 4>> boundaryQuads(const std::vector<HexElement>& elements) {
+    // A face shared by two elements is interior: sort all faces by their sorted corners and
+    // keep those that occur once.
+    struct Face {
+        std::array<uint32_t, 4> key;
+        std::array<uint32_t, 4> quad;
+    };
+    std::vector<Face> faces;
+    faces.reserve(elements.size() * 6);
+    for (const HexElement& e : elements)
+        for (const auto& f : kFaces) {
+            Face face{.key = {}, .quad = {e[f[0]], e[f[1]], e[f[2]], e[f[3]]}};
+            face.key = face.quad;
+            std::sort(face.key.begin(), face.key.end());
+            faces.push_back(face);
+        }
+    std::sort(faces.begin(), faces.end(), [](const Face& a, const Face& b) { return a.key < b.key; });
+    std::vector<std::array<uint32_t, 4>> quads;
+    for (size_t i = 0; i < faces.size();) {
+        size_t j = i + 1;
+        while (j < faces.size() && faces[j].key == faces[i].key) ++j;
+        if (j - i == 1) quads.push_back(faces[i].quad);
+        i = j;
+    }
+    return quads;
+}
+
+}  // namespace substep

@@ -1,0 +1,262 @@
+// SoftSystem's coupling to rigid bodies: attachments (Eqs. 2-9) and particle contacts
+// (Eqs. 26-30 and 34), each particle standing in for a body with w = 1/m and no rotation
+// (paper section 4).
+#include "physics/collision/narrowphase.h"
+#include "physics/collision/shape_bounds.h"
+#include "physics/soft/soft_system.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace substep {
+namespace {
+
+/// The speed (m/s) at which an overlap the motion does not explain is pushed out: the rigid
+/// contacts' value (contact.cpp), so a particle created sunk into the ground rises gently.
+constexpr double kPushOutSpeed = 1.0;
+/// Below this speed a contact's velocity is left alone (contact.cpp's kRestingSpeed).
+constexpr double kRestingSpeed = 1e-9;
+
+/// A body's generalised inverse mass for a correction along unit n at world offset r
+/// (Eqs. 2-3); 0 for static bodies.
+inline double bodyInverseMass(const Body& b, const Vec3& r, const Vec3& n) {
+    return b.invMass > 0.0 ? b.positionalInverseMass(r, n) : 0.0;
+}
+
+/// Velocity of a body's point at world offset r.
+inline Vec3 pointVelocity(const Body& b, const Vec3& r) { return b.v + b.omega.cross(r); }
+
+/// Eq. 33 for a particle (velocity v, inverse mass w) against a body's point at r: changes
+/// their relative velocity by `change`.
+inline void applyVelocityChange(Vec3& v, double w, Body& b, const Vec3& r, const Vec3& change) {
+    const double magnitude = change.norm();
+    if (!(magnitude > kDirectionEpsilon)) return;
+    const Vec3 n = change / magnitude;
+    const double wb = bodyInverseMass(b, r, n);
+    const Vec3 p = change / (w + wb);
+    v += w * p;
+    if (b.invMass > 0.0) {
+        b.v -= b.invMass * p;
+        if (b.rotates()) b.omega -= b.applyInverseInertia(r.cross(p));
+    }
+}
+
+/// Where a body's point at world offset r was at the start of the substep (a static body does
+/// not move; its previous pose is not kept).
+inline Vec3 previousPoint(const Body& b, const Vec3& local) {
+    if (b.invMass == 0.0) return b.pointToWorld(local);
+    return b.xPrev + (b.rotates() ? Vec3(b.qPrev * local) : local);
+}
+
+}  // namespace
+
+void SoftSystem::addAttachments(const SoftBodyDef& def, SoftBodyData& data,
+                                const Lattice& lattice, std::span<const Body> bodies) {
+    ContactManifold manifold;
+    for (const SoftAttachmentDef& attach : def.attachments) {
+        const uint32_t bodyIndex = attach.body.isNull() ? 0 : attach.body.index;
+        if (bodyIndex >= bodies.size() || !bodies[bodyIndex].alive) continue;
+        const Body& b = bodies[bodyIndex];
+        const Pose pose{b.userPosition(), b.userOrientation()};
+        const Shape probe = sphereShape(data.radius);
+        data.attachedBodies.push_back(bodyIndex);
+        for (uint32_t local = 0; local < data.particleCount; ++local) {
+            const uint32_t i = data.firstParticle + local;
+            bool held = true;
+            if (attach.particles == SoftAttachmentParticles::Inner) held = lattice.inner[local] != 0;
+            if (attach.particles == SoftAttachmentParticles::Below) {
+                // Inside the shape: the particle's sphere overlaps it by at least its radius.
+                collide(probe, Pose{x_[i], Quat::Identity()}, b.shape, pose, 0.0, manifold);
+                held = false;
+                for (int k = 0; k < manifold.count; ++k) held = held || manifold.points[k].depth >= data.radius;
+            }
+            if (!held) continue;
+            attachments_.push_back({.particle = i,
+                                    .body = bodyIndex,
+                                    .local = b.q.conjugate() * (x_[i] - b.x),
+                                    .compliance = attach.compliance});
+        }
+    }
+}
+
+void SoftSystem::solveAttachments(SolverContext& ctx) {
+    // Eqs. 2-9 with body 0 the particle (w = 1/m, no rotation) and body 1 the rigid body:
+    // the particle is moved onto the body's point, shared by generalised inverse mass.
+    for (Attachment& a : attachments_) {
+        const Body& b = ctx.bodies[a.body];
+        const Vec3 r = b.q * a.local;
+        const Vec3 delta = b.x + r - x_[a.particle];
+        const double c = delta.norm();
+        if (!(c > kDirectionEpsilon)) continue;
+        const Vec3 n = delta / c;
+        const double w = invMass_[a.particle];
+        const double wb = bodyInverseMass(b, r, n);
+        const double alphaTilde = a.compliance * ctx.invH2;
+        const double deltaLambda = (c - alphaTilde * a.lambda) / (w + wb + alphaTilde);  // Eq. 4
+        a.lambda += deltaLambda;
+        const Vec3 p = deltaLambda * n;
+        x_[a.particle] += w * p;  // Eq. 6
+        if (wb > 0.0) applyImpulse(ctx, a.body, 0, -p, r.cross(-p), Vec3::Zero());  // Eqs. 7-9
+    }
+}
+
+void SoftSystem::collectCandidates(std::span<const Body> bodies, double dt, double margin, const Vec3& gravity) {
+    // Once per frame: every particle whose sphere may reach a rigid shape during the frame,
+    // found by the narrowphase itself with a margin for the frame's motion (a particle's
+    // speed twice over, for the corrections that move it, and the body's sweep).
+    candidates_.clear();
+    const double fall = gravity.norm() * dt * dt;
+    ContactManifold manifold;
+    for (uint32_t s = 0; s < bodies_.size(); ++s) {
+        const SoftBodyData& soft = bodies_[s];
+        if (!soft.alive || !soft.collide || soft.particleCount == 0) continue;
+        const uint32_t first = soft.firstParticle, end = first + soft.particleCount;
+        Aabb softBox;
+        double fastest = 0.0;
+        for (uint32_t i = first; i < end; ++i) {
+            softBox.grow(x_[i]);
+            fastest = std::max(fastest, v_[i].squaredNorm());
+        }
+        softBox = softBox.inflated(soft.radius + margin + 2.0 * dt * std::sqrt(fastest) + fall);
+        const Shape probe = sphereShape(soft.radius);
+        for (uint32_t bi = 1; bi < bodies.size(); ++bi) {
+            const Body& b = bodies[bi];
+            if (!b.alive || !b.collide || b.shape.type == ShapeType::None) continue;
+            if (!canCollide(ShapeType::Sphere, b.shape.type)) continue;
+            // Attached particles sit on (or in) the body: they are held, not pushed out.
+            if (std::find(soft.attachedBodies.begin(), soft.attachedBodies.end(), bi) != soft.attachedBodies.end())
+                continue;
+            const Pose pose{b.userPosition(), b.userOrientation()};
+            const double reach = shapeReach(b.shape);
+            double sweep = dt * b.v.norm();
+            if (std::isfinite(reach)) sweep += dt * b.omega.norm() * reach;
+            const Aabb bodyBox = shapeBounds(b.shape, pose.position, pose.rotation).inflated(sweep);
+            if (!bodyBox.overlaps(softBox)) continue;
+            for (uint32_t i = first; i < end; ++i) {
+                const double reachOut = margin + 2.0 * dt * v_[i].norm() + sweep + fall;
+                const Aabb point = Aabb{x_[i], x_[i]}.inflated(soft.radius + reachOut);
+                if (!point.overlaps(bodyBox)) continue;
+                collide(probe, Pose{x_[i], Quat::Identity()}, b.shape, pose, reachOut, manifold);
+                if (manifold.count > 0) candidates_.push_back({.particle = i, .body = bi, .softBody = s});
+            }
+        }
+    }
+}
+
+void SoftSystem::findContacts(std::span<const Body> bodies, double margin) {
+    contacts_.clear();
+    ContactManifold manifold;
+    uint32_t poseBody = UINT32_MAX;
+    uint32_t probeBody = UINT32_MAX;
+    Pose pose;
+    Shape probe;
+    double staticFriction = 0.0, dynamicFriction = 0.0, restitution = 0.0;
+    // Candidates come grouped by soft body, then rigid body: poses and probes are made once
+    // per group.
+    for (const Candidate& candidate : candidates_) {
+        const Body& b = bodies[candidate.body];
+        const SoftBodyData& soft = bodies_[candidate.softBody];
+        if (candidate.body != poseBody || candidate.softBody != probeBody) {
+            poseBody = candidate.body;
+            probeBody = candidate.softBody;
+            pose = {b.userPosition(), b.userOrientation()};
+            probe = sphereShape(soft.radius);
+            // Paper 3.5: a pair's coefficients are the averages of its bodies'.
+            staticFriction = 0.5 * (soft.staticFriction + b.staticFriction);
+            dynamicFriction = 0.5 * (soft.dynamicFriction + b.dynamicFriction);
+            restitution = 0.5 * (soft.restitution + b.restitution);
+        }
+        collide(probe, Pose{x_[candidate.particle], Quat::Identity()}, b.shape, pose, margin, manifold);
+        const Quat inverse = b.q.conjugate();
+        for (int k = 0; k < manifold.count; ++k) {
+            const ContactPoint& point = manifold.points[k];
+            contacts_.push_back({.particle = candidate.particle,
+                                 .body = candidate.body,
+                                 .local1 = inverse * (point.point1 - b.x),
+                                 .normal = point.normal,
+                                 .radius = soft.radius,
+                                 .staticFriction = staticFriction,
+                                 .dynamicFriction = dynamicFriction,
+                                 .restitution = restitution});
+        }
+    }
+}
+
+void SoftSystem::solveContacts(SolverContext& ctx) {
+    for (ParticleContact& c : contacts_) {
+        const Body& b = ctx.bodies[c.body];
+        const Vec3& n = c.normal;
+        Vec3& x = x_[c.particle];
+        const double w = invMass_[c.particle];
+        Vec3 r = b.q * c.local1;
+        // Eq. 26: d = (p1 − p0)·n with p0 the particle's surface point.
+        double depth = (b.x + r - (x - c.radius * n)).dot(n);
+        if (depth > 0.0 && ctx.capPushOut) {
+            const double approach = -(v_[c.particle] - pointVelocity(b, r)).dot(n);
+            depth = std::min(depth, ctx.h * std::max(approach, kPushOutSpeed));
+        }
+        if (!(depth > 0.0)) continue;
+        const double deltaLambda = depth / (w + bodyInverseMass(b, r, n));  // Eqs. 2-4, α = 0
+        c.lambdaNormal += deltaLambda;
+        x += (w * deltaLambda) * n;
+        if (b.invMass > 0.0) applyImpulse(ctx, c.body, 0, -deltaLambda * n, r.cross(-deltaLambda * n), Vec3::Zero());
+        if (!(c.staticFriction > 0.0)) continue;
+        // Eqs. 27-28: undo the tangential motion of the particle relative to the body's point
+        // during the substep while λ_t stays within μ_s λ_n.
+        r = b.q * c.local1;
+        const Vec3 motion = (x - xPrev_[c.particle]) - (b.x + r - previousPoint(b, c.local1));
+        const Vec3 slip = motion - motion.dot(n) * n;
+        const double length = slip.norm();
+        if (!(length > kDirectionEpsilon)) continue;
+        const Vec3 t = slip / length;
+        const double deltaTangent = length / (w + bodyInverseMass(b, r, t));
+        if (c.lambdaTangent + deltaTangent > c.staticFriction * c.lambdaNormal) continue;
+        c.lambdaTangent += deltaTangent;
+        x -= (w * deltaTangent) * t;
+        if (b.invMass > 0.0) applyImpulse(ctx, c.body, 0, deltaTangent * t, r.cross(deltaTangent * t), Vec3::Zero());
+    }
+}
+
+void SoftSystem::solveContactVelocities(Body* bodies, double h, double gravity) {
+    const double restingSpeed = 2.0 * gravity * h;
+    for (const ParticleContact& c : contacts_) {
+        if (!(c.lambdaNormal > 0.0)) continue;
+        Body& b = bodies[c.body];
+        const Vec3& n = c.normal;
+        Vec3& v = v_[c.particle];
+        const double w = invMass_[c.particle];
+        const Vec3 r = b.q * c.local1;
+        // Eq. 34: the normal velocity becomes −e v̄_n (no bounce below 2|g|h).
+        const double vn = (v - pointVelocity(b, r)).dot(n);
+        const double vnBefore = (vPrev_[c.particle] - (b.vPrev + b.omegaPrev.cross(r))).dot(n);
+        const double e = std::abs(vnBefore) <= restingSpeed ? 0.0 : c.restitution;
+        const double change = std::max(-e * vnBefore, 0.0) - vn;
+        if (std::abs(change) > kRestingSpeed) applyVelocityChange(v, w, b, r, change * n);
+        if (!(c.dynamicFriction > 0.0)) continue;
+        // Eq. 30 (ERRATA item 2's units): slip removed by at most h μ_d |f_n| = μ_d λ_n / h.
+        const Vec3 relative = v - pointVelocity(b, r);
+        const Vec3 slip = relative - relative.dot(n) * n;
+        const double slipSpeed = slip.norm();
+        if (!(slipSpeed > kRestingSpeed)) continue;
+        const Vec3 t = slip / slipSpeed;
+        const double maxChange = c.dynamicFriction * c.lambdaNormal / h * (w + bodyInverseMass(b, r, t));
+        applyVelocityChange(v, w, b, r, -std::min(maxChange, slipSpeed) * t);
+    }
+}
+
+int SoftSystem::activeContactCount() const {
+    return static_cast<int>(std::count_if(contacts_.begin(), contacts_.end(),
+                                          [](const ParticleContact& c) { return c.lambdaNormal > 0.0; }));
+}
+
+double SoftSystem::maxPenetration(std::span<const Body> bodies) const {
+    double deepest = 0.0;
+    for (const ParticleContact& c : contacts_) {
+        const Body& b = bodies[c.body];
+        const Vec3 p1 = b.pointToWorld(c.local1);
+        deepest = std::max(deepest, (p1 - (x_[c.particle] - c.radius * c.normal)).dot(c.normal));
+    }
+    return deepest;
+}
+
+}  // namespace substep

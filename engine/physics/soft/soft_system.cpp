@@ -1,0 +1,350 @@
+#include "physics/soft/soft_system.h"
+
+#include "physics/soft/shape_matching.h"
+
+#include <Eigen/LU>
+
+#include <algorithm>
+#include <cmath>
+
+namespace substep {
+namespace {
+
+/// The eight corners of an element, gathered from the particle array.
+inline std::array<Vec3, 8> corners(const std::vector<Vec3>& x, const HexElement& e) {
+    std::array<Vec3, 8> c;
+    for (int j = 0; j < 8; ++j) c[j] = x[e[j]];
+    return c;
+}
+
+}  // namespace
+
+SoftBodyId SoftSystem::create(const SoftBodyDef& def, std::span<const Body> bodies, uint32_t generation) {
+    const Lattice lattice = def.type == SoftBodyType::Box
+                                ? buildBoxLattice(def.size, def.cells)
+                                : buildTyreLattice(def.outerRadius, def.innerRadius, def.width, def.cells);
+    SoftBodyData data;
+    data.firstParticle = static_cast<uint32_t>(x_.size());
+    data.particleCount = static_cast<uint32_t>(lattice.positions.size());
+    data.firstElement = static_cast<uint32_t>(elements_.size());
+    data.elementCount = static_cast<uint32_t>(lattice.elements.size());
+    data.staticFriction = def.staticFriction;
+    data.dynamicFriction = def.dynamicFriction;
+    data.restitution = def.restitution;
+    data.radius = def.particleRadius;
+    data.collide = def.collide;
+    data.preserveVolume = def.preserveVolume;
+    data.alive = true;
+    data.generation = generation;
+    data.quads = boundaryQuads(lattice.elements);
+
+    const Mat3 orientation = def.orientation.normalized().toRotationMatrix();
+    const size_t particleCount = x_.size() + lattice.positions.size();
+    for (auto* field : {&x_, &xPrev_, &v_, &vPrev_}) field->reserve(particleCount);
+    for (const Vec3& local : lattice.positions) {
+        const Vec3 position = def.position + orientation * local;
+        const Vec3 velocity = def.velocity + def.angularVelocity.cross(position - def.position);
+        x_.push_back(position);
+        xPrev_.push_back(position);
+        v_.push_back(velocity);
+        vPrev_.push_back(velocity);
+    }
+    mass_.resize(particleCount, 0.0);
+    invMass_.resize(particleCount, 0.0);
+
+    // Elements: rest offsets from the rest centroid in the world frame at creation (so the
+    // extracted rotation starts at the identity), their scale, compliance and mass.
+    for (const HexElement& local : lattice.elements) {
+        HexElement e;
+        for (int j = 0; j < 8; ++j) e[j] = local[j] + data.firstParticle;
+        const std::array<Vec3, 8> x = corners(x_, e);
+        const double volume = hexVolume(x);
+        Vec3 centre = Vec3::Zero();
+        for (const Vec3& p : x) centre += p;
+        centre *= 0.125;
+        std::array<Vec3, 8> rest;
+        Mat3 aqq = Mat3::Zero();
+        double scale2 = 0.0;
+        for (int j = 0; j < 8; ++j) {
+            rest[j] = x[j] - centre;
+            aqq.noalias() += 0.125 * rest[j] * rest[j].transpose();
+            scale2 += 0.125 * rest[j].squaredNorm();
+        }
+        // A degenerate cell (validation keeps sizes positive) still gets a finite mass and
+        // compliance rather than a division by zero.
+        const double safeVolume = std::max(std::abs(volume), 1e-18);
+        std::array<Vec3, 8> gradients{};
+        Eigen::FullPivLU<Mat3> lu(aqq);
+        if (lu.isInvertible()) {
+            const Mat3 aqqInverse = lu.inverse();
+            for (int j = 0; j < 8; ++j) gradients[j] = 0.125 * (aqqInverse * rest[j]);
+        }
+        const double elementMass = std::max(def.density * safeVolume, 1e-12);
+        for (int j = 0; j < 8; ++j) mass_[e[j]] += 0.125 * elementMass;
+        elements_.push_back(e);
+        restOffsets_.push_back(rest);
+        volumeGradients_.push_back(gradients);
+        rotations_.push_back(Quat::Identity());
+        scale2_.push_back(std::max(scale2, 1e-18));
+        compliance_.push_back(def.compliance * scale2 / safeVolume);
+        volumeCompliance_.push_back(def.preserveVolume ? def.volumeCompliance / safeVolume : -1.0);
+        elementDamping_.push_back(def.damping);
+        lambda_.push_back(0.0);
+        volumeLambda_.push_back(0.0);
+    }
+    for (uint32_t i = data.firstParticle; i < particleCount; ++i) {
+        if (!(mass_[i] > 0.0)) mass_[i] = 1e-12;  // a particle in no element
+        invMass_[i] = 1.0 / mass_[i];
+        data.mass += mass_[i];
+    }
+    addAttachments(def, data, lattice, bodies);
+
+    uint32_t index;
+    if (!freeBodies_.empty()) {
+        index = freeBodies_.back();
+        freeBodies_.pop_back();
+        bodies_[index] = std::move(data);
+    } else {
+        index = static_cast<uint32_t>(bodies_.size());
+        bodies_.push_back(std::move(data));
+    }
+    ++liveBodies_;
+    return {index, generation};
+}
+
+void SoftSystem::destroy(SoftBodyId id) {
+    if (!isValid(id)) return;
+    SoftBodyData& dead = bodies_[id.index];
+    const uint32_t firstParticle = dead.firstParticle, particleCount = dead.particleCount;
+    const uint32_t endParticle = firstParticle + particleCount;
+    const uint32_t firstElement = dead.firstElement, elementCount = dead.elementCount;
+    const auto eraseParticles = [&](auto& field) {
+        field.erase(field.begin() + firstParticle, field.begin() + endParticle);
+    };
+    const auto eraseElements = [&](auto& field) {
+        field.erase(field.begin() + firstElement, field.begin() + firstElement + elementCount);
+    };
+    eraseParticles(x_), eraseParticles(xPrev_), eraseParticles(v_), eraseParticles(vPrev_);
+    eraseParticles(mass_), eraseParticles(invMass_);
+    eraseElements(elements_), eraseElements(restOffsets_), eraseElements(volumeGradients_);
+    eraseElements(rotations_), eraseElements(scale2_), eraseElements(compliance_);
+    eraseElements(volumeCompliance_), eraseElements(elementDamping_), eraseElements(lambda_), eraseElements(volumeLambda_);
+    // Later bodies' particles moved down by the removed count.
+    for (HexElement& e : elements_)
+        for (uint32_t& i : e)
+            if (i >= endParticle) i -= particleCount;
+    for (SoftBodyData& other : bodies_) {
+        if (!other.alive || &other == &dead) continue;
+        if (other.firstParticle >= endParticle) other.firstParticle -= particleCount;
+        if (other.firstElement > firstElement) other.firstElement -= elementCount;
+    }
+    std::erase_if(attachments_, [&](const Attachment& a) {
+        return a.particle >= firstParticle && a.particle < endParticle;
+    });
+    for (Attachment& a : attachments_)
+        if (a.particle >= endParticle) a.particle -= particleCount;
+    candidates_.clear();
+    contacts_.clear();
+    dead = SoftBodyData{};
+    freeBodies_.push_back(id.index);
+    --liveBodies_;
+}
+
+bool SoftSystem::isValid(SoftBodyId id) const {
+    return !id.isNull() && id.index < bodies_.size() && bodies_[id.index].alive &&
+           bodies_[id.index].generation == id.generation;
+}
+
+void SoftSystem::forgetBody(uint32_t bodyIndex) {
+    for (SoftBodyData& body : bodies_) std::erase(body.attachedBodies, bodyIndex);
+    std::erase_if(attachments_, [&](const Attachment& a) { return a.body == bodyIndex; });
+    std::erase_if(candidates_, [&](const Candidate& c) { return c.body == bodyIndex; });
+    std::erase_if(contacts_, [&](const ParticleContact& c) { return c.body == bodyIndex; });
+}
+
+void SoftSystem::integrate(double h, const Vec3& gravity) {
+    // Algorithm 2 without the rotation; λ is zeroed before each substep's solve.
+    const Vec3 gravityStep = h * gravity;
+    for (size_t i = 0; i < x_.size(); ++i) {
+        xPrev_[i] = x_[i];
+        v_[i] += gravityStep;
+        x_[i] += h * v_[i];
+    }
+    std::fill(lambda_.begin(), lambda_.end(), 0.0);
+    std::fill(volumeLambda_.begin(), volumeLambda_.end(), 0.0);
+    for (Attachment& a : attachments_) a.lambda = 0.0;
+}
+
+void SoftSystem::solvePositions(SolverContext& ctx) {
+    solveElements(ctx.invH2);
+    solveAttachments(ctx);
+    solveContacts(ctx);
+}
+
+void SoftSystem::solveElements(double invH2) {
+    std::array<Vec3, 8> deviation;
+    for (size_t e = 0; e < elements_.size(); ++e) {
+        const HexElement& element = elements_[e];
+        std::array<Vec3, 8> x = corners(x_, element);
+        const std::array<Vec3, 8>& rest = restOffsets_[e];
+        const Mat3 r = extractRotation(shapeMatrix(x, rest), scale2_[e], rotations_[e]);
+        const double c = shapeMatchingError(x, rest, r, deviation);
+        double weighted = 0.0;  // Σ w_j |d_j|², so Σ w_j |∇_j C|² = weighted / (64 C²)
+        for (int j = 0; j < 8; ++j) weighted += invMass_[element[j]] * deviation[j].squaredNorm();
+        const double alphaTilde = compliance_[e] * invH2;
+        if (c > 1e-12 * std::sqrt(scale2_[e]) && weighted > 0.0) {
+            // Eq. 4 for the shape-matching constraint (header of shape_matching.h).
+            const double denominator = weighted / (64.0 * c * c) + alphaTilde;
+            const double deltaLambda = (-c - alphaTilde * lambda_[e]) / denominator;
+            lambda_[e] += deltaLambda;
+            const double step = deltaLambda / (8.0 * c);
+            for (int j = 0; j < 8; ++j) x[j] += (invMass_[element[j]] * step) * deviation[j];
+        }
+        if (volumeCompliance_[e] >= 0.0) {
+            std::array<Vec3, 8> gradient;
+            const double cv = volumeError(x, volumeGradients_[e], gradient);
+            double w = 0.0;
+            for (int j = 0; j < 8; ++j) w += invMass_[element[j]] * gradient[j].squaredNorm();
+            const double alphaV = volumeCompliance_[e] * invH2;
+            if (w + alphaV > 1e-30 && std::isfinite(cv)) {
+                const double deltaLambda = (-cv - alphaV * volumeLambda_[e]) / (w + alphaV);
+                volumeLambda_[e] += deltaLambda;
+                for (int j = 0; j < 8; ++j) x[j] += (invMass_[element[j]] * deltaLambda) * gradient[j];
+            }
+        }
+        for (int j = 0; j < 8; ++j) x_[element[j]] = x[j];
+    }
+}
+
+void SoftSystem::deriveVelocities(double h) {
+    const double invH = 1.0 / h;
+    for (size_t i = 0; i < x_.size(); ++i) {
+        vPrev_[i] = v_[i];
+        v_[i] = (x_[i] - xPrev_[i]) * invH;
+    }
+}
+
+void SoftSystem::solveVelocities(Body* bodies, double h, double gravity) {
+    solveContactVelocities(bodies, h, gravity);
+}
+
+void SoftSystem::damp(double dt) {
+    // Per element, each corner's velocity moves towards the element's rigid motion
+    // v̄ + ω × (x − c) (mass-weighted with the particles' masses, ω = I⁻¹ L), by 1 − exp(−k dt):
+    // deformation rates decay at k whatever their direction, rigid motion is untouched, and
+    // each element's momentum and angular momentum are kept.
+    for (size_t e = 0; e < elements_.size(); ++e) {
+        const double k = elementDamping_[e];
+        if (!(k > 0.0)) continue;
+        const HexElement& element = elements_[e];
+        double mass = 0.0;
+        Vec3 centre = Vec3::Zero(), momentum = Vec3::Zero();
+        for (uint32_t i : element) {
+            mass += mass_[i];
+            centre += mass_[i] * x_[i];
+            momentum += mass_[i] * v_[i];
+        }
+        centre /= mass;
+        const Vec3 velocity = momentum / mass;
+        Vec3 angularMomentum = Vec3::Zero();
+        Mat3 inertia = Mat3::Zero();
+        for (uint32_t i : element) {
+            const Vec3 r = x_[i] - centre;
+            angularMomentum += mass_[i] * r.cross(v_[i] - velocity);
+            inertia += mass_[i] * (r.squaredNorm() * Mat3::Identity() - r * r.transpose());
+        }
+        // A collapsed element has no well-defined spin: damp towards its mean velocity only.
+        Vec3 omega = Vec3::Zero();
+        const double trace = inertia.trace();
+        if (std::abs(inertia.determinant()) > 1e-9 * trace * trace * trace) omega = inertia.inverse() * angularMomentum;
+        const double fraction = 1.0 - std::exp(-k * dt);
+        for (uint32_t i : element) v_[i] += fraction * (velocity + omega.cross(x_[i] - centre) - v_[i]);
+    }
+}
+
+SoftEnergies SoftSystem::energies(const Vec3& gravity) const {
+    SoftEnergies e;
+    for (size_t i = 0; i < x_.size(); ++i) {
+        e.kinetic += 0.5 * mass_[i] * v_[i].squaredNorm();
+        e.potential -= mass_[i] * gravity.dot(x_[i]);
+    }
+    std::array<Vec3, 8> deviation;
+    for (size_t k = 0; k < elements_.size(); ++k) {
+        const std::array<Vec3, 8> x = corners(x_, elements_[k]);
+        if (compliance_[k] > 0.0) {
+            Quat rotation = rotations_[k];
+            const Mat3 r = extractRotation(shapeMatrix(x, restOffsets_[k]), scale2_[k], rotation);
+            const double c = shapeMatchingError(x, restOffsets_[k], r, deviation);
+            e.elastic += c * c / (2.0 * compliance_[k]);
+        }
+        if (volumeCompliance_[k] > 0.0) {
+            const double cv = volumeError(x, volumeGradients_[k], deviation);
+            e.elastic += cv * cv / (2.0 * volumeCompliance_[k]);
+        }
+    }
+    return e;
+}
+
+bool SoftSystem::isFinite() const {
+    return std::all_of(x_.begin(), x_.end(), [](const Vec3& p) { return p.allFinite(); }) &&
+           std::all_of(v_.begin(), v_.end(), [](const Vec3& p) { return p.allFinite(); });
+}
+
+SoftBodyReadout SoftSystem::readout(SoftBodyId id) const {
+    SoftBodyReadout out;
+    if (!isValid(id)) return out;
+    const SoftBodyData& body = bodies_[id.index];
+    const uint32_t first = body.firstParticle, end = first + body.particleCount;
+    Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity());
+    Vec3 hi = -lo;
+    Vec3 momentum = Vec3::Zero();
+    for (uint32_t i = first; i < end; ++i) {
+        out.mass += mass_[i];
+        out.centreOfMass += mass_[i] * x_[i];
+        momentum += mass_[i] * v_[i];
+        lo = lo.cwiseMin(x_[i]);
+        hi = hi.cwiseMax(x_[i]);
+    }
+    if (out.mass > 0.0) {
+        out.centreOfMass /= out.mass;
+        out.velocity = momentum / out.mass;
+    }
+    out.extent = body.particleCount > 0 ? Vec3(hi - lo) : Vec3::Zero();
+    for (uint32_t k = body.firstElement; k < body.firstElement + body.elementCount; ++k)
+        out.volume += hexVolume(corners(x_, elements_[k]));
+    out.particles = static_cast<int>(body.particleCount);
+    out.elements = static_cast<int>(body.elementCount);
+    return out;
+}
+
+std::span<const Vec3> SoftSystem::positions(SoftBodyId id) const {
+    if (!isValid(id)) return {};
+    return std::span(x_).subspan(bodies_[id.index].firstParticle, bodies_[id.index].particleCount);
+}
+
+std::span<const Vec3> SoftSystem::velocities(SoftBodyId id) const {
+    if (!isValid(id)) return {};
+    return std::span(v_).subspan(bodies_[id.index].firstParticle, bodies_[id.index].particleCount);
+}
+
+std::span<const double> SoftSystem::masses(SoftBodyId id) const {
+    if (!isValid(id)) return {};
+    return std::span(mass_).subspan(bodies_[id.index].firstParticle, bodies_[id.index].particleCount);
+}
+
+SoftSurface SoftSystem::surface(SoftBodyId id) const {
+    SoftSurface out;
+    if (!isValid(id)) return out;
+    const std::span<const Vec3> x = positions(id);
+    out.positions.assign(x.begin(), x.end());
+    const SoftBodyData& body = bodies_[id.index];
+    out.quads = body.quads;
+    out.triangles.reserve(2 * body.quads.size());
+    for (const auto& q : body.quads) {
+        out.triangles.push_back({q[0], q[1], q[2]});
+        out.triangles.push_back({q[0], q[2], q[3]});
+    }
+    return out;
+}
+
+}  // namespace substep

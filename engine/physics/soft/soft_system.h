@@ -1,0 +1,149 @@
+#pragma once
+/// The world's soft bodies: particles in structure-of-arrays storage, hexahedral elements held
+/// by shape matching, attachments to rigid bodies and particle contacts, stepped inside the
+/// world's substep loop (Algorithm 2 without rotation: integrate, solve, derive velocities,
+/// velocity pass). The world owns one only once a soft body is created, so a world without
+/// soft bodies pays nothing.
+///
+/// Particles stand in for bodies in the paper's correction operations ("each body can be
+/// replaced with a single particle by setting w = 1/m and omitting the update of the
+/// orientation", section 4): attachments use Eqs. 2-9, contacts Eqs. 26-30 and 34.
+
+#include "physics/body.h"
+#include "physics/collision/contact_manifold.h"
+#include "physics/correction.h"
+#include "physics/handles.h"
+#include "physics/math.h"
+#include "physics/soft/lattice.h"
+#include "physics/soft/soft_body.h"
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace substep {
+
+/// The soft bodies' share of the world's energies (J).
+struct SoftEnergies {
+    double kinetic = 0.0;    ///< Σ ½ m v² over particles
+    double potential = 0.0;  ///< Σ −m g·x over particles
+    double elastic = 0.0;    ///< Σ C²/(2 α_e) over shape-matching and volume constraints
+};
+
+class SoftSystem {
+public:
+    /// Creates a soft body; attachments refer to `bodies` (the world's storage).
+    SoftBodyId create(const SoftBodyDef& def, std::span<const Body> bodies, uint32_t generation);
+    /// Removes a soft body's particles, elements and attachments (storage stays contiguous).
+    void destroy(SoftBodyId id);
+    bool isValid(SoftBodyId id) const;
+    /// No live soft body: the world skips every stage.
+    bool empty() const { return liveBodies_ == 0; }
+    /// Drops attachments to a rigid body that is being destroyed.
+    void forgetBody(uint32_t bodyIndex);
+
+    // The stages of World::step, in order.
+    /// Once per frame: the (particle, rigid body) pairs that may touch during the frame.
+    void collectCandidates(std::span<const Body> bodies, double dt, double margin, const Vec3& gravity);
+    void integrate(double h, const Vec3& gravity);
+    /// Every substep: the candidates' contact points on the current poses.
+    void findContacts(std::span<const Body> bodies, double margin);
+    /// Elements, then attachments, then contacts (hard inequalities last).
+    void solvePositions(SolverContext& ctx);
+    void deriveVelocities(double h);
+    /// The contacts' restitution and dynamic friction.
+    void solveVelocities(Body* bodies, double h, double gravity);
+
+    /// Once per frame, after the substeps: damps each element's deformation rate (elementDamping_).
+    void damp(double dt);
+
+    SoftEnergies energies(const Vec3& gravity) const;
+    bool isFinite() const;
+    SoftBodyReadout readout(SoftBodyId id) const;
+    /// Current particle positions of one soft body.
+    std::span<const Vec3> positions(SoftBodyId id) const;
+    std::span<const Vec3> velocities(SoftBodyId id) const;
+    /// Per particle of one soft body: mass (kg).
+    std::span<const double> masses(SoftBodyId id) const;
+    SoftSurface surface(SoftBodyId id) const;
+    /// Contact points that pushed in the last substep.
+    int activeContactCount() const;
+    /// Deepest current overlap of a particle contact (m).
+    double maxPenetration(std::span<const Body> bodies) const;
+    /// Element count over all soft bodies.
+    size_t elementCount() const { return elements_.size(); }
+
+    /// One Gauss-Seidel sweep over every element's shape-matching (and volume) constraint;
+    /// public for the benchmark of the projection cost.
+    void solveElements(double invH2);
+
+private:
+    struct SoftBodyData {
+        uint32_t firstParticle = 0, particleCount = 0;
+        uint32_t firstElement = 0, elementCount = 0;
+        double staticFriction = 0.5, dynamicFriction = 0.3, restitution = 0.0;
+        double radius = 0.01, mass = 0.0;
+        bool collide = true, preserveVolume = false, alive = false;
+        uint32_t generation = 0;
+        std::vector<std::array<uint32_t, 4>> quads;  ///< boundary faces, body-local indices
+        /// Rigid bodies it is attached to: its particles do not collide with them.
+        std::vector<uint32_t> attachedBodies;
+    };
+    /// A particle held to a point of a rigid body (principal frame).
+    struct Attachment {
+        uint32_t particle = 0;
+        uint32_t body = 0;
+        Vec3 local = Vec3::Zero();
+        double compliance = 0.0;
+        double lambda = 0.0;
+    };
+    /// A particle and a rigid body that may touch this frame.
+    struct Candidate {
+        uint32_t particle = 0;
+        uint32_t body = 0;
+        uint32_t softBody = 0;
+    };
+    /// A contact point of this substep: the particle's surface point is x − radius n; the
+    /// body's is kept in its principal frame (r1); n points from the body to the particle.
+    struct ParticleContact {
+        uint32_t particle = 0;
+        uint32_t body = 0;
+        Vec3 local1 = Vec3::Zero();
+        Vec3 normal = Vec3::UnitY();
+        double radius = 0.0;
+        double staticFriction = 0.0, dynamicFriction = 0.0, restitution = 0.0;
+        double lambdaNormal = 0.0;
+        double lambdaTangent = 0.0;
+    };
+
+    void solveAttachments(SolverContext& ctx);
+    void solveContacts(SolverContext& ctx);
+    void solveContactVelocities(Body* bodies, double h, double gravity);
+    void addAttachments(const SoftBodyDef& def, SoftBodyData& data, const Lattice& lattice,
+                        std::span<const Body> bodies);
+
+    // Particles (structure of arrays).
+    std::vector<Vec3> x_, xPrev_, v_, vPrev_;
+    std::vector<double> mass_, invMass_;
+    // Elements.
+    std::vector<HexElement> elements_;
+    std::vector<std::array<Vec3, 8>> restOffsets_;     ///< q_j, world rest frame at creation
+    std::vector<std::array<Vec3, 8>> volumeGradients_; ///< b_j = ⅛ A_qq⁻¹ q_j
+    std::vector<Quat> rotations_;                      ///< warm start of the rotation extraction
+    std::vector<double> scale2_;                       ///< ℓ² = Σ ⅛ |q_j|²
+    std::vector<double> compliance_;                   ///< α_e = α ℓ² / V (m/N)
+    std::vector<double> volumeCompliance_;             ///< α_V / V; negative: no volume constraint
+    std::vector<double> elementDamping_;               ///< k (1/s): deformation rates decay as exp(−k t)
+    std::vector<double> lambda_, volumeLambda_;
+    // Bodies, couplings, contacts.
+    std::vector<SoftBodyData> bodies_;
+    std::vector<uint32_t> freeBodies_;
+    int liveBodies_ = 0;
+    std::vector<Attachment> attachments_;
+    std::vector<Candidate> candidates_;
+    std::vector<ParticleContact> contacts_;
+    std::vector<Pose> poses_;  ///< per rigid body with candidates: its shape pose this substep
+};
+
+}  // namespace substep

@@ -1,0 +1,143 @@
+// Tests engine/physics/soft/soft_coupling.cpp: attachments to rigid bodies (Eqs. 2-9) and
+// particle contacts (Eqs. 26-30, 34), forces flowing both ways: a hinged rim with its tyre
+// swings with the period of the combined inertia, a motorised rim rolls its tyre at ω r, a
+// rigid ball hitting a soft box keeps the total momentum, a held box hangs where its mount is.
+#include "soft_test_support.h"
+
+#include "physics_test_support.h"
+
+#include <gtest/gtest.h>
+
+namespace substep::test {
+namespace {
+
+/// Turns local y (the axis of cylinders and tyres) into world z.
+const Quat kAxisAlongZ(Eigen::AngleAxisd(kPi / 2, Vec3::UnitX()));
+
+TEST(SoftCoupling, HingedRimWithTyreSwingsWithTheRingsInertia) {
+    // A rim (solid cylinder) carrying a tyre (a ring, I = ½ m (ro² + ri²)), hinged at d above
+    // its centre: T = 2π sqrt(I_pivot / (M g d)), I_pivot = Σ (I_cm + m d²).
+    const double ro = 0.35, ri = 0.25, width = 0.1, d = 0.15, theta0 = 0.1;
+    const double rimDensity = 2000.0, tyreDensity = 500.0;
+    World world = worldWithGround(20, false);
+    const Vec3 pivot(0, 1, 0);
+    const Quat tilt(Eigen::AngleAxisd(theta0, Vec3::UnitZ()));
+    const Vec3 centre = pivot + tilt * Vec3(0, -d, 0);
+    const BodyId rim = world.createBody({.shape = cylinderShape(ri, width),
+                                         .density = rimDensity,
+                                         .position = centre,
+                                         .orientation = tilt * kAxisAlongZ});
+    world.createJoint({.type = JointType::Hinge,
+                       .body1 = rim,
+                       .anchor0 = pivot,
+                       .anchor1 = Vec3(0, 0, -d),  // world (0, d, 0) from the centre, before the tilt
+                       .axis0 = Vec3::UnitZ(),
+                       .axis1 = Vec3::UnitY()});
+    SoftBodyDef tyre{.type = SoftBodyType::Tyre,
+                     .outerRadius = ro,
+                     .innerRadius = ri,
+                     .width = width,
+                     .cells = {48, 2, 2},
+                     .position = centre,
+                     .orientation = tilt * kAxisAlongZ,
+                     .density = tyreDensity,
+                     .compliance = 1e-7,
+                     .collide = false};
+    tyre.attachments.push_back({.body = rim, .particles = SoftAttachmentParticles::Inner});
+    world.createSoftBody(tyre);
+
+    const double mRim = rimDensity * kPi * ri * ri * width;
+    const double mTyre = tyreDensity * kPi * (ro * ro - ri * ri) * width;
+    const double inertia = 0.5 * mRim * ri * ri + 0.5 * mTyre * (ro * ro + ri * ri) + (mRim + mTyre) * d * d;
+    const double expected = 2 * kPi * std::sqrt(inertia / ((mRim + mTyre) * kG * d)) * (1 + theta0 * theta0 / 16);
+    Signal swing;
+    runFor(world, 4.0, [&](double t) { swing.add(t, world.body(rim).x.x() - pivot.x()); });
+    const double period = measuredPeriod(swing);
+    report("period (s)", period);
+    report("closed form (s)", expected);
+    EXPECT_NEAR(period, expected, 0.01 * expected);
+    // Without the tyre's inertia the period would be this much shorter: the test can fail.
+    const double rimOnly = 2 * kPi * std::sqrt((0.5 * mRim * ri * ri + mRim * d * d) / (mRim * kG * d));
+    EXPECT_GT(std::abs(rimOnly - expected), 0.05 * expected);
+}
+
+TEST(SoftCoupling, MotorisedRimRollsItsTyreAtOmegaR) {
+    // A carrier slides along x on a prismatic joint; a hinge motor turns the rim at ω; the
+    // tyre, pressed a little onto the ground, grips and the carrier moves at −ω r.
+    const double ro = 0.3, ri = 0.2, width = 0.12, radius = 0.005, omega = 5.0;
+    World world = worldWithGround();
+    const double axle = ro + radius - 0.003;
+    const BodyId carrier = world.createBody({.shape = boxShape(Vec3(0.1, 0.1, 0.1)),
+                                             .mass = 5.0,
+                                             .position = Vec3(0, axle, 0),
+                                             .collide = false});
+    world.createJoint({.type = JointType::Prismatic, .body1 = carrier, .anchor0 = Vec3(0, axle, 0),
+                       .axis0 = Vec3::UnitX(), .axis1 = Vec3::UnitX()});
+    const BodyId rim = world.createBody({.shape = cylinderShape(ri, width),
+                                         .density = 1000.0,
+                                         .position = Vec3(0, axle, 0),
+                                         .orientation = kAxisAlongZ,
+                                         .collide = false});
+    world.createJoint({.type = JointType::Hinge, .body0 = carrier, .body1 = rim,
+                       .axis0 = Vec3::UnitZ(), .axis1 = Vec3::UnitY(), .targetVelocity = omega});
+    SoftBodyDef tyre{.type = SoftBodyType::Tyre,
+                     .outerRadius = ro,
+                     .innerRadius = ri,
+                     .width = width,
+                     .cells = {48, 2, 3},
+                     .position = Vec3(0, axle, 0),
+                     .orientation = kAxisAlongZ,
+                     .compliance = 1e-6,
+                     .damping = 5.0,
+                     .staticFriction = 1.0,
+                     .dynamicFriction = 0.8,
+                     .particleRadius = radius};
+    tyre.attachments.push_back({.body = rim, .particles = SoftAttachmentParticles::Inner});
+    world.createSoftBody(tyre);
+    runFor(world, 1.5);
+    const double x0 = world.body(carrier).x.x();
+    runFor(world, 0.5);
+    const double speed = -(world.body(carrier).x.x() - x0) / 0.5;
+    report("rolling speed / (omega r)", speed / (omega * ro));
+    EXPECT_TRUE(world.isFinite());
+    EXPECT_NEAR(speed, omega * ro, 0.03 * omega * ro);
+}
+
+TEST(SoftCoupling, BallHittingASoftBoxKeepsTheTotalMomentum) {
+    World world({.gravity = Vec3::Zero(), .substeps = 20});
+    const SoftBodyId box = world.createSoftBody({.size = Vec3(0.2, 0.2, 0.2), .cells = {2, 2, 2},
+                                                 .compliance = 1e-5, .restitution = 0.5});
+    // The ball is wider than the particle spacing: particles collide as spheres, faces do not.
+    const BodyId ball = world.createBody({.shape = sphereShape(0.12), .mass = 2.0,
+                                          .position = Vec3(-0.3, 0.01, 0.02), .velocity = Vec3(3, 0, 0),
+                                          .restitution = 0.5});
+    const Vec3 before = softMomentum(world, box) + 2.0 * world.body(ball).v;
+    runFor(world, 0.5);
+    const Vec3 after = softMomentum(world, box) + 2.0 * world.body(ball).v;
+    EXPECT_LT((after - before).norm(), 1e-9 * before.norm());
+    EXPECT_LT(world.body(ball).v.x(), 2.0);                    // the ball was slowed
+    EXPECT_GT(world.softBodyReadout(box).velocity.x(), 0.5);  // and the box pushed
+}
+
+TEST(SoftCoupling, BoxHeldByItsTopLayerCarriesItsWeightToTheMount) {
+    // A dynamic mount holds the particles inside it ("below") and hangs from the world on a
+    // hard distance joint: the joint carries the box's weight plus the mount's.
+    World world = worldWithGround(20, false);
+    const BodyId mount = world.createBody({.shape = boxShape(Vec3(0.3, 0.04, 0.3)), .mass = 1.0,
+                                           .position = Vec3(0, 1.1, 0), .collide = false});
+    const JointId hold = world.createJoint({.type = JointType::Distance, .body1 = mount,
+                                            .anchor0 = Vec3(0, 1.1, 0)});
+    SoftBodyDef def{.size = Vec3(0.2, 0.2, 0.2), .cells = {2, 2, 2}, .position = Vec3(0, 1.0, 0),
+                    .compliance = 1e-6, .damping = 10.0};
+    def.attachments.push_back({.body = mount, .particles = SoftAttachmentParticles::Below});
+    const SoftBodyId box = world.createSoftBody(def);
+    const double mass = world.softBodyReadout(box).mass;
+    runFor(world, 2.0);
+    const double force = world.jointReadout(hold).force;
+    report("hanging force / weight", force / ((mass + 1.0) * kG));
+    EXPECT_NEAR(force, (mass + 1.0) * kG, 0.01 * (mass + 1.0) * kG);
+    EXPECT_NEAR(world.softBodyReadout(box).centreOfMass.y(), 1.0, 0.01);
+}
+
+}  // namespace
+}  // namespace substep::test
