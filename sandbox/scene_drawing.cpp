@@ -2,6 +2,7 @@
 
 #include "ecs/components.h"
 #include "ecs/physics_system.h"
+#include "ecs/soft_body_component.h"
 #include "physics/collision/heightfield.h"
 #include "physics/collision/spline_tube.h"
 #include "render/camera_framing.h"
@@ -58,6 +59,13 @@ Eigen::AlignedBox3d bodyBounds(const ecs::Registry& registry) {
         box.extend(transform.position - Vec3::Constant(radius));
         box.extend(transform.position + Vec3::Constant(radius));
     });
+    if (const ecs::ComponentPool<ecs::SoftBody>* softBodies = registry.findPool<ecs::SoftBody>()) {
+        for (const ecs::SoftBody& softBody : softBodies->components()) {
+            if (softBody.id.isNull()) continue;
+            box.extend(softBody.readout.centreOfMass - softBody.readout.extent / 2.0);
+            box.extend(softBody.readout.centreOfMass + softBody.readout.extent / 2.0);
+        }
+    }
     return box;
 }
 
@@ -163,6 +171,7 @@ render::RenderScene SceneDrawing::draw(SceneInstance& sceneInstance) {
     scene.camera = camera_;
     scene.ground = ground_;
     addBodies(sceneInstance.registry, scene);
+    addSoftBodies(sceneInstance.physics(), scene);
     addDebugLines(sceneInstance.physics(), scene);
     return scene;
 }
@@ -268,6 +277,32 @@ void SceneDrawing::addBodies(const ecs::Registry& registry, render::RenderScene&
         }
         scene.instances.push_back(std::move(instance));
     });
+}
+
+void SceneDrawing::addSoftBodies(const ecs::PhysicsSystem& physics, render::RenderScene& scene) {
+    const ecs::Registry& registry = physics.registry();
+    const ecs::ComponentPool<ecs::SoftBody>* softBodies = registry.findPool<ecs::SoftBody>();
+    if (softBodies == nullptr) return;
+    const std::span<const ecs::Entity> entities = softBodies->entities();
+    const std::span<const ecs::SoftBody> components = softBodies->components();
+    for (std::size_t i = 0; i < components.size(); ++i) {
+        const ecs::RenderMaterial* material = registry.tryGet<ecs::RenderMaterial>(entities[i]);
+        if (material != nullptr && !material->visible) continue;
+        // The surface moves with every particle: its mesh is made afresh each frame, in world
+        // coordinates (the instance's frame is the identity).
+        const SoftSurface surface = physics.softBodySurface(components[i]);
+        if (surface.triangles.empty()) continue;
+        softPoints_.clear();
+        for (const Vec3& p : surface.positions) softPoints_.push_back(toFloat(p));
+        softIndices_.clear();
+        for (const auto& t : surface.triangles) softIndices_.insert(softIndices_.end(), t.begin(), t.end());
+        render::RenderInstance instance{
+            .kind = render::ShapeKind::Mesh,
+            .mesh = std::make_shared<render::MeshData>(render::flatShadedMesh(softPoints_, softIndices_)),
+            .colour = material != nullptr ? render::Colour(material->colour.cast<float>())
+                                          : bodyColour(entities[i].index + 1, false)};
+        scene.instances.push_back(std::move(instance));
+    }
 }
 
 void SceneDrawing::addDebugLines(const ecs::PhysicsSystem& physics, render::RenderScene& scene) {

@@ -13,6 +13,7 @@
 
 #include <map>
 #include <memory>
+#include <vector>
 
 namespace substep {
 
@@ -34,14 +35,17 @@ class SceneDrawing {
                  const DrawingOptions& options = {});
 
     /// The scene's current state to draw: each entity with a Transform and a shape (its
-    /// Collider's, or its RenderMaterial's mesh, which wins) in its RenderMaterial's colour
-    /// (a palette colour by entity without one), hidden when the material says so.
+    /// Collider's, or its RenderMaterial's mesh, which wins) and each soft body's surface, in its
+    /// RenderMaterial's colour (a palette colour by entity without one), hidden when the
+    /// material says so.
     render::RenderScene draw(SceneInstance& scene);
 
     const render::Camera& camera() const { return camera_; }
 
   private:
     void addBodies(const ecs::Registry& registry, render::RenderScene& scene);
+    /// Each soft body's surface as the physics system hands it out, shaded like bodies.
+    void addSoftBodies(const ecs::PhysicsSystem& physics, render::RenderScene& scene);
     /// The physics core's draw list (physics/debug_draw.h) of the layers the options select.
     void addDebugLines(const ecs::PhysicsSystem& physics, render::RenderScene& scene);
     std::shared_ptr<const render::MeshData> meshFor(const Shape& shape);
@@ -55,6 +59,8 @@ class SceneDrawing {
     float torqueScale_ = 0.0f;   ///< m per N m
     float longestArrow_ = 1.0f;  ///< force arrows are clipped to this (m)
     DebugDrawList debugList_;    ///< kept across frames for its storage
+    std::vector<render::Vec3f> softPoints_;  ///< a soft surface's points, kept for their storage
+    std::vector<uint32_t> softIndices_;      ///< its triangles' indices, likewise
     /// Render meshes built from shape data, by the address of that data (shared between bodies).
     std::map<const void*, std::shared_ptr<const render::MeshData>> meshes_;
 };

@@ -1,6 +1,7 @@
 #include "state_columns.h"
 
 #include "ecs/components.h"
+#include "ecs/soft_body_component.h"
 
 #include <array>
 #include <string_view>
@@ -14,6 +15,8 @@ constexpr std::array<std::string_view, 7> kWorldColumns = {
 constexpr std::array<std::string_view, 13> kBodyColumns = {"x",  "y",  "z",  "qw", "qx", "qy", "qz",
                                                            "vx", "vy", "vz", "wx", "wy", "wz"};
 constexpr std::array<std::string_view, 3> kJointColumns = {"force", "torque", "error"};
+constexpr std::array<std::string_view, 10> kSoftBodyColumns = {"x",  "y",  "z",  "vx", "vy",
+                                                               "vz", "ex", "ey", "ez", "volume"};
 
 /// The named entities among `entities` (description order), with their names.
 template <class Visit>
@@ -30,7 +33,8 @@ std::size_t namedCount(const SceneInstance& scene, const std::vector<ecs::Entity
 
 std::size_t sampledColumnCount(const SceneInstance& scene) {
     return kWorldColumns.size() - 1 + kBodyColumns.size() * namedCount(scene, scene.bodyEntities) +
-           kJointColumns.size() * namedCount(scene, scene.jointEntities);
+           kJointColumns.size() * namedCount(scene, scene.jointEntities) +
+           kSoftBodyColumns.size() * namedCount(scene, scene.softBodyEntities);
 }
 
 }  // namespace
@@ -45,6 +49,9 @@ std::vector<std::string> stateColumnNames(const SceneInstance& scene) {
     });
     forEachNamed(scene, scene.jointEntities, [&](ecs::Entity, const std::string& name) {
         for (const std::string_view column : kJointColumns) names.push_back(name + "." + std::string(column));
+    });
+    forEachNamed(scene, scene.softBodyEntities, [&](ecs::Entity, const std::string& name) {
+        for (const std::string_view column : kSoftBodyColumns) names.push_back(name + "." + std::string(column));
     });
     return names;
 }
@@ -83,6 +90,15 @@ void sampleState(const SceneInstance& scene, double t, std::vector<double>& valu
         *out++ = readout.force;
         *out++ = readout.torque;
         *out++ = readout.error;
+    });
+    forEachNamed(scene, scene.softBodyEntities, [&](ecs::Entity entity, const std::string&) {
+        const SoftBodyReadout& readout = registry.get<ecs::SoftBody>(entity).readout;
+        for (const double value :
+             {readout.centreOfMass.x(), readout.centreOfMass.y(), readout.centreOfMass.z(),
+              readout.velocity.x(), readout.velocity.y(), readout.velocity.z(), readout.extent.x(),
+              readout.extent.y(), readout.extent.z(), readout.volume}) {
+            *out++ = value;
+        }
     });
 }
 

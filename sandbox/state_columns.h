@@ -17,7 +17,8 @@ inline constexpr std::size_t kStateEnergy = 4;
 inline constexpr std::size_t kStateMaxError = 5;
 
 /// Column names in contract order: `frame,t,kinetic,potential,elastic,energy,max_error`, then
-/// 13 per named body (user-frame pose, velocities), then 3 per named joint.
+/// 13 per named body (user-frame pose, velocities), then 3 per named joint, then 10 per named
+/// soft body (centre of mass, velocity, extent, volume).
 std::vector<std::string> stateColumnNames(const SceneInstance& scene);
 
 /// Fills `values` with every column after `frame` for the world's current state at time t.

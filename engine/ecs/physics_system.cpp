@@ -89,6 +89,24 @@ void PhysicsSystem::createNewObjects() {
             joint.id = world.createJoint(def);
         }
     }
+
+    // Soft bodies last: their attachments name bodies, which now exist.
+    if (ComponentPool<SoftBody>* softBodies = registry.findPool<SoftBody>()) {
+        for (SoftBody& softBody : softBodies->components()) {
+            if (!softBody.id.isNull()) continue;
+            SoftBodyDef def = softBody.def;
+            bool bodiesReady = softBody.attachedBodies.size() == def.attachments.size();
+            for (std::size_t i = 0; bodiesReady && i < def.attachments.size(); ++i) {
+                const std::optional<BodyId> body = jointSideBody(registry, softBody.attachedBodies[i]);
+                // An attachment to the world is not a soft-body concept: a null entity waits too.
+                bodiesReady = body.has_value() && !body->isNull();
+                if (bodiesReady) def.attachments[i].body = *body;
+            }
+            if (!bodiesReady) continue;
+            softBody.id = world.createSoftBody(def);
+            softBody.readout = world.softBodyReadout(softBody.id);
+        }
+    }
 }
 
 void PhysicsSystem::applyChanges() {
@@ -165,6 +183,10 @@ void PhysicsSystem::writeBack() {
         for (Joint& joint : joints->components())
             joint.readout = world.isValid(joint.id) ? world.jointReadout(joint.id) : JointReadout{};
     }
+    if (ComponentPool<SoftBody>* softBodies = registry_->findPool<SoftBody>()) {
+        for (SoftBody& softBody : softBodies->components())
+            softBody.readout = world.isValid(softBody.id) ? world.softBodyReadout(softBody.id) : SoftBodyReadout{};
+    }
 }
 
 void PhysicsSystem::destroy(Entity entity) {
@@ -188,6 +210,10 @@ void PhysicsSystem::destroy(Entity entity) {
     if (RigidBody* rigidBody = registry.tryGet<RigidBody>(entity)) {
         world.destroyBody(rigidBody->id);
         rigidBody->id = {};
+    }
+    if (SoftBody* softBody = registry.tryGet<SoftBody>(entity)) {
+        world.destroySoftBody(softBody->id);
+        softBody->id = {};
     }
     registry.destroy(entity);
 }

@@ -19,10 +19,12 @@
 
 #include "ecs/entity.h"
 #include "ecs/registry.h"
+#include "ecs/soft_body_component.h"
 #include "physics/debug_draw.h"
 #include "physics/world.h"
 
 #include <chrono>
+#include <span>
 #include <vector>
 
 namespace substep::ecs {
@@ -50,14 +52,15 @@ class PhysicsSystem {
     std::chrono::steady_clock::duration step(double dt);
 
     /// Writes the world's state into the components: each body's Transform (the pose of its user
-    /// frame), velocities and centre of mass, and each joint's readout. buildScene calls it once
+    /// frame), velocities and centre of mass, each joint's readout and each soft body's readout. buildScene calls it once
     /// after creating a scene, so components read the initial state as the world has it.
     void writeBack();
 
     /// Destroys the entity, its world body (with every world joint attached to that body), the
-    /// world joint of its Joint component, and the world joints of Joint components that name
-    /// it; those components stay, with a null id, and sync() leaves them dormant. Invalid
-    /// entities are ignored.
+    /// world joint of its Joint component, its world soft body, and the world joints of Joint
+    /// components that name it; those components stay, with a null id, and sync() leaves them
+    /// dormant. Soft bodies attached to the entity stay and lose that attachment (the world's
+    /// rule). Invalid entities are ignored.
     void destroy(Entity entity);
 
     /// The solver settings (substeps, iterations, gravity, velocity pass, ...).
@@ -70,6 +73,17 @@ class PhysicsSystem {
     /// The physics core's debug draw list of the current state (physics/debug_draw.h).
     void debugDraw(const DebugDrawOptions& options, DebugDrawList& list) const {
         drawWorld(*world_, options, list);
+    }
+
+    /// A soft body's current particle positions, for drawing its surface (empty while the
+    /// component has no live soft body).
+    std::span<const Vec3> softBodyPositions(const SoftBody& softBody) const {
+        return world_->softBodyPositions(softBody.id);
+    }
+    /// A soft body's current surface: positions and the boundary quads of its lattice, also split
+    /// into triangles wound counter-clockwise seen from outside (empty while it has none).
+    SoftSurface softBodySurface(const SoftBody& softBody) const {
+        return world_->softBodySurface(softBody.id);
     }
 
     Registry& registry() const { return *registry_; }

@@ -5,6 +5,7 @@
 
 #include "ecs/body_components.h"
 #include "ecs/components.h"
+#include "ecs/soft_body_component.h"
 
 #include <array>
 #include <cstddef>
@@ -31,6 +32,9 @@ Vec3 defaultColour(std::size_t bodyIndex, const BodyDef& def) {
     const std::array<double, 3>& c = kPalette[bodyIndex % kPalette.size()];
     return Vec3(c[0], c[1], c[2]);
 }
+
+/// Soft bodies' default look: a rubbery dark slate, apart from the rigid palette.
+const Vec3 kSoftBodyColour(0.30, 0.32, 0.36);
 
 }  // namespace
 
@@ -79,7 +83,39 @@ SceneInstance buildScene(const SceneDescription& description) {
         instance.jointEntities.push_back(entity);
     }
 
-    // The system creates every body, then every joint, each in the order added above.
+    // Soft bodies attach to named bodies; "world" is not a body they can hold on to.
+    std::unordered_map<std::string, ecs::Entity> softBodiesByName;
+    for (const SceneSoftBody& softBody : description.softBodies) {
+        if (softBody.attachBodies.size() != softBody.def.attachments.size()) {
+            throw std::invalid_argument("scene " + description.name + ": soft body \"" + softBody.name +
+                                        "\" has " + std::to_string(softBody.def.attachments.size()) +
+                                        " attachments but " + std::to_string(softBody.attachBodies.size()) +
+                                        " body names");
+        }
+        ecs::SoftBody component{.def = softBody.def};
+        for (const std::string& bodyName : softBody.attachBodies) {
+            const auto it = entitiesByName.find(bodyName);
+            if (it == entitiesByName.end()) {
+                throw std::invalid_argument("scene " + description.name + ": a soft body attaches to body \"" +
+                                            bodyName + "\", which does not exist");
+            }
+            component.attachedBodies.push_back(it->second);
+        }
+        const ecs::Entity entity = registry.create();
+        registry.emplace<ecs::SoftBody>(entity, std::move(component));
+        registry.emplace<ecs::RenderMaterial>(entity,
+                                              ecs::RenderMaterial{.colour = softBody.colour.value_or(kSoftBodyColour)});
+        instance.softBodyEntities.push_back(entity);
+        if (softBody.name.empty()) continue;
+        if (!softBodiesByName.emplace(softBody.name, entity).second) {
+            throw std::invalid_argument("scene " + description.name + ": soft body name \"" + softBody.name +
+                                        "\" is used twice");
+        }
+        registry.emplace<ecs::Name>(entity, softBody.name);
+    }
+
+    // The system creates every body, then every joint, then every soft body, each in the order
+    // added above.
     // Components then read back the initial state as the world holds it.
     ecs::PhysicsSystem physics = instance.physics();
     physics.sync();
@@ -108,6 +144,10 @@ ecs::Entity SceneInstance::bodyNamed(std::string_view name) const {
 
 ecs::Entity SceneInstance::jointNamed(std::string_view name) const {
     return findNamed(registry, jointEntities, name);
+}
+
+ecs::Entity SceneInstance::softBodyNamed(std::string_view name) const {
+    return findNamed(registry, softBodyEntities, name);
 }
 
 BodyId SceneInstance::bodyIdNamed(std::string_view name) const {

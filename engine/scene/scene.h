@@ -9,6 +9,7 @@
 #include "physics/body.h"
 #include "physics/joints/joint.h"
 #include "physics/math.h"
+#include "physics/soft/soft_body.h"
 #include "physics/world.h"
 
 #include <optional>
@@ -32,6 +33,15 @@ struct SceneJoint {
     JointDef def;       ///< def.body0 / def.body1 are filled in by buildScene
 };
 
+/// A soft body (physics/soft/soft_body.h). def.attachments[i].body is ignored: buildScene
+/// attaches to the body named attachBodies[i].
+struct SceneSoftBody {
+    std::string name;  ///< may be empty: unnamed soft bodies get no output columns
+    SoftBodyDef def;
+    std::vector<std::string> attachBodies;  ///< one body name per def.attachments entry
+    std::optional<Vec3> colour;             ///< linear RGB in [0, 1]; none: the soft-body colour
+};
+
 struct SceneCamera {
     Vec3 position = Vec3(0.0, 1.5, 4.0);
     Vec3 target = Vec3(0.0, 0.5, 0.0);
@@ -46,6 +56,7 @@ struct SceneDescription {
     int iterations = 1;
     std::vector<SceneBody> bodies;
     std::vector<SceneJoint> joints;
+    std::vector<SceneSoftBody> softBodies;
     std::optional<SceneCamera> camera;
 };
 
@@ -58,16 +69,19 @@ struct SceneDescription {
 class SceneInstance {
   public:
     /// One entity per body of the description (Transform, RigidBody, Collider, RenderMaterial,
-    /// Name when named) and one per joint (Joint, Name when named).
+    /// Name when named), one per joint (Joint, Name when named) and one per soft body
+    /// (SoftBody, RenderMaterial, Name when named).
     ecs::Registry registry;
-    std::vector<ecs::Entity> bodyEntities;   ///< in description order
-    std::vector<ecs::Entity> jointEntities;  ///< in description order
+    std::vector<ecs::Entity> bodyEntities;      ///< in description order
+    std::vector<ecs::Entity> jointEntities;     ///< in description order
+    std::vector<ecs::Entity> softBodyEntities;  ///< in description order
 
     /// The entity whose Name is `name`, or the null entity when none is. Names are unique in a
     /// scene (the loader and buildScene check), bodies and joints alike in one namespace per kind:
     /// bodyNamed looks among bodies, jointNamed among joints.
     ecs::Entity bodyNamed(std::string_view name) const;
     ecs::Entity jointNamed(std::string_view name) const;
+    ecs::Entity softBodyNamed(std::string_view name) const;
     /// The world id of the body or joint named `name` (null when there is none), for tests and
     /// diagnostics that read the world.
     BodyId bodyIdNamed(std::string_view name) const;
@@ -91,9 +105,10 @@ class SceneInstance {
 };
 
 /// Builds the entities, then the world from them: bodies in description order, then joints in
-/// description order (the world's storage order, on which every output depends). Body names
-/// referenced by joints must exist (the loader checks files; built-in scenes are checked by
-/// their tests): an unknown name throws std::invalid_argument.
+/// description order (the world's storage order, on which every output depends), then soft
+/// bodies. Body names referenced by joints and soft-body attachments must exist (the loader
+/// checks files; built-in scenes are checked by their tests): an unknown name throws
+/// std::invalid_argument.
 SceneInstance buildScene(const SceneDescription& description);
 
 }  // namespace substep

@@ -1,10 +1,10 @@
 #pragma once
 /// Scene files, the section readers of the loader: one function per top-level key that holds
-/// scene content (`bodies`, `joints`, `camera`), each reading that key's value into the
+/// scene content (`bodies`, `joints`, `soft_bodies`, `camera`), each reading that key's value into the
 /// SceneDescription being built. parseSceneText (scene_loader.cpp) checks the version and the
 /// world settings, then calls the readers of kSceneSections in table order for the keys present.
 ///
-/// Where a new top-level key plugs in (a `soft_bodies` reader, say):
+/// Where a new top-level key plugs in (as `soft_bodies` did):
 ///  1. write scene_loader_soft_bodies.cpp defining
 ///     `void readSoftBodies(const Node& node, SceneReading& reading)`: it reads values through
 ///     the Validator and ObjectReader (scene_loader_validator.h), appends to `reading.scene`, and
@@ -48,6 +48,8 @@ struct SceneSection {
 void readBodies(const Node& node, SceneReading& reading);
 /// `joints`: an array of joints between named bodies (scene_loader_joints.cpp).
 void readJoints(const Node& node, SceneReading& reading);
+/// `soft_bodies`: hexahedral soft bodies, attached to named bodies (scene_loader_soft_bodies.cpp).
+void readSoftBodies(const Node& node, SceneReading& reading);
 /// `camera`: the initial view (scene_loader_camera.cpp).
 void readCamera(const Node& node, SceneReading& reading);
 
@@ -56,6 +58,7 @@ void readCamera(const Node& node, SceneReading& reading);
 inline constexpr SceneSection kSceneSections[] = {
     {"bodies", readBodies},
     {"joints", readJoints},
+    {"soft_bodies", readSoftBodies},
     {"camera", readCamera},
 };
 
