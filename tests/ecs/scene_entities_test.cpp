@@ -1,8 +1,9 @@
-// Tests engine/scene/scene.cpp through the ECS: the entities buildScene makes for bodies and
-// joints, that the world is created from them in description order, and that a moved
+// Tests engine/scene/scene.cpp through the ECS: the entities buildScene makes for bodies,
+// joints and soft bodies, that the world is created from them in description order, and that a moved
 // SceneInstance still steps through its physics system.
 
 #include "ecs/components.h"
+#include "ecs/soft_body_component.h"
 #include "scene/scene.h"
 
 #include <gtest/gtest.h>
@@ -94,6 +95,42 @@ TEST(SceneEntities, DestroyingABodyEntityDropsItsJointsFromTheWorld) {
     EXPECT_FALSE(s.world().isValid(s.namedBodyIds()[1].second));
     EXPECT_TRUE(s.world().isValid(s.namedBodyIds()[0].second));
     EXPECT_EQ(s.world().maxJointError(), 0.0);
+}
+
+TEST(SceneEntities, EverySoftBodyIsAnEntityAttachedToItsBodyEntities) {
+    SceneDescription d = pendulumScene();
+    SceneSoftBody tyre{.name = "tyre",
+                       .def = {.type = SoftBodyType::Tyre, .cells = {8, 1, 1}, .position = Vec3(1, 2, 0)},
+                       .attachBodies = {"bob"}};
+    tyre.def.attachments.push_back({.particles = SoftAttachmentParticles::Inner});
+    d.softBodies.push_back(tyre);
+    d.softBodies.push_back({.def = {.size = Vec3(0.2, 0.2, 0.2), .position = Vec3(0, 5, 0)},
+                            .colour = Vec3(0.1, 0.2, 0.3)});
+    const SceneInstance s = buildScene(d);
+    ASSERT_EQ(s.softBodyEntities.size(), 2u);
+    const ecs::Entity named = s.softBodyNamed("tyre");
+    ASSERT_EQ(named, s.softBodyEntities[0]);
+    EXPECT_TRUE(s.bodyNamed("tyre").isNull()) << "soft bodies are not bodies";
+    const ecs::SoftBody& soft = s.registry.get<ecs::SoftBody>(named);
+    ASSERT_EQ(soft.attachedBodies.size(), 1u);
+    EXPECT_EQ(soft.attachedBodies[0], s.bodyNamed("bob"));
+    EXPECT_TRUE(s.world().isValid(soft.id));
+    // The readout is there from the start: 8 x 2 x 2 particles of the tyre's lattice.
+    EXPECT_EQ(soft.readout.particles, 32);
+    EXPECT_EQ(soft.readout.elements, 8);
+    EXPECT_TRUE(s.registry.has<ecs::RenderMaterial>(named));
+
+    const ecs::Entity unnamed = s.softBodyEntities[1];
+    EXPECT_EQ(s.registry.tryGet<ecs::Name>(unnamed), nullptr);
+    EXPECT_EQ(s.registry.get<ecs::RenderMaterial>(unnamed).colour, Vec3(0.1, 0.2, 0.3));
+    EXPECT_NEAR(s.registry.get<ecs::SoftBody>(unnamed).readout.volume, 0.008, 1e-15);
+
+    SceneDescription bad = pendulumScene();
+    bad.softBodies.push_back({.def = {.attachments = {{}}}, .attachBodies = {"nobody"}});
+    EXPECT_THROW(buildScene(bad), std::invalid_argument);
+    SceneDescription mismatched = pendulumScene();
+    mismatched.softBodies.push_back({.attachBodies = {"bob"}});
+    EXPECT_THROW(buildScene(mismatched), std::invalid_argument);
 }
 
 }  // namespace

@@ -202,7 +202,7 @@ TEST(SceneLoader, TopLevelKeysAreListedInOrder) {
     // The world settings, then the section readers' keys in their table's order.
     EXPECT_TRUE(failsAt(scene(R"("zzz": 1)"), "zzz",
                         "unknown key (expected substep_scene, name, description, gravity, dt, "
-                        "substeps, iterations, bodies, joints or camera)"));
+                        "substeps, iterations, bodies, joints, soft_bodies or camera)"));
 }
 
 TEST(SceneLoader, SectionsAreReadInTheirOrderNotTheFiles) {
