@@ -1,12 +1,13 @@
 // Tests sandbox/scene_drawing.cpp: a scene's components become a RenderScene with every body's shape where
-// the body is, a ground under everything, a camera that sees the bodies, and debug lines for
-// joints and their forces.
+// the body is, each soft body's surface where its particles are, a ground under everything, a
+// camera that sees the bodies, and debug lines for joints and their forces.
 
 #include "scene_drawing.h"
 
 #include "physics/collision/heightfield.h"
 #include "physics/collision/spline_tube.h"
 #include "ecs/components.h"
+#include "ecs/soft_body_component.h"
 #include "render/render_math.h"
 #include "scenes/scene_registry.h"
 
@@ -215,6 +216,65 @@ TEST(SceneDrawing, RenderMaterialMeshReplacesTheShapeAndTransformsPlaceBodies) {
     ASSERT_TRUE(drawn.instances[0].mesh);
     EXPECT_EQ(drawn.instances[0].mesh->indices.size(), 12u);  // the material mesh's 4 triangles
     EXPECT_TRUE(drawn.instances[1].position.isApprox(render::Vec3f(2.0f, 1.0f, 0.0f)));
+}
+
+// A soft body is drawn as its lattice's surface, remade from the particles every frame: a box of
+// nx x ny x nz cells has 2 (nx ny + ny nz + nz nx) boundary quads, two triangles each, every
+// vertex on a particle, wound so each face looks away from the box.
+TEST(SceneDrawing, ASoftBodyIsDrawnWhereItsParticlesAre) {
+    SceneDescription description;
+    description.bodies.push_back({"ground", BodyDef{.shape = planeShape(Vec3::UnitY(), 0.0), .type = BodyType::Static}});
+    description.softBodies.push_back({.name = "jelly",
+                                      .def = {.size = Vec3(0.6, 0.4, 0.8), .cells = {3, 2, 4},
+                                              .position = Vec3(0.5, 1.0, -0.2), .compliance = 1e-6},
+                                      .colour = Vec3(0.2, 0.8, 0.4)});
+    SceneInstance scene = buildScene(description);
+    SceneDrawing drawing(description, scene, 1.0f);
+    const ecs::Entity jelly = scene.softBodyNamed("jelly");
+
+    for (const int frames : {0, 20, 60}) {
+        SCOPED_TRACE(frames);
+        for (int i = 0; i < frames; ++i) scene.physics().step(description.dt);
+        const render::RenderScene drawn = drawing.draw(scene);
+        ASSERT_EQ(drawn.instances.size(), 1u);  // the plane is the ground
+        const render::RenderInstance& instance = drawn.instances[0];
+        ASSERT_EQ(instance.kind, render::ShapeKind::Mesh);
+        ASSERT_NE(instance.mesh, nullptr);
+        EXPECT_TRUE(instance.position.isZero());
+        EXPECT_TRUE(instance.orientation.coeffs().isApprox(render::Quatf::Identity().coeffs()));
+        EXPECT_TRUE(instance.colour.isApprox(render::Colour(0.2f, 0.8f, 0.4f)));
+
+        constexpr std::size_t kQuads = 2 * (3 * 2 + 2 * 4 + 4 * 3);
+        ASSERT_EQ(instance.mesh->indices.size(), kQuads * 2 * 3);
+        // Every vertex on a particle of the current state.
+        const std::span<const Vec3> particles = scene.physics().softBodyPositions(scene.registry.get<ecs::SoftBody>(jelly));
+        ASSERT_EQ(particles.size(), 4u * 3u * 5u);
+        Eigen::AlignedBox3f drawnBox;
+        Vec3 centre = Vec3::Zero();
+        for (const Vec3& p : particles) centre += p / static_cast<double>(particles.size());
+        for (std::size_t v = 0; v < instance.mesh->vertices.size(); ++v) {
+            const render::MeshVertex& vertex = instance.mesh->vertices[v];
+            const render::Vec3f position(vertex.position[0], vertex.position[1], vertex.position[2]);
+            drawnBox.extend(position);
+            double nearest = 1e9;
+            for (const Vec3& p : particles) nearest = std::min(nearest, (p.cast<float>() - position).norm() + 0.0);
+            EXPECT_LT(nearest, 1e-6) << "vertex " << v;
+            // Faces look outwards: away from the (convex, nearly undeformed) box's centre.
+            const render::Vec3f normal(vertex.normal[0], vertex.normal[1], vertex.normal[2]);
+            EXPECT_GT(normal.dot(position - centre.cast<float>()), 0.0f) << "vertex " << v;
+        }
+        // And the drawn surface spans the particles' extent, as the component's readout has it
+        // (every particle of a 3 x 2 x 4 lattice but the 2 x 1 x 3 inside is on the surface).
+        const SoftBodyReadout& readout = scene.registry.get<ecs::SoftBody>(jelly).readout;
+        EXPECT_LT((drawnBox.sizes() - readout.extent.cast<float>()).norm(), 1e-5f);
+        Eigen::AlignedBox3d particleBox;
+        for (const Vec3& p : particles) particleBox.extend(p);
+        EXPECT_LT((drawnBox.min() - particleBox.min().cast<float>()).norm(), 1e-5f);
+    }
+
+    // Hidden through its material, it is not drawn.
+    scene.registry.get<ecs::RenderMaterial>(jelly).visible = false;
+    EXPECT_TRUE(drawing.draw(scene).instances.empty());
 }
 
 }  // namespace
