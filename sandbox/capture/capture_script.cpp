@@ -170,7 +170,7 @@ CaptureScript parseCaptureScript(const std::string& file) {
 }
 
 CaptureScript parseCaptureScriptText(std::string_view text, const std::string& file) {
-    const nlohmann::json document = parseJson(text, file);
+    const nlohmann::ordered_json document = parseJson(text, file);
     const JsonAt root(document, "", file);
     root.requireObject({"substep_capture", "description", "captures"});
     if (!root.has("substep_capture")) root.fail("missing \"substep_capture\": 1 (is this a capture script?)");

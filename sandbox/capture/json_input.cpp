@@ -14,7 +14,7 @@ std::string joinPath(const std::string& path, std::string_view key) {
     return path.empty() ? std::string(key) : path + "." + std::string(key);
 }
 
-std::string typeName(const nlohmann::json& value) {
+std::string typeName(const nlohmann::ordered_json& value) {
     if (value.is_number()) return "a number";
     if (value.is_string()) return "a string";
     if (value.is_boolean()) return "a boolean";
@@ -28,8 +28,8 @@ class PathTracker {
   public:
     explicit PathTracker(const std::string& file) : file_(file) {}
 
-    bool onEvent(nlohmann::json::parse_event_t event, const nlohmann::json& parsed) {
-        using Event = nlohmann::json::parse_event_t;
+    bool onEvent(nlohmann::ordered_json::parse_event_t event, const nlohmann::ordered_json& parsed) {
+        using Event = nlohmann::ordered_json::parse_event_t;
         switch (event) {
         case Event::object_start:
         case Event::array_start: {
@@ -114,15 +114,15 @@ std::string readTextFile(const std::string& file) {
     return text.str();
 }
 
-nlohmann::json parseJson(std::string_view text, const std::string& file) {
+nlohmann::ordered_json parseJson(std::string_view text, const std::string& file) {
     PathTracker tracker(file);
     try {
-        return nlohmann::json::parse(
+        return nlohmann::ordered_json::parse(
             text.begin(), text.end(),
-            [&](int, nlohmann::json::parse_event_t event, nlohmann::json& parsed) {
+            [&](int, nlohmann::ordered_json::parse_event_t event, nlohmann::ordered_json& parsed) {
                 return tracker.onEvent(event, parsed);
             });
-    } catch (const nlohmann::json::parse_error& error) {
+    } catch (const nlohmann::ordered_json::parse_error& error) {
         // Keep nlohmann's description without its "[json.exception...] " prefix and location.
         std::string detail = error.what();
         if (const auto dash = detail.find(": "); dash != std::string::npos) detail = detail.substr(dash + 2);
@@ -132,10 +132,13 @@ nlohmann::json parseJson(std::string_view text, const std::string& file) {
         if (text.find_first_not_of(" \t\r\n") == std::string_view::npos) {
             throw InputError(file, "", "is empty (or truncated): no JSON in it");
         }
-        throw InputError(file, path.empty() ? "" : path,
-                         (error.id == 406 ? "number out of range at " : "not valid JSON at ") + where + ": " + detail);
-    } catch (const nlohmann::json::exception& error) {
-        throw InputError(file, tracker.currentPath(), std::string("not valid JSON: ") + error.what());
+        throw InputError(file, path, "not valid JSON at " + where + ": " + detail);
+    } catch (const nlohmann::ordered_json::exception& error) {
+        // 406: a number too large for a double (1e999); the tracker is at its key or element.
+        std::string detail = error.what();
+        if (const auto bracket = detail.find("] "); bracket != std::string::npos) detail = detail.substr(bracket + 2);
+        throw InputError(file, tracker.currentPath(),
+                         (error.id == 406 ? "number out of range: " : "not valid JSON: ") + detail);
     }
 }
 

@@ -24,15 +24,15 @@ std::string readTextFile(const std::string& file);
 
 /// Parses JSON text. Syntax errors, overflowing numbers and duplicate keys throw InputError
 /// naming `file` and the path where they occur.
-nlohmann::json parseJson(std::string_view text, const std::string& file);
+nlohmann::ordered_json parseJson(std::string_view text, const std::string& file);
 
 /// A value inside a parsed document together with its path, for checked reads.
 class JsonAt {
   public:
-    JsonAt(const nlohmann::json& value, std::string path, const std::string& file)
-        : value_(value), path_(std::move(path)), file_(file) {}
+    JsonAt(const nlohmann::ordered_json& value, std::string path, std::string file)
+        : value_(value), path_(std::move(path)), file_(std::move(file)) {}
 
-    const nlohmann::json& value() const { return value_; }
+    const nlohmann::ordered_json& value() const { return value_; }
     const std::string& path() const { return path_; }
 
     /// Throws InputError at this value's path.
@@ -58,9 +58,9 @@ class JsonAt {
     bool boolean() const;
 
   private:
-    const nlohmann::json& value_;
+    const nlohmann::ordered_json& value_;
     std::string path_;
-    const std::string& file_;
+    std::string file_;
 };
 
 /// `name` as JSON string text, for messages.

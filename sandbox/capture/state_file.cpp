@@ -84,7 +84,7 @@ std::string formatStateFile(const CaptureState& state) {
 }
 
 CaptureState parseStateFile(std::string_view text, const std::string& file) {
-    const nlohmann::json document = parseJson(text, file);
+    const nlohmann::ordered_json document = parseJson(text, file);
     const JsonAt root(document, "", file);
     root.requireObject({"substep_capture_state", "frame", "t", "bodies", "joints", "soft_bodies"});
     root.member("substep_capture_state").integer(1, 1);
