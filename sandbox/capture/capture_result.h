@@ -26,9 +26,9 @@ struct FrameMismatch {
 struct CaptureResult {
     std::string name;
     std::string scene;
-    std::vector<std::string> lines;      ///< one summary line per mismatch, as printed
-    std::vector<FrameMismatch> frames;   ///< the frames that differ
-    bool checked = false;                ///< false: --only left it out
+    std::vector<std::string> lines;     ///< one summary line per mismatch, as printed
+    std::vector<FrameMismatch> frames;  ///< the frames that differ
+    bool checked = false;               ///< false: --only left it out
     bool matches() const { return lines.empty(); }
 };
 

@@ -21,7 +21,9 @@ bool stateIsFinite(const CaptureState& state) {
         }
     }
     for (const JointState& joint : state.joints) {
-        if (!std::isfinite(joint.force) || !std::isfinite(joint.torque) || !std::isfinite(joint.error)) return false;
+        if (!std::isfinite(joint.force) || !std::isfinite(joint.torque) ||
+            !std::isfinite(joint.error))
+            return false;
     }
     for (const SoftBodyState& soft : state.softBodies) {
         if (!finite(soft.centre) || !std::isfinite(soft.volume)) return false;
@@ -56,7 +58,8 @@ CapturedRun runCapture(CaptureScene& scene, const CaptureSpec& spec, FrameRender
         CapturedFrame& captured = run.frames.emplace_back();
         captured.frame = frame;
         if (spec.state) captured.state = state;
-        if (spec.image) captured.image = renderer->render(scene.draw(), spec.image->width, spec.image->height);
+        if (spec.image)
+            captured.image = renderer->render(scene.draw(), spec.image->width, spec.image->height);
         ++next;
     }
     if (spec.state && !run.nonFinite) run.digest = digest.line();

@@ -20,11 +20,11 @@ struct CapturedFrame {
 };
 
 struct CapturedRun {
-    std::vector<CapturedFrame> frames;    ///< the listed frames reached, in order
-    std::string digest;                   ///< RunDigest's line; empty without `state`
-    RunMetrics metrics;                   ///< over frames 0 to the last reached
-    std::optional<long long> nonFinite;   ///< the frame the state turned non-finite at
-    int interrupted = 0;                  ///< the signal that stopped the run, or 0
+    std::vector<CapturedFrame> frames;   ///< the listed frames reached, in order
+    std::string digest;                  ///< RunDigest's line; empty without `state`
+    RunMetrics metrics;                  ///< over frames 0 to the last reached
+    std::optional<long long> nonFinite;  ///< the frame the state turned non-finite at
+    int interrupted = 0;                 ///< the signal that stopped the run, or 0
 };
 
 /// Runs `spec` on `scene` (fresh, at frame 0). `renderer` must be given when the capture has an

@@ -29,7 +29,8 @@ StateCheck readStateCheck(const JsonAt& at) {
     for (const char* group : {"bodies", "joints"}) {
         if (!at.has(group)) continue;
         const JsonAt named = at.member(group);
-        if (!named.value().is_object()) named.fail("expected an object of names, each {\"abs\": A, \"rel\": R}");
+        if (!named.value().is_object())
+            named.fail("expected an object of names, each {\"abs\": A, \"rel\": R}");
         auto& target = std::string_view(group) == "bodies" ? check.bodies : check.joints;
         for (const auto& [name, value] : named.value().items()) {
             const JsonAt one = named.member(name);
@@ -42,7 +43,8 @@ StateCheck readStateCheck(const JsonAt& at) {
 
 Vec3 readVector(const JsonAt& at) {
     at.requireArray(3);
-    return {at.element(0).number(-kMaxCoordinate, kMaxCoordinate), at.element(1).number(-kMaxCoordinate, kMaxCoordinate),
+    return {at.element(0).number(-kMaxCoordinate, kMaxCoordinate),
+            at.element(1).number(-kMaxCoordinate, kMaxCoordinate),
             at.element(2).number(-kMaxCoordinate, kMaxCoordinate)};
 }
 
@@ -67,7 +69,8 @@ ImageCheck readImageCheck(const JsonAt& at) {
         }
         check.camera = sceneCamera;
     }
-    if (at.has("pixel_tolerance")) check.pixelTolerance = static_cast<int>(at.member("pixel_tolerance").integer(0, 255));
+    if (at.has("pixel_tolerance"))
+        check.pixelTolerance = static_cast<int>(at.member("pixel_tolerance").integer(0, 255));
     if (at.has("max_fraction")) check.maxFraction = at.member("max_fraction").number(0.0, 1.0);
     return check;
 }
@@ -75,9 +78,12 @@ ImageCheck readImageCheck(const JsonAt& at) {
 MetricBounds readMetrics(const JsonAt& at) {
     at.requireObject({"max_joint_error", "energy_drift", "penetration"});
     MetricBounds bounds;
-    if (at.has("max_joint_error")) bounds.maxJointError = at.member("max_joint_error").number(0.0, kMaxTolerance);
-    if (at.has("energy_drift")) bounds.energyDrift = at.member("energy_drift").number(0.0, kMaxTolerance);
-    if (at.has("penetration")) bounds.penetration = at.member("penetration").number(0.0, kMaxTolerance);
+    if (at.has("max_joint_error"))
+        bounds.maxJointError = at.member("max_joint_error").number(0.0, kMaxTolerance);
+    if (at.has("energy_drift"))
+        bounds.energyDrift = at.member("energy_drift").number(0.0, kMaxTolerance);
+    if (at.has("penetration"))
+        bounds.penetration = at.member("penetration").number(0.0, kMaxTolerance);
     return bounds;
 }
 
@@ -86,26 +92,31 @@ void checkName(const JsonAt& at, const std::string& name) {
     if (name.empty() || name.size() > 100) at.fail("must be 1 to 100 characters");
     if (name.front() == '.') at.fail("must not start with '.' (it names a folder)");
     for (const char c : name) {
-        const bool allowed = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' ||
-                             c == '-' || c == '.';
-        if (!allowed) at.fail("may hold only letters, digits, '_', '-' and '.' (it names a folder), got " + jsonQuoted(name));
+        const bool allowed = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') ||
+                             (c >= '0' && c <= '9') || c == '_' || c == '-' || c == '.';
+        if (!allowed)
+            at.fail("may hold only letters, digits, '_', '-' and '.' (it names a folder), got " +
+                    jsonQuoted(name));
     }
 }
 
-std::string resolveScenePath(const JsonAt& at, const std::string& scene, const std::string& scriptFile) {
+std::string resolveScenePath(const JsonAt& at, const std::string& scene,
+                             const std::string& scriptFile) {
     namespace fs = std::filesystem;
     if (scene.empty()) at.fail("must name a built-in scene or a scene file");
     if (findBuiltinScene(scene) != nullptr) return scene;
     const fs::path path = fs::path(scriptFile).parent_path() / scene;
     std::error_code error;
     if (!fs::is_regular_file(path, error)) {
-        at.fail("no built-in scene " + jsonQuoted(scene) + " (see `substep scenes`) and no file " + path.string());
+        at.fail("no built-in scene " + jsonQuoted(scene) + " (see `substep scenes`) and no file " +
+                path.string());
     }
     return path.string();
 }
 
 CaptureSpec readCapture(const JsonAt& at, const std::string& scriptFile) {
-    at.requireObject({"name", "scene", "set", "substeps", "iterations", "dt", "frames", "state", "image", "metrics"});
+    at.requireObject({"name", "scene", "set", "substeps", "iterations", "dt", "frames", "state",
+                      "image", "metrics"});
     CaptureSpec spec;
     spec.path = at.path();
     spec.name = at.member("name").string();
@@ -114,15 +125,19 @@ CaptureSpec readCapture(const JsonAt& at, const std::string& scriptFile) {
     spec.scenePath = resolveScenePath(at.member("scene"), spec.scene, scriptFile);
     if (at.has("set")) {
         const JsonAt knobs = at.member("set");
-        if (!knobs.value().is_object()) knobs.fail("expected an object of knob values, e.g. {\"velocity_pass\": 0}");
+        if (!knobs.value().is_object())
+            knobs.fail("expected an object of knob values, e.g. {\"velocity_pass\": 0}");
         for (const auto& [name, value] : knobs.value().items()) {
             const JsonAt knob = knobs.member(name);
-            const double number = knob.value().is_boolean() ? (knob.boolean() ? 1.0 : 0.0) : knob.number(-1e300, 1e300);
+            const double number = knob.value().is_boolean() ? (knob.boolean() ? 1.0 : 0.0)
+                                                            : knob.number(-1e300, 1e300);
             spec.knobs.emplace_back(name, number);
         }
     }
-    if (at.has("substeps")) spec.substeps = static_cast<int>(at.member("substeps").integer(1, kMaxSubsteps));
-    if (at.has("iterations")) spec.iterations = static_cast<int>(at.member("iterations").integer(1, kMaxIterations));
+    if (at.has("substeps"))
+        spec.substeps = static_cast<int>(at.member("substeps").integer(1, kMaxSubsteps));
+    if (at.has("iterations"))
+        spec.iterations = static_cast<int>(at.member("iterations").integer(1, kMaxIterations));
     if (at.has("dt")) {
         const JsonAt dt = at.member("dt");
         spec.dt = dt.number(0.0, 1.0);
@@ -137,14 +152,16 @@ CaptureSpec readCapture(const JsonAt& at, const std::string& scriptFile) {
         const JsonAt frame = frames.element(i);
         const long long number = frame.integer(0, kMaxCaptureFrame);
         if (!spec.frames.empty() && number <= spec.frames.back()) {
-            frame.fail("frames must increase, got " + std::to_string(number) + " after " + std::to_string(spec.frames.back()));
+            frame.fail("frames must increase, got " + std::to_string(number) + " after " +
+                       std::to_string(spec.frames.back()));
         }
         spec.frames.push_back(number);
     }
     if (at.has("state")) spec.state = readStateCheck(at.member("state"));
     if (at.has("image")) spec.image = readImageCheck(at.member("image"));
     if (at.has("metrics")) spec.metrics = readMetrics(at.member("metrics"));
-    if (!spec.state && !spec.image) at.fail("needs \"state\", \"image\" or both: there is nothing to compare");
+    if (!spec.state && !spec.image)
+        at.fail("needs \"state\", \"image\" or both: there is nothing to compare");
     return spec;
 }
 
@@ -173,7 +190,8 @@ CaptureScript parseCaptureScriptText(std::string_view text, const std::string& f
     const nlohmann::ordered_json document = parseJson(text, file);
     const JsonAt root(document, "", file);
     root.requireObject({"substep_capture", "description", "captures"});
-    if (!root.has("substep_capture")) root.fail("missing \"substep_capture\": 1 (is this a capture script?)");
+    if (!root.has("substep_capture"))
+        root.fail("missing \"substep_capture\": 1 (is this a capture script?)");
     root.member("substep_capture").integer(1, 1);
     if (root.has("description")) root.member("description").string();
     const JsonAt captures = root.member("captures");
@@ -185,7 +203,8 @@ CaptureScript parseCaptureScriptText(std::string_view text, const std::string& f
     for (std::size_t i = 0; i < captures.size(); ++i) {
         CaptureSpec spec = readCapture(captures.element(i), file);
         if (!names.insert(spec.name).second) {
-            captures.element(i).member("name").fail("duplicate capture name " + jsonQuoted(spec.name));
+            captures.element(i).member("name").fail("duplicate capture name " +
+                                                    jsonQuoted(spec.name));
         }
         script.captures.push_back(std::move(spec));
     }

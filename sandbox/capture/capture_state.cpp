@@ -25,7 +25,8 @@ namespace {
 std::string knobNames(const SceneScript* script) {
     if (script == nullptr || script->knobs().empty()) return "none";
     std::string list;
-    for (const SceneKnob& knob : script->knobs()) list += (list.empty() ? "" : ", ") + knob.name;
+    for (const SceneKnob& knob : script->knobs())
+        list += (list.empty() ? "" : ", ") + knob.name;
     return list;
 }
 
@@ -38,7 +39,8 @@ bool hasKnob(const SceneScript* script, const std::string& name) {
 
 }  // namespace
 
-CaptureScene::CaptureScene(const CaptureSpec& spec, const std::string& scriptFile) : impl_(std::make_unique<Impl>()) {
+CaptureScene::CaptureScene(const CaptureSpec& spec, const std::string& scriptFile)
+    : impl_(std::make_unique<Impl>()) {
     Impl& impl = *impl_;
     impl.source = resolveScene(spec.scenePath);
     SceneDescription description = impl.source.description;
@@ -53,8 +55,9 @@ CaptureScene::CaptureScene(const CaptureSpec& spec, const std::string& scriptFil
     std::vector<KnobSetting> knobs;
     for (const auto& [name, value] : spec.knobs) {
         if (!hasKnob(live.script(), name)) {
-            throw InputError(scriptFile, spec.path + ".set." + name,
-                             spec.scene + " has no such knob (its knobs: " + knobNames(live.script()) + ")");
+            throw InputError(
+                scriptFile, spec.path + ".set." + name,
+                spec.scene + " has no such knob (its knobs: " + knobNames(live.script()) + ")");
         }
         knobs.push_back({name, value});
     }
@@ -67,13 +70,17 @@ CaptureScene::CaptureScene(const CaptureSpec& spec, const std::string& scriptFil
 
     const SceneInstance& instance = live.instance();
     impl.bodyNames.resize(live.world().bodies().size());
-    for (const auto& [name, id] : instance.namedBodies) impl.bodyNames[id.index] = name;
+    for (const auto& [name, id] : instance.namedBodies)
+        impl.bodyNames[id.index] = name;
     impl.jointNames.resize(live.world().joints().size());
-    for (const auto& [name, id] : instance.namedJoints) impl.jointNames[id.index] = name;
-    if (spec.metrics.any()) impl.recorder.emplace(instance, errorReference(impl.source.entry, live.world()));
+    for (const auto& [name, id] : instance.namedJoints)
+        impl.jointNames[id.index] = name;
+    if (spec.metrics.any())
+        impl.recorder.emplace(instance, errorReference(impl.source.entry, live.world()));
     if (spec.image) {
-        impl.drawing.emplace(live.description(), live.world(),
-                             static_cast<float>(spec.image->width) / static_cast<float>(spec.image->height));
+        impl.drawing.emplace(
+            live.description(), live.world(),
+            static_cast<float>(spec.image->width) / static_cast<float>(spec.image->height));
     }
 }
 

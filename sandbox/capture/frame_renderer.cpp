@@ -23,7 +23,8 @@ render::Image FrameRenderer::render(const render::RenderScene& scene, int width,
     Impl& impl = *impl_;
     if (!impl.target || impl.width != width || impl.height != height) {
         impl.target.reset();
-        impl.target = std::make_unique<render::OffscreenTarget>(impl.gl, render::PixelSize{width, height});
+        impl.target =
+            std::make_unique<render::OffscreenTarget>(impl.gl, render::PixelSize{width, height});
         impl.width = width;
         impl.height = height;
     }

@@ -6,10 +6,10 @@
 #include "render/png_codec.h"
 
 #include <algorithm>
-#include <optional>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 
 namespace substep::capture {
@@ -41,9 +41,12 @@ std::string updateHint(const std::string& scriptFile) {
 
 const char* goldenChangeName(GoldenChange change) {
     switch (change) {
-    case GoldenChange::Unchanged: return "unchanged";
-    case GoldenChange::Added: return "added";
-    case GoldenChange::Changed: return "changed";
+        case GoldenChange::Unchanged:
+            return "unchanged";
+        case GoldenChange::Added:
+            return "added";
+        case GoldenChange::Changed:
+            return "changed";
     }
     return "";
 }
@@ -62,7 +65,8 @@ std::string imageFileName(long long frame) {
 
 void requireGolden(const std::string& path, const std::string& scriptFile) {
     std::error_code error;
-    if (!fs::is_regular_file(path, error)) throw InputError(path, "", "no such golden; " + updateHint(scriptFile));
+    if (!fs::is_regular_file(path, error))
+        throw InputError(path, "", "no such golden; " + updateHint(scriptFile));
 }
 
 CaptureState readGoldenState(const std::string& path, const std::string& scriptFile) {
@@ -70,8 +74,8 @@ CaptureState readGoldenState(const std::string& path, const std::string& scriptF
     try {
         return parseStateFile(readTextFile(path), path);
     } catch (const InputError& error) {
-        throw std::runtime_error(std::string(error.what()) + " (a damaged golden? " + updateHint(scriptFile) +
-                                 " again)");
+        throw std::runtime_error(std::string(error.what()) + " (a damaged golden? " +
+                                 updateHint(scriptFile) + " again)");
     }
 }
 
@@ -82,17 +86,20 @@ render::Image readGoldenImage(const std::string& path, const std::string& script
     try {
         return render::decodePng(*bytes);
     } catch (const std::exception& error) {
-        throw InputError(path, "", std::string("cannot be decoded (") + error.what() + "; a damaged golden? " +
-                                       updateHint(scriptFile) + " again)");
+        throw InputError(path, "",
+                         std::string("cannot be decoded (") + error.what() +
+                             "; a damaged golden? " + updateHint(scriptFile) + " again)");
     }
 }
 
 std::string readGoldenDigest(const std::string& path, const std::string& scriptFile) {
     requireGolden(path, scriptFile);
     const std::string text = readTextFile(path);
-    if (text.rfind("fnv1a64 ", 0) != 0 || text.back() != '\n' || std::count(text.begin(), text.end(), '\n') != 1) {
-        throw InputError(path, "", "not a digest line `fnv1a64 HEX frames A-B` (a damaged golden? " +
-                                       updateHint(scriptFile) + " again)");
+    if (text.rfind("fnv1a64 ", 0) != 0 || text.back() != '\n' ||
+        std::count(text.begin(), text.end(), '\n') != 1) {
+        throw InputError(path, "",
+                         "not a digest line `fnv1a64 HEX frames A-B` (a damaged golden? " +
+                             updateHint(scriptFile) + " again)");
     }
     return text;
 }
@@ -108,7 +115,8 @@ GoldenChange writeGolden(const std::string& path, const std::string& bytes) {
     return existing ? GoldenChange::Changed : GoldenChange::Added;
 }
 
-std::vector<std::string> removeStaleGoldens(const std::string& folder, const std::vector<std::string>& keep) {
+std::vector<std::string> removeStaleGoldens(const std::string& folder,
+                                            const std::vector<std::string>& keep) {
     std::vector<std::string> removed;
     std::error_code error;
     if (!fs::is_directory(folder, error)) return removed;
@@ -117,9 +125,10 @@ std::vector<std::string> removeStaleGoldens(const std::string& folder, const std
         if (!entry.is_regular_file()) continue;
         const std::string name = entry.path().filename().string();
         const bool golden = name == kDigestFileName ||
-                            (name.rfind("frame_", 0) == 0 &&
-                             (entry.path().extension() == ".json" || entry.path().extension() == ".png"));
-        if (golden && std::find(keep.begin(), keep.end(), name) == keep.end()) candidates.push_back(entry.path());
+                            (name.rfind("frame_", 0) == 0 && (entry.path().extension() == ".json" ||
+                                                              entry.path().extension() == ".png"));
+        if (golden && std::find(keep.begin(), keep.end(), name) == keep.end())
+            candidates.push_back(entry.path());
     }
     std::sort(candidates.begin(), candidates.end());
     for (const fs::path& path : candidates) {

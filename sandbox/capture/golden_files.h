@@ -37,6 +37,7 @@ GoldenChange writeGolden(const std::string& path, const std::string& bytes);
 
 /// Removes the files in `folder` that look like goldens (frame_*.json, frame_*.png, digest.txt)
 /// but are not in `keep` (file names); returns the paths removed.
-std::vector<std::string> removeStaleGoldens(const std::string& folder, const std::vector<std::string>& keep);
+std::vector<std::string> removeStaleGoldens(const std::string& folder,
+                                            const std::vector<std::string>& keep);
 
 }  // namespace substep::capture

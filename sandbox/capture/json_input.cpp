@@ -28,31 +28,32 @@ class PathTracker {
   public:
     explicit PathTracker(const std::string& file) : file_(file) {}
 
-    bool onEvent(nlohmann::ordered_json::parse_event_t event, const nlohmann::ordered_json& parsed) {
+    bool onEvent(nlohmann::ordered_json::parse_event_t event,
+                 const nlohmann::ordered_json& parsed) {
         using Event = nlohmann::ordered_json::parse_event_t;
         switch (event) {
-        case Event::object_start:
-        case Event::array_start: {
-            const std::string path = childPath();
-            frames_.push_back({.object = event == Event::object_start, .path = path});
-            break;
-        }
-        case Event::object_end:
-        case Event::array_end:
-            frames_.pop_back();
-            break;
-        case Event::key: {
-            Frame& frame = frames_.back();
-            frame.key = parsed.get<std::string>();
-            if (!frame.keys.insert(frame.key).second) {
-                throw InputError(file_, joinPath(frame.path, frame.key),
-                                 "duplicate key (it is already given earlier in this object)");
+            case Event::object_start:
+            case Event::array_start: {
+                const std::string path = childPath();
+                frames_.push_back({.object = event == Event::object_start, .path = path});
+                break;
             }
-            break;
-        }
-        case Event::value:
-            childPath();
-            break;
+            case Event::object_end:
+            case Event::array_end:
+                frames_.pop_back();
+                break;
+            case Event::key: {
+                Frame& frame = frames_.back();
+                frame.key = parsed.get<std::string>();
+                if (!frame.keys.insert(frame.key).second) {
+                    throw InputError(file_, joinPath(frame.path, frame.key),
+                                     "duplicate key (it is already given earlier in this object)");
+                }
+                break;
+            }
+            case Event::value:
+                childPath();
+                break;
         }
         return true;
     }
@@ -125,7 +126,8 @@ nlohmann::ordered_json parseJson(std::string_view text, const std::string& file)
     } catch (const nlohmann::ordered_json::parse_error& error) {
         // Keep nlohmann's description without its "[json.exception...] " prefix and location.
         std::string detail = error.what();
-        if (const auto dash = detail.find(": "); dash != std::string::npos) detail = detail.substr(dash + 2);
+        if (const auto dash = detail.find(": "); dash != std::string::npos)
+            detail = detail.substr(dash + 2);
         if (detail.size() > 160) detail = detail.substr(0, 157) + "...";
         const std::string where = lineAndColumn(text, error.byte > 0 ? error.byte - 1 : 0);
         const std::string path = tracker.currentPath();
@@ -136,7 +138,8 @@ nlohmann::ordered_json parseJson(std::string_view text, const std::string& file)
     } catch (const nlohmann::ordered_json::exception& error) {
         // 406: a number too large for a double (1e999); the tracker is at its key or element.
         std::string detail = error.what();
-        if (const auto bracket = detail.find("] "); bracket != std::string::npos) detail = detail.substr(bracket + 2);
+        if (const auto bracket = detail.find("] "); bracket != std::string::npos)
+            detail = detail.substr(bracket + 2);
         throw InputError(file, tracker.currentPath(),
                          (error.id == 406 ? "number out of range: " : "not valid JSON: ") + detail);
     }
@@ -150,11 +153,14 @@ void JsonAt::requireObject(std::initializer_list<std::string_view> allowed) cons
     if (!value_.is_object()) fail("expected an object, got " + typeName(value_));
     for (const auto& [key, member] : value_.items()) {
         bool known = false;
-        for (const std::string_view name : allowed) known = known || name == key;
+        for (const std::string_view name : allowed)
+            known = known || name == key;
         if (!known) {
             std::string list;
-            for (const std::string_view name : allowed) list += (list.empty() ? "" : ", ") + std::string(name);
-            throw InputError(file_, joinPath(path_, key), "unknown key (expected one of: " + list + ")");
+            for (const std::string_view name : allowed)
+                list += (list.empty() ? "" : ", ") + std::string(name);
+            throw InputError(file_, joinPath(path_, key),
+                             "unknown key (expected one of: " + list + ")");
         }
     }
 }
@@ -162,7 +168,8 @@ void JsonAt::requireObject(std::initializer_list<std::string_view> allowed) cons
 void JsonAt::requireArray(long long size) const {
     if (!value_.is_array()) fail("expected an array, got " + typeName(value_));
     if (size >= 0 && static_cast<long long>(value_.size()) != size) {
-        fail("expected " + std::to_string(size) + " elements, got " + std::to_string(value_.size()));
+        fail("expected " + std::to_string(size) + " elements, got " +
+             std::to_string(value_.size()));
     }
 }
 
@@ -193,13 +200,17 @@ double JsonAt::number(double lowest, double highest) const {
 }
 
 long long JsonAt::integer(long long lowest, long long highest) const {
-    if (!value_.is_number_integer()) fail("expected a whole number, got " + (value_.is_number() ? value_.dump() : typeName(value_)));
+    if (!value_.is_number_integer())
+        fail("expected a whole number, got " +
+             (value_.is_number() ? value_.dump() : typeName(value_)));
     const bool negative = value_.is_number_unsigned() ? false : value_.get<long long>() < 0;
-    const bool tooLarge = value_.is_number_unsigned() && value_.get<unsigned long long>() > static_cast<unsigned long long>(highest);
+    const bool tooLarge =
+        value_.is_number_unsigned() &&
+        value_.get<unsigned long long>() > static_cast<unsigned long long>(highest);
     const long long value = tooLarge ? highest : value_.get<long long>();
     if (tooLarge || value < lowest || value > highest || (negative && lowest >= 0)) {
-        fail("must be a whole number from " + std::to_string(lowest) + " to " + std::to_string(highest) + ", got " +
-             value_.dump());
+        fail("must be a whole number from " + std::to_string(lowest) + " to " +
+             std::to_string(highest) + ", got " + value_.dump());
     }
     return value;
 }

@@ -19,10 +19,14 @@ void RunDigest::add(const CaptureState& state) {
     lastFrame_ = state.frame;
     addValue(state.time);
     for (const BodyState& body : state.bodies) {
-        for (const double value : body.position) addValue(value);
-        for (const double value : body.orientation) addValue(value);
-        for (const double value : body.velocity) addValue(value);
-        for (const double value : body.angularVelocity) addValue(value);
+        for (const double value : body.position)
+            addValue(value);
+        for (const double value : body.orientation)
+            addValue(value);
+        for (const double value : body.velocity)
+            addValue(value);
+        for (const double value : body.angularVelocity)
+            addValue(value);
     }
     for (const JointState& joint : state.joints) {
         addValue(joint.force);
@@ -30,15 +34,16 @@ void RunDigest::add(const CaptureState& state) {
         addValue(joint.error);
     }
     for (const SoftBodyState& soft : state.softBodies) {
-        for (const double value : soft.centre) addValue(value);
+        for (const double value : soft.centre)
+            addValue(value);
         addValue(soft.volume);
     }
 }
 
 std::string RunDigest::line() const {
     char text[96];
-    std::snprintf(text, sizeof text, "fnv1a64 %016llx frames %lld-%lld\n", static_cast<unsigned long long>(hash_),
-                  firstFrame_, lastFrame_);
+    std::snprintf(text, sizeof text, "fnv1a64 %016llx frames %lld-%lld\n",
+                  static_cast<unsigned long long>(hash_), firstFrame_, lastFrame_);
     return text;
 }
 

@@ -18,20 +18,23 @@ class Comparer {
         const double difference = std::abs(fresh - golden);
         // Written so that a NaN on either side counts as a difference.
         if (difference <= allowed) return;
-        const StateDifference found{.what = what, .golden = golden, .fresh = fresh, .allowed = allowed};
+        const StateDifference found{
+            .what = what, .golden = golden, .fresh = fresh, .allowed = allowed};
         const double excess = std::isnan(difference) ? INFINITY : difference - allowed;
         if (result_.outOfTolerance == 0 || excess > worstExcess_) {
             result_.worst = found;
             worstExcess_ = excess;
         }
         ++result_.outOfTolerance;
-        if (result_.differences.size() < kMaxListedDifferences) result_.differences.push_back(found);
+        if (result_.differences.size() < kMaxListedDifferences)
+            result_.differences.push_back(found);
     }
 
     template <std::size_t N>
-    void values(const std::string& what, const std::array<double, N>& golden, const std::array<double, N>& fresh,
-                const Tolerance& tolerance) {
-        for (std::size_t i = 0; i < N; ++i) value(what + "[" + std::to_string(i) + "]", golden[i], fresh[i], tolerance);
+    void values(const std::string& what, const std::array<double, N>& golden,
+                const std::array<double, N>& fresh, const Tolerance& tolerance) {
+        for (std::size_t i = 0; i < N; ++i)
+            value(what + "[" + std::to_string(i) + "]", golden[i], fresh[i], tolerance);
     }
 
   private:
@@ -39,8 +42,8 @@ class Comparer {
     double worstExcess_ = 0.0;
 };
 
-const Tolerance& toleranceFor(const std::map<std::string, Tolerance>& named, const std::string& name,
-                              const Tolerance& fallback) {
+const Tolerance& toleranceFor(const std::map<std::string, Tolerance>& named,
+                              const std::string& name, const Tolerance& fallback) {
     if (name.empty()) return fallback;
     const auto found = named.find(name);
     return found == named.end() ? fallback : found->second;
@@ -48,15 +51,16 @@ const Tolerance& toleranceFor(const std::map<std::string, Tolerance>& named, con
 
 /// "" when both lists name the same items in the same order, else what differs first.
 template <typename T>
-std::string structureDifference(const char* kind, const std::vector<T>& golden, const std::vector<T>& fresh) {
+std::string structureDifference(const char* kind, const std::vector<T>& golden,
+                                const std::vector<T>& fresh) {
     if (golden.size() != fresh.size()) {
-        return std::string("the scene has ") + std::to_string(fresh.size()) + " " + kind + ", the golden " +
-               std::to_string(golden.size());
+        return std::string("the scene has ") + std::to_string(fresh.size()) + " " + kind +
+               ", the golden " + std::to_string(golden.size());
     }
     for (std::size_t i = 0; i < golden.size(); ++i) {
         if (golden[i].name != fresh[i].name) {
-            return std::string(kind) + "[" + std::to_string(i) + "] is named " + jsonQuoted(fresh[i].name) +
-                   ", the golden's " + jsonQuoted(golden[i].name);
+            return std::string(kind) + "[" + std::to_string(i) + "] is named " +
+                   jsonQuoted(fresh[i].name) + ", the golden's " + jsonQuoted(golden[i].name);
         }
     }
     return "";
@@ -71,11 +75,13 @@ std::string label(const char* kind, std::size_t index, const std::string& name) 
 
 }  // namespace
 
-StateComparison compareStates(const CaptureState& golden, const CaptureState& fresh, const StateCheck& check) {
+StateComparison compareStates(const CaptureState& golden, const CaptureState& fresh,
+                              const StateCheck& check) {
     StateComparison result;
-    for (const std::string& difference : {structureDifference("bodies", golden.bodies, fresh.bodies),
-                                          structureDifference("joints", golden.joints, fresh.joints),
-                                          structureDifference("soft_bodies", golden.softBodies, fresh.softBodies)}) {
+    for (const std::string& difference :
+         {structureDifference("bodies", golden.bodies, fresh.bodies),
+          structureDifference("joints", golden.joints, fresh.joints),
+          structureDifference("soft_bodies", golden.softBodies, fresh.softBodies)}) {
         if (result.structure.empty()) result.structure = difference;
     }
     if (!result.structure.empty()) return result;

@@ -34,6 +34,7 @@ struct StateComparison {
 inline constexpr std::size_t kMaxListedDifferences = 500;
 
 /// Compares `fresh` with `golden` under `check`'s tolerances.
-StateComparison compareStates(const CaptureState& golden, const CaptureState& fresh, const StateCheck& check);
+StateComparison compareStates(const CaptureState& golden, const CaptureState& fresh,
+                              const StateCheck& check);
 
 }  // namespace substep::capture

@@ -32,7 +32,8 @@ template <std::size_t N>
 std::array<double, N> readArray(const JsonAt& at) {
     at.requireArray(N);
     std::array<double, N> values{};
-    for (std::size_t i = 0; i < N; ++i) values[i] = at.element(i).number(-kLargest, kLargest);
+    for (std::size_t i = 0; i < N; ++i)
+        values[i] = at.element(i).number(-kLargest, kLargest);
     return values;
 }
 

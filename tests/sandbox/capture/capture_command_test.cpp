@@ -52,7 +52,8 @@ class CaptureCommand : public CommandTest {
     std::map<std::string, std::string> snapshot(const std::string& folder) const {
         std::map<std::string, std::string> files;
         for (const auto& entry : fs::recursive_directory_iterator(work() / folder)) {
-            if (entry.is_regular_file()) files[fs::relative(entry.path(), work()).string()] = readFile(entry.path());
+            if (entry.is_regular_file())
+                files[fs::relative(entry.path(), work()).string()] = readFile(entry.path());
         }
         return files;
     }
@@ -74,8 +75,10 @@ class CaptureCommand : public CommandTest {
 TEST_F(CaptureCommand, UpdateThenCompareMatchesAndUpdateTwiceChangesNothing) {
     Result result = substep("capture s.json --update");
     ASSERT_EQ(result.exitCode, 0) << result.out << result.err;
-    EXPECT_NE(result.out.find("added     s.golden/drop/frame_00030.json"), std::string::npos) << result.out;
-    EXPECT_NE(result.out.find("7 added, 0 changed, 0 unchanged, 0 removed"), std::string::npos) << result.out;
+    EXPECT_NE(result.out.find("added     s.golden/drop/frame_00030.json"), std::string::npos)
+        << result.out;
+    EXPECT_NE(result.out.find("7 added, 0 changed, 0 unchanged, 0 removed"), std::string::npos)
+        << result.out;
     const std::map<std::string, std::string> first = snapshot("s.golden");
     EXPECT_EQ(first.size(), 7u);  // drop: 2 states, 2 images, digest; cradle: 1 state, digest
     EXPECT_TRUE(first.count("s.golden/drop/frame_00000.png"));
@@ -84,7 +87,8 @@ TEST_F(CaptureCommand, UpdateThenCompareMatchesAndUpdateTwiceChangesNothing) {
 
     result = substep("capture s.json --update");
     ASSERT_EQ(result.exitCode, 0) << result.out << result.err;
-    EXPECT_NE(result.out.find("0 added, 0 changed, 7 unchanged, 0 removed"), std::string::npos) << result.out;
+    EXPECT_NE(result.out.find("0 added, 0 changed, 7 unchanged, 0 removed"), std::string::npos)
+        << result.out;
     EXPECT_EQ(snapshot("s.golden"), first);
     EXPECT_EQ(fs::last_write_time(work() / "s.golden/drop/frame_00030.png"), modified);
 
@@ -129,13 +133,16 @@ TEST_F(CaptureCommand, ChangedGravityIsAMismatchNamingCaptureFrameAndBody) {
     EXPECT_NE(result.out.find("drop frame 30: state: "), std::string::npos) << result.out;
     // Six values move: the ball's and the box's height and vertical speed, the spring's force and
     // stretch; the worst is the force, off by 0.19 of m g (its share of the lighter gravity).
-    EXPECT_NE(result.out.find("drop frame 30: state: 6 of 30 values out of tolerance; worst joints[0] \"spring\".force: "
+    EXPECT_NE(result.out.find("drop frame 30: state: 6 of 30 values out of tolerance; worst "
+                              "joints[0] \"spring\".force: "
                               "golden 16.7"),
               std::string::npos)
         << result.out;
     EXPECT_NE(result.out.find("drop frame 30: image: "), std::string::npos) << result.out;
-    EXPECT_EQ(result.out.find("frame 0:"), std::string::npos) << "frame 0 is the same state: " << result.out;
-    EXPECT_NE(result.out.find("substep capture s.json: 1 of 2 captures differ"), std::string::npos) << result.out;
+    EXPECT_EQ(result.out.find("frame 0:"), std::string::npos)
+        << "frame 0 is the same state: " << result.out;
+    EXPECT_NE(result.out.find("substep capture s.json: 1 of 2 captures differ"), std::string::npos)
+        << result.out;
 }
 
 TEST_F(CaptureCommand, ChangedKnobIsAMismatch) {
@@ -155,9 +162,11 @@ TEST_F(CaptureCommand, OnePixelOfAnotherColourIsAMismatchUnlessTolerated) {
     std::ofstream(png, std::ios::binary) << render::encodePng(image);
     Result result = substep("capture s.json");
     EXPECT_EQ(result.exitCode, 1) << result.out << result.err;
-    EXPECT_NE(result.out.find("drop frame 0: image: 1 of 19200 pixels (0.005208%) differ by more than 0 (allowed "
-                              "0%); largest channel difference 64"),
-              std::string::npos)
+    EXPECT_NE(
+        result.out.find(
+            "drop frame 0: image: 1 of 19200 pixels (0.005208%) differ by more than 0 (allowed "
+            "0%); largest channel difference 64"),
+        std::string::npos)
         << result.out;
     EXPECT_EQ(result.out.find("state"), std::string::npos) << result.out;
 
@@ -176,7 +185,9 @@ TEST_F(CaptureCommand, TheReportShowsTheImagesAndTheStateDifferences) {
     EXPECT_NE(result.out.find("report: rep/index.html"), std::string::npos) << result.out;
     const std::string html = read("rep/index.html");
     EXPECT_NE(html.find("drop frame 30: state: "), std::string::npos);
-    EXPECT_NE(html.find("<td>bodies[0] &quot;ball&quot;.velocity[1]</td><td>-5.0000000000"), std::string::npos) << html;
+    EXPECT_NE(html.find("<td>bodies[0] &quot;ball&quot;.velocity[1]</td><td>-5.0000000000"),
+              std::string::npos)
+        << html;
     EXPECT_NE(html.find("<td>joints[0] &quot;spring&quot;.force</td>"), std::string::npos) << html;
     for (const char* kind : {"golden", "new", "diff"}) {
         const std::string name = std::string("drop/frame_00030_") + kind + ".png";
@@ -186,7 +197,8 @@ TEST_F(CaptureCommand, TheReportShowsTheImagesAndTheStateDifferences) {
         EXPECT_EQ(image.height, 120);
     }
     EXPECT_NE(html.find("cradle</a> (cradle): <span class=ok>matches"), std::string::npos);
-    // The golden image in the report is the golden's bytes decoded and encoded again: the same picture.
+    // The golden image in the report is the golden's bytes decoded and encoded again: the same
+    // picture.
     EXPECT_EQ(render::decodePng(read("rep/drop/frame_00030_golden.png")).rgba,
               render::decodePng(read("s.golden/drop/frame_00030.png")).rgba);
 }
@@ -195,7 +207,8 @@ TEST_F(CaptureCommand, DamagedOrMissingGoldensAreBadInputThatSaysWhatToDo) {
     Result result = substep("capture s.json --report rep");
     EXPECT_EQ(result.exitCode, 2);
     EXPECT_EQ(result.err,
-              "substep capture: s.golden/drop/frame_00000.json: no such golden; run `substep capture s.json --update` to "
+              "substep capture: s.golden/drop/frame_00000.json: no such golden; run `substep "
+              "capture s.json --update` to "
               "make it\n");
     EXPECT_FALSE(fs::exists(work() / "rep")) << "no report on bad input";
 
@@ -204,7 +217,10 @@ TEST_F(CaptureCommand, DamagedOrMissingGoldensAreBadInputThatSaysWhatToDo) {
     write("s.golden/drop/frame_00030.json", state.substr(0, state.size() / 2));
     result = substep("capture s.json");
     EXPECT_EQ(result.exitCode, 2);
-    EXPECT_TRUE(std::regex_search(result.err, std::regex(R"re(^substep capture: s\.golden/drop/frame_00030\.json: [\w\[\]\.]+: not valid JSON at line \d+, column \d+: .*a damaged golden\? run `substep capture s\.json --update` to make it again\)\n$)re")))
+    EXPECT_TRUE(std::regex_search(
+        result.err,
+        std::regex(
+            R"re(^substep capture: s\.golden/drop/frame_00030\.json: [\w\[\]\.]+: not valid JSON at line \d+, column \d+: .*a damaged golden\? run `substep capture s\.json --update` to make it again\)\n$)re")))
         << result.err;
     EXPECT_EQ(result.out, "");
     write("s.golden/drop/frame_00030.json", state);
@@ -213,13 +229,16 @@ TEST_F(CaptureCommand, DamagedOrMissingGoldensAreBadInputThatSaysWhatToDo) {
     write("s.golden/drop/frame_00030.png", png.substr(0, 200));
     result = substep("capture s.json");
     EXPECT_EQ(result.exitCode, 2);
-    EXPECT_NE(result.err.find("s.golden/drop/frame_00030.png: cannot be decoded ("), std::string::npos) << result.err;
+    EXPECT_NE(result.err.find("s.golden/drop/frame_00030.png: cannot be decoded ("),
+              std::string::npos)
+        << result.err;
     write("s.golden/drop/frame_00030.png", png);
 
     write("s.golden/cradle/digest.txt", "fnv1a64\n");
     result = substep("capture s.json");
     EXPECT_EQ(result.exitCode, 2);
-    EXPECT_NE(result.err.find("s.golden/cradle/digest.txt: not a digest line"), std::string::npos) << result.err;
+    EXPECT_NE(result.err.find("s.golden/cradle/digest.txt: not a digest line"), std::string::npos)
+        << result.err;
 }
 
 TEST_F(CaptureCommand, ADigestThatDiffersIsAMismatchEvenWhenTheListedFramesMatch) {
@@ -229,7 +248,8 @@ TEST_F(CaptureCommand, ADigestThatDiffersIsAMismatchEvenWhenTheListedFramesMatch
     write("s.golden/cradle/digest.txt", digest);
     const Result result = substep("capture s.json");
     EXPECT_EQ(result.exitCode, 1) << result.out << result.err;
-    EXPECT_NE(result.out.find("cradle: digest: the run differs between the listed frames (golden " + digest.substr(0, digest.size() - 1)),
+    EXPECT_NE(result.out.find("cradle: digest: the run differs between the listed frames (golden " +
+                              digest.substr(0, digest.size() - 1)),
               std::string::npos)
         << result.out;
 }
@@ -238,19 +258,27 @@ TEST_F(CaptureCommand, ScriptErrorsNameTheFileAndTheJsonPath) {
     edit("s.json", "\"frames\": [0, 30]", "\"frames\": [30, 0]");
     Result result = substep("capture s.json");
     EXPECT_EQ(result.exitCode, 2);
-    EXPECT_EQ(result.err, "substep capture: s.json: captures[0].frames[1]: frames must increase, got 0 after 30\n");
+    EXPECT_EQ(
+        result.err,
+        "substep capture: s.json: captures[0].frames[1]: frames must increase, got 0 after 30\n");
 
     edit("s.json", "\"frames\": [30, 0]", "\"frames\": [0, 30]");
     edit("s.json", "\"velocity_pass\": 1", "\"velocity\": 1");
     result = substep("capture s.json --update");
     EXPECT_EQ(result.exitCode, 2);
-    EXPECT_EQ(result.err.rfind("substep capture: s.json: captures[1].set.velocity: cradle has no such knob (its knobs: ", 0), 0u)
+    EXPECT_EQ(result.err.rfind("substep capture: s.json: captures[1].set.velocity: cradle has no "
+                               "such knob (its knobs: ",
+                               0),
+              0u)
         << result.err;
-    EXPECT_FALSE(fs::exists(work() / "s.golden")) << "bad input writes no golden, not even the first capture's";
+    EXPECT_FALSE(fs::exists(work() / "s.golden"))
+        << "bad input writes no golden, not even the first capture's";
 
     result = substep("capture s.json --only nothing");
     EXPECT_EQ(result.exitCode, 2);
-    EXPECT_EQ(result.err, "substep capture: --only nothing: s.json has no capture of that name (its captures: drop, cradle)\n");
+    EXPECT_EQ(result.err,
+              "substep capture: --only nothing: s.json has no capture of that name (its captures: "
+              "drop, cradle)\n");
     EXPECT_EQ(substep("capture").exitCode, 2);
 }
 
@@ -264,13 +292,19 @@ TEST_F(CaptureCommand, OnlyRunsTheNamedCaptures) {
 }
 
 TEST_F(CaptureCommand, MetricBoundsHoldWhateverTheGoldensSay) {
-    // The spring stretches by m g α = 2 · 10 · 0.001 = 0.02 m as the box settles; it starts unstretched.
-    edit("s.json", "\"image\": {\"size\": [160, 120]}", "\"image\": {}, \"metrics\": {\"max_joint_error\": 0.01}");
+    // The spring stretches by m g α = 2 · 10 · 0.001 = 0.02 m as the box settles; it starts
+    // unstretched.
+    edit("s.json", "\"image\": {\"size\": [160, 120]}",
+         "\"image\": {}, \"metrics\": {\"max_joint_error\": 0.01}");
     Result result = substep("capture s.json --update");
     EXPECT_EQ(result.exitCode, 1) << result.out << result.err;
-    EXPECT_TRUE(std::regex_search(result.out, std::regex(R"re(drop: metrics: max_joint_error 0\.0[2-4]\d* m over frames 0-30 exceeds its bound 0\.01 m)re")))
+    EXPECT_TRUE(std::regex_search(
+        result.out,
+        std::regex(
+            R"re(drop: metrics: max_joint_error 0\.0[2-4]\d* m over frames 0-30 exceeds its bound 0\.01 m)re")))
         << result.out;
-    EXPECT_FALSE(fs::exists(work() / "s.golden/drop")) << "an unsound run's goldens are not written";
+    EXPECT_FALSE(fs::exists(work() / "s.golden/drop"))
+        << "an unsound run's goldens are not written";
     EXPECT_TRUE(fs::exists(work() / "s.golden/cradle/digest.txt"));
 
     edit("s.json", "\"max_joint_error\": 0.01", "\"max_joint_error\": 0.05");
@@ -283,11 +317,14 @@ TEST_F(CaptureCommand, UpdateRemovesGoldensTheScriptNoLongerMakes) {
     edit("s.json", "\"frames\": [0, 30]", "\"frames\": [30]");
     const Result result = substep("capture s.json --update");
     EXPECT_EQ(result.exitCode, 0) << result.err;
-    EXPECT_NE(result.out.find("removed   s.golden/drop/frame_00000.json\nremoved   s.golden/drop/frame_00000.png\n"),
-              std::string::npos)
+    EXPECT_NE(
+        result.out.find(
+            "removed   s.golden/drop/frame_00000.json\nremoved   s.golden/drop/frame_00000.png\n"),
+        std::string::npos)
         << result.out;
     // The digest covers frames 0 to 30 whichever are listed: unchanged.
-    EXPECT_NE(result.out.find("0 added, 0 changed, 5 unchanged, 2 removed"), std::string::npos) << result.out;
+    EXPECT_NE(result.out.find("0 added, 0 changed, 5 unchanged, 2 removed"), std::string::npos)
+        << result.out;
     EXPECT_FALSE(fs::exists(work() / "s.golden/drop/frame_00000.png"));
 }
 
@@ -295,9 +332,11 @@ TEST_F(CaptureCommand, UpdateRemovesGoldensTheScriptNoLongerMakes) {
 // (a stand-in for another compiler's rounding), which exact tolerances do not.
 TEST_F(CaptureCommand, PerBodyTolerancesAbsorbTheChaoticPendulasDivergence) {
     const fs::path assets = fs::path(SUBSTEP_SOURCE_DIR) / "assets/captures";
-    fs::copy(assets / "chaotic_pendula.golden", work() / "chaotic_pendula.golden", fs::copy_options::recursive);
+    fs::copy(assets / "chaotic_pendula.golden", work() / "chaotic_pendula.golden",
+             fs::copy_options::recursive);
     write("chaotic_pendula.json", readFile(assets / "chaotic_pendula.json"));
-    edit("chaotic_pendula.json", "\"scene\": \"pendula\",", "\"scene\": \"pendula\", \"dt\": 0.016666666666668332,");
+    edit("chaotic_pendula.json", "\"scene\": \"pendula\",",
+         "\"scene\": \"pendula\", \"dt\": 0.016666666666668332,");
     Result result = substep("capture chaotic_pendula.json");
     EXPECT_EQ(result.exitCode, 0) << result.out << result.err;
 
@@ -307,7 +346,10 @@ TEST_F(CaptureCommand, PerBodyTolerancesAbsorbTheChaoticPendulasDivergence) {
     write("chaotic_pendula.json", script);
     result = substep("capture chaotic_pendula.json");
     EXPECT_EQ(result.exitCode, 1) << result.out << result.err;
-    EXPECT_TRUE(std::regex_search(result.out, std::regex(R"re(pendula frame 600: state: \d+ of 132 values out of tolerance; worst (bodies|joints)\[\d+\] "(double|triple))re")))
+    EXPECT_TRUE(std::regex_search(
+        result.out,
+        std::regex(
+            R"re(pendula frame 600: state: \d+ of 132 values out of tolerance; worst (bodies|joints)\[\d+\] "(double|triple))re")))
         << result.out;
 }
 

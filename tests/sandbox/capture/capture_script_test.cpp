@@ -79,41 +79,63 @@ TEST(CaptureScript, DefaultsAreExactStateAndASmallExactImage) {
 }
 
 TEST(CaptureScript, ErrorsNameTheScriptAndTheJsonPath) {
-    EXPECT_EQ(errorOf(R"({"captures": []})"), "dir/s.json: top level: missing \"substep_capture\": 1 (is this a capture script?)");
-    EXPECT_EQ(errorOf(R"({"substep_capture": 1, "captures": []})"), "dir/s.json: captures: must list at least one capture");
+    EXPECT_EQ(errorOf(R"({"captures": []})"),
+              "dir/s.json: top level: missing \"substep_capture\": 1 (is this a capture script?)");
+    EXPECT_EQ(errorOf(R"({"substep_capture": 1, "captures": []})"),
+              "dir/s.json: captures: must list at least one capture");
     EXPECT_EQ(errorOf(script(R"("frame": [1])")),
-              "dir/s.json: captures[0].frame: unknown key (expected one of: name, scene, set, substeps, iterations, dt, "
+              "dir/s.json: captures[0].frame: unknown key (expected one of: name, scene, set, "
+              "substeps, iterations, dt, "
               "frames, state, image, metrics)");
-    EXPECT_EQ(errorOf(R"({"substep_capture": 1, "captures": [{"name": "a", "scene": "boxes3", "frames": [0, 10, 5], "state": {}}]})"),
-              "dir/s.json: captures[0].frames[2]: frames must increase, got 5 after 10");
-    EXPECT_EQ(errorOf(R"({"substep_capture": 1, "captures": [{"name": "a", "scene": "boxes3", "frames": [-1], "state": {}}]})"),
-              "dir/s.json: captures[0].frames[0]: must be a whole number from 0 to 1000000, got -1");
-    EXPECT_EQ(errorOf(R"({"substep_capture": 1, "captures": [{"name": "a", "scene": "boxes3", "frames": []}]})"),
-              "dir/s.json: captures[0].frames: must list 1 to 1000 frame numbers");
-    EXPECT_EQ(errorOf(R"({"substep_capture": 1, "captures": [{"name": "a", "scene": "boxes3", "frames": [1]}]})"),
-              "dir/s.json: captures[0]: needs \"state\", \"image\" or both: there is nothing to compare");
-    EXPECT_EQ(errorOf(R"({"substep_capture": 1, "captures": [{"name": "../x", "scene": "boxes3", "frames": [1], "state": {}}]})"),
-              "dir/s.json: captures[0].name: must not start with '.' (it names a folder)");
-    EXPECT_EQ(errorOf(R"({"substep_capture": 1, "captures": [{"name": "a", "scene": "nowhere.json", "frames": [1], "state": {}}]})"),
-              "dir/s.json: captures[0].scene: no built-in scene \"nowhere.json\" (see `substep scenes`) and no file "
-              "dir/nowhere.json");
-    EXPECT_EQ(errorOf(R"({"substep_capture": 1, "captures": [{"name": "a", "scene": "boxes3", "frames": [1], "state": {"abs": -1}}]})"),
-              "dir/s.json: captures[0].state.abs: must be between 0 and 1e+300, got -1");
-    EXPECT_EQ(errorOf(script(R"("image": {"size": [0, 10]})")),
-              "dir/s.json: captures[0].image.size[0]: must be a whole number from 1 to 4096, got 0");
+    EXPECT_EQ(
+        errorOf(
+            R"({"substep_capture": 1, "captures": [{"name": "a", "scene": "boxes3", "frames": [0, 10, 5], "state": {}}]})"),
+        "dir/s.json: captures[0].frames[2]: frames must increase, got 5 after 10");
+    EXPECT_EQ(
+        errorOf(
+            R"({"substep_capture": 1, "captures": [{"name": "a", "scene": "boxes3", "frames": [-1], "state": {}}]})"),
+        "dir/s.json: captures[0].frames[0]: must be a whole number from 0 to 1000000, got -1");
+    EXPECT_EQ(
+        errorOf(
+            R"({"substep_capture": 1, "captures": [{"name": "a", "scene": "boxes3", "frames": []}]})"),
+        "dir/s.json: captures[0].frames: must list 1 to 1000 frame numbers");
+    EXPECT_EQ(
+        errorOf(
+            R"({"substep_capture": 1, "captures": [{"name": "a", "scene": "boxes3", "frames": [1]}]})"),
+        "dir/s.json: captures[0]: needs \"state\", \"image\" or both: there is nothing to compare");
+    EXPECT_EQ(
+        errorOf(
+            R"({"substep_capture": 1, "captures": [{"name": "../x", "scene": "boxes3", "frames": [1], "state": {}}]})"),
+        "dir/s.json: captures[0].name: must not start with '.' (it names a folder)");
+    EXPECT_EQ(
+        errorOf(
+            R"({"substep_capture": 1, "captures": [{"name": "a", "scene": "nowhere.json", "frames": [1], "state": {}}]})"),
+        "dir/s.json: captures[0].scene: no built-in scene \"nowhere.json\" (see `substep scenes`) "
+        "and no file "
+        "dir/nowhere.json");
+    EXPECT_EQ(
+        errorOf(
+            R"({"substep_capture": 1, "captures": [{"name": "a", "scene": "boxes3", "frames": [1], "state": {"abs": -1}}]})"),
+        "dir/s.json: captures[0].state.abs: must be between 0 and 1e+300, got -1");
+    EXPECT_EQ(
+        errorOf(script(R"("image": {"size": [0, 10]})")),
+        "dir/s.json: captures[0].image.size[0]: must be a whole number from 1 to 4096, got 0");
     EXPECT_EQ(errorOf(script(R"("image": {"max_fraction": 1.5})")),
               "dir/s.json: captures[0].image.max_fraction: must be between 0 and 1, got 1.5");
     EXPECT_EQ(errorOf(script(R"("metrics": {"energy": 1})")),
-              "dir/s.json: captures[0].metrics.energy: unknown key (expected one of: max_joint_error, energy_drift, "
+              "dir/s.json: captures[0].metrics.energy: unknown key (expected one of: "
+              "max_joint_error, energy_drift, "
               "penetration)");
     EXPECT_EQ(errorOf(script(R"("substeps": 0)")),
               "dir/s.json: captures[0].substeps: must be a whole number from 1 to 10000, got 0");
     EXPECT_EQ(errorOf(script(R"("dt": 0)")), "dir/s.json: captures[0].dt: must be > 0 s");
     EXPECT_EQ(errorOf(script(R"("set": {"velocity_pass": "off"})")),
               "dir/s.json: captures[0].set.velocity_pass: expected a number, got a string");
-    EXPECT_EQ(errorOf(R"({"substep_capture": 1, "captures": [{"name": "a", "scene": "boxes3", "frames": [1], "state": {}},
+    EXPECT_EQ(
+        errorOf(
+            R"({"substep_capture": 1, "captures": [{"name": "a", "scene": "boxes3", "frames": [1], "state": {}},
                                                             {"name": "a", "scene": "boxes7", "frames": [1], "state": {}}]})"),
-              "dir/s.json: captures[1].name: duplicate capture name \"a\"");
+        "dir/s.json: captures[1].name: duplicate capture name \"a\"");
 }
 
 }  // namespace

@@ -1,4 +1,5 @@
-// Tests sandbox/capture/image_diff.cpp: pixels differing by more than a tolerance, and the heat map.
+// Tests sandbox/capture/image_diff.cpp: pixels differing by more than a tolerance, and the heat
+// map.
 
 #include "capture/image_diff.h"
 

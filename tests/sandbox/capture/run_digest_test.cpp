@@ -11,7 +11,8 @@ namespace {
 
 std::string digestOf(const std::vector<CaptureState>& frames) {
     RunDigest digest;
-    for (const CaptureState& state : frames) digest.add(state);
+    for (const CaptureState& state : frames)
+        digest.add(state);
     return digest.line();
 }
 
@@ -20,7 +21,8 @@ std::vector<CaptureState> run() {
     for (int i = 0; i < 3; ++i) {
         frames[i].frame = i;
         frames[i].time = i / 60.0;
-        frames[i].bodies.push_back({.name = "b", .position = {0, 1.0 - 0.01 * i, 0}, .orientation = {1, 0, 0, 0}});
+        frames[i].bodies.push_back(
+            {.name = "b", .position = {0, 1.0 - 0.01 * i, 0}, .orientation = {1, 0, 0, 0}});
         frames[i].joints.push_back({.name = "j", .force = 20.0 + i});
     }
     return frames;

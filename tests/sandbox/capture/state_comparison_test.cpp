@@ -77,10 +77,12 @@ TEST(StateComparison, TheWorstIsTheLargestExcessAndNanAlwaysDiffers) {
 TEST(StateComparison, DifferentBodiesOrJointsAreAStructureDifference) {
     CaptureState fresh = twoBodies();
     fresh.bodies.pop_back();
-    EXPECT_EQ(compareStates(twoBodies(), fresh, {}).structure, "the scene has 1 bodies, the golden 2");
+    EXPECT_EQ(compareStates(twoBodies(), fresh, {}).structure,
+              "the scene has 1 bodies, the golden 2");
     fresh = twoBodies();
     fresh.joints[0].name.back() = 'k';  // "j" becomes "k"
-    EXPECT_EQ(compareStates(twoBodies(), fresh, {}).structure, "joints[0] is named \"k\", the golden's \"j\"");
+    EXPECT_EQ(compareStates(twoBodies(), fresh, {}).structure,
+              "joints[0] is named \"k\", the golden's \"j\"");
     EXPECT_FALSE(compareStates(twoBodies(), fresh, {}).matches());
 }
 

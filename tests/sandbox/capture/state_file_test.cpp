@@ -19,11 +19,12 @@ CaptureState awkwardState() {
     CaptureState state;
     state.frame = 42;
     state.time = 42.0 / 60.0;
-    state.bodies.push_back({.name = "a \"quoted\" name",
-                            .position = {0.1 + 0.2, -1e-300, std::numeric_limits<double>::denorm_min()},
-                            .orientation = {std::sqrt(0.5), 0.0, -std::sqrt(0.5), 1e-17},
-                            .velocity = {std::numeric_limits<double>::max(), -0.0, 1.0 / 3.0},
-                            .angularVelocity = {123456789.123456789, -2.5e-8, 7.0}});
+    state.bodies.push_back(
+        {.name = "a \"quoted\" name",
+         .position = {0.1 + 0.2, -1e-300, std::numeric_limits<double>::denorm_min()},
+         .orientation = {std::sqrt(0.5), 0.0, -std::sqrt(0.5), 1e-17},
+         .velocity = {std::numeric_limits<double>::max(), -0.0, 1.0 / 3.0},
+         .angularVelocity = {123456789.123456789, -2.5e-8, 7.0}});
     state.bodies.push_back({.name = ""});
     state.joints.push_back({.name = "j", .force = 19.62, .torque = 1.0 / 7.0, .error = 3e-12});
     state.softBodies.push_back({.name = "tyre", .centre = {1, 2, 3}, .volume = 0.0123});
@@ -33,7 +34,8 @@ CaptureState awkwardState() {
 template <std::size_t N>
 void expectBitsEqual(const std::array<double, N>& a, const std::array<double, N>& b) {
     for (std::size_t i = 0; i < N; ++i) {
-        // -0.0 reads back as 0 (JSON has one zero); the comparison and the digest see the same value.
+        // -0.0 reads back as 0 (JSON has one zero); the comparison and the digest see the same
+        // value.
         if (a[i] == 0.0 && b[i] == 0.0) continue;
         EXPECT_EQ(std::bit_cast<std::uint64_t>(a[i]), std::bit_cast<std::uint64_t>(b[i])) << i;
     }
@@ -65,10 +67,12 @@ TEST(StateFile, ReadsBackExactlyWhatWasWritten) {
 
 TEST(StateFile, OneBodyOrJointPerLineForReadableDiffs) {
     const std::string text = formatStateFile(awkwardState());
-    EXPECT_NE(text.find("\n  {\"name\": \"a \\\"quoted\\\" name\", \"position\": [0.30000000000000004, -1e-300, 5e-324]"),
+    EXPECT_NE(text.find("\n  {\"name\": \"a \\\"quoted\\\" name\", \"position\": "
+                        "[0.30000000000000004, -1e-300, 5e-324]"),
               std::string::npos)
         << text;
-    EXPECT_NE(text.find("\n  {\"name\": \"j\", \"force\": 19.62, \"torque\": 0.14285714285714285, \"error\": 3e-12}"),
+    EXPECT_NE(text.find("\n  {\"name\": \"j\", \"force\": 19.62, \"torque\": 0.14285714285714285, "
+                        "\"error\": 3e-12}"),
               std::string::npos)
         << text;
 }
@@ -84,16 +88,19 @@ TEST(StateFile, DamagedFilesAreErrorsNamingFileAndPath) {
         return std::string("(no error)");
     };
     // Truncated anywhere: an error, never a partial state.
-    for (const std::size_t length : {std::size_t{0}, std::size_t{10}, text.size() / 2, text.size() - 3}) {
+    for (const std::size_t length :
+         {std::size_t{0}, std::size_t{10}, text.size() / 2, text.size() - 3}) {
         const std::string message = errorOf(text.substr(0, length));
         EXPECT_EQ(message.rfind("g/frame_00042.json: ", 0), 0u) << length << ": " << message;
     }
     std::string badNumber = text;
     badNumber.replace(badNumber.find("19.62"), 5, "\"19\"");
-    EXPECT_EQ(errorOf(badNumber), "g/frame_00042.json: joints[0].force: expected a number, got a string");
+    EXPECT_EQ(errorOf(badNumber),
+              "g/frame_00042.json: joints[0].force: expected a number, got a string");
     std::string shortArray = text;
     shortArray.replace(shortArray.find("[1, 2, 3]"), 9, "[1, 2]");
-    EXPECT_EQ(errorOf(shortArray), "g/frame_00042.json: soft_bodies[0].centre: expected 3 elements, got 2");
+    EXPECT_EQ(errorOf(shortArray),
+              "g/frame_00042.json: soft_bodies[0].centre: expected 3 elements, got 2");
 }
 
 }  // namespace
