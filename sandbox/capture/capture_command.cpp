@@ -319,8 +319,8 @@ int runCaptures(const CaptureOptions& options) {
                         differing == 1 ? "" : "s");
         }
     } else if (differing == 0) {
-        std::printf("substep capture %s: %s match (%lld frames)\n", script.file.c_str(),
-                    captures.c_str(), framesCaptured);
+        std::printf("substep capture %s: %s match%s (%lld frames)\n", script.file.c_str(),
+                    captures.c_str(), selected.size() == 1 ? "es" : "", framesCaptured);
     } else {
         std::printf("substep capture %s: %zu of %s differ\n", script.file.c_str(), differing,
                     captures.c_str());
