@@ -240,6 +240,7 @@ int runCaptures(const CaptureOptions& options) {
     }
     std::unique_ptr<FrameRenderer> renderer;
     if (anyImage) renderer = std::make_unique<FrameRenderer>();
+    if (!options.reportDirectory.empty()) prepareReportFolder(options.reportDirectory);
 
     std::vector<CaptureResult> results;
     for (const CaptureSpec& spec : script.captures)

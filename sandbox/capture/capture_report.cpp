@@ -97,13 +97,19 @@ void appendStateTable(std::string& html, const StateComparison& state) {
 
 }  // namespace
 
+void prepareReportFolder(const std::string& directory) {
+    std::error_code error;
+    fs::create_directories(directory, error);
+    if (!fs::is_directory(directory, error)) {
+        throw OutputError("--report " + directory + ": cannot create the folder" +
+                          (fs::exists(directory, error) ? " (a file has that name)" : ""));
+    }
+}
+
 void writeCaptureReport(const std::string& directory, const std::string& scriptFile,
                         const std::vector<CaptureResult>& results) {
     const fs::path folder(directory);
-    std::error_code error;
-    fs::create_directories(folder, error);
-    if (!fs::is_directory(folder))
-        throw OutputError("--report " + directory + ": cannot create the folder");
+    prepareReportFolder(directory);
 
     std::size_t checked = 0;
     std::size_t differing = 0;

@@ -10,6 +10,9 @@
 
 namespace substep::capture {
 
+/// Creates DIR when missing. Throws OutputError naming --report when it is not a usable folder.
+void prepareReportFolder(const std::string& directory);
+
 /// Writes the page and its images, each file whole (temporary file, then rename). Throws
 /// OutputError when DIR cannot be made or written.
 void writeCaptureReport(const std::string& directory, const std::string& scriptFile,

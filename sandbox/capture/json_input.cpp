@@ -1,6 +1,7 @@
 #include "capture/json_input.h"
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -107,6 +108,9 @@ InputError::InputError(const std::string& file, const std::string& path, const s
     : std::runtime_error(file + ": " + (path.empty() ? "" : path + ": ") + problem) {}
 
 std::string readTextFile(const std::string& file) {
+    std::error_code error;
+    if (std::filesystem::is_directory(file, error))
+        throw InputError(file, "", "is a folder, not a file");
     std::ifstream stream(file, std::ios::binary);
     if (!stream) throw InputError(file, "", "cannot be read");
     std::ostringstream text;

@@ -280,6 +280,21 @@ TEST_F(CaptureCommand, ScriptErrorsNameTheFileAndTheJsonPath) {
               "substep capture: --only nothing: s.json has no capture of that name (its captures: "
               "drop, cradle)\n");
     EXPECT_EQ(substep("capture").exitCode, 2);
+
+    fs::create_directory(work() / "folder.json");
+    result = substep("capture folder.json");
+    EXPECT_EQ(result.exitCode, 2);
+    EXPECT_EQ(result.err, "substep capture: folder.json: is a folder, not a file\n");
+}
+
+TEST_F(CaptureCommand, AReportFolderThatCannotBeMadeIsBadInputBeforeAnythingRuns) {
+    write("taken", "");
+    const Result result = substep("capture s.json --update --report taken");
+    EXPECT_EQ(result.exitCode, 2);
+    EXPECT_EQ(result.err,
+              "substep capture: --report taken: cannot create the folder (a file has that name)\n");
+    EXPECT_EQ(result.out, "");
+    EXPECT_FALSE(fs::exists(work() / "s.golden"));
 }
 
 TEST_F(CaptureCommand, OnlyRunsTheNamedCaptures) {
