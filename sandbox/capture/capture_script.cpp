@@ -6,7 +6,6 @@
 
 #include <cmath>
 #include <filesystem>
-#include <numbers>
 #include <set>
 
 namespace substep::capture {
