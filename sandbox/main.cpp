@@ -1,8 +1,9 @@
 // substep: the Substep sandbox's command line (DESIGN.md, "The `substep` command"). It reads top
 // to bottom: declare the commands, parse, dispatch. Each command lives in its own file pair
-// (run_command.h, ...); the ones the contract names but this build lacks answer with exit 2.
+// (run_command.h, ...).
 
 #include "bench_command.h"
+#include "capture/capture_command.h"
 #include "render_command.h"
 #include "run_command.h"
 #include "scenes/scene_registry.h"
@@ -17,17 +18,6 @@
 #include <string_view>
 
 namespace {
-
-/// A contract command that is not built yet. Replacing one means adding its `addXxxCommand` /
-/// `xxxCommand` pair (as run_command.h does) and deleting its line from kPendingCommands.
-struct PendingCommand {
-    const char* name;
-    const char* description;
-};
-
-constexpr PendingCommand kPendingCommands[] = {
-    {"capture", "Scripted regression captures against goldens: capture SCRIPT [--update]"},
-};
 
 /// `substep scenes`: one line per built-in scene, names padded into a column.
 int listScenes() {
@@ -50,7 +40,7 @@ int main(int argc, char** argv) {
     CLI::App app{"Substep: XPBD rigid bodies, interactive and headless", "substep"};
     app.set_version_flag("--version", SUBSTEP_VERSION);
     app.require_subcommand(0, 1);
-    app.footer("Exit codes: 0 success, 1 a check failed (non-finite state), 2 bad input.");
+    app.footer("Exit codes: 0 success, 1 a check failed (non-finite state, a capture differs), 2 bad input.");
 
     substep::view::ViewOptions viewOptions;
     substep::view::addViewCommand(app, viewOptions);
@@ -69,11 +59,8 @@ int main(int argc, char** argv) {
     substep::RenderOptions renderOptions;
     CLI::App* renderCommand = substep::addRenderCommand(app, renderOptions);
 
-    // Pending commands take any arguments, so the answer is "not built" rather than a usage error.
-    for (const PendingCommand& pending : kPendingCommands) {
-        app.add_subcommand(pending.name, std::string(pending.description) + " (not built yet)")
-            ->allow_extras();
-    }
+    substep::CaptureOptions captureOptions;
+    CLI::App* captureCommand = substep::addCaptureCommand(app, captureOptions);
 
     // 2. Parse. CLI11 exits usage errors with codes from 100 up; the contract says 2.
     try {
@@ -88,11 +75,6 @@ int main(int argc, char** argv) {
     if (benchCommand->parsed()) return substep::benchCommand(benchOptions);
     if (sweepCommand->parsed()) return substep::sweepCommand(sweepOptions);
     if (renderCommand->parsed()) return substep::renderCommand(renderOptions);
-    for (const PendingCommand& pending : kPendingCommands) {
-        if (app.get_subcommand(pending.name)->parsed()) {
-            std::fprintf(stderr, "substep %s: not available in this build yet\n", pending.name);
-            return 2;
-        }
-    }
+    if (captureCommand->parsed()) return substep::captureCommand(captureOptions);
     return substep::view::viewCommand(viewOptions);  // `view`, or no command at all
 }
