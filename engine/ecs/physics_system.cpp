@@ -112,6 +112,12 @@ void PhysicsSystem::createNewObjects() {
 void PhysicsSystem::applyChanges() {
     Registry& registry = *registry_;
     World& world = *world_;
+    // A SoftBody is fixed at creation: its patches change nothing, and are dropped so that they
+    // do not pile up.
+    if (anyPatched<SoftBody>(registry)) {
+        std::vector<Entity> ignored;
+        takeChanged<SoftBody>(registry, ignored);
+    }
     // Most steps of most scenes change nothing: they pay four tests.
     if (!anyPatched<Transform>(registry) && !anyPatched<RigidBody>(registry) &&
         !anyPatched<Collider>(registry) && !anyPatched<Joint>(registry))

@@ -44,7 +44,8 @@ class PhysicsSystem {
     /// - applies the patched components, in the order they were patched: Transform moves the
     ///   body, RigidBody sets its velocities, Collider its friction, restitution and collide flag,
     ///   Joint the joint's parameters (World::updateJoint). A Collider's shape and a RigidBody's
-    ///   type and mass are fixed at creation: to change them, destroy the entity and make another.
+    ///   type and mass are fixed at creation, and so is a whole SoftBody (its patches are dropped):
+    ///   to change them, destroy the entity and make another.
     void sync();
 
     /// sync(), one world step of dt, writeBack(). Returns the time of the world's step alone

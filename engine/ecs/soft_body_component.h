@@ -12,8 +12,8 @@
 namespace substep::ecs {
 
 /// A soft body. def.attachments[i].body is ignored: the PhysicsSystem fills it from the body of
-/// attachedBodies[i] (a RigidBody entity), as it does a Joint's bodies. Fixed at creation: to
-/// change a soft body, destroy its entity and make another.
+/// attachedBodies[i] (a RigidBody entity), as it does a Joint's bodies. Fixed at creation (a
+/// patch changes nothing): to change a soft body, destroy its entity and make another.
 struct SoftBody {
     SoftBodyDef def;
     std::vector<Entity> attachedBodies;  ///< one per def.attachments entry, same order

@@ -99,6 +99,19 @@ TEST(PhysicsSystemSoftBodies, AHardAttachmentHoldsTheBoxAndWaitsForItsBody) {
     EXPECT_LT(held.readout.centreOfMass.y(), before - 1.0);
 }
 
+TEST(PhysicsSystemSoftBodies, APatchedSoftBodyChangesNothingAndLeavesNoBacklog) {
+    SoftScene scene;
+    const Entity box = scene.registry.create();
+    scene.registry.emplace<SoftBody>(box, SoftBody{.def = softBox(Vec3(0, 1, 0), Vec3(0.2, 0.2, 0.2), {2, 2, 2})});
+    scene.run(1);
+    const SoftBodyId id = scene.registry.get<SoftBody>(box).id;
+    scene.registry.patch<SoftBody>(box, [](SoftBody& soft) { soft.def.velocity = Vec3(0, 100, 0); });
+    scene.run(1);
+    EXPECT_EQ(scene.registry.get<SoftBody>(box).id, id);
+    EXPECT_NEAR(scene.registry.get<SoftBody>(box).readout.velocity.y(), -kG * 2 * kDt, 1e-9);
+    EXPECT_FALSE(scene.registry.findPool<SoftBody>()->anyChanged());
+}
+
 TEST(PhysicsSystemSoftBodies, DestroyRemovesTheSoftBody) {
     SoftScene scene;
     const Entity a = scene.registry.create();
