@@ -1,0 +1,302 @@
+// Paper Figs. 1 and 14 and section 4: "an attempt to reproduce the fascinating sculptures of
+// David Morrell ... In certain elements such as the spring shown in Figure 14 the marbles perform
+// a quarter turn in a single time step. Simulating such fast curved motions requires substepping
+// and the use of current constraint normals for each projection." Table 1: 10 substeps, 15 ms.
+//
+// One closed circuit of wire, four spline tubes (paper 3.5's curved geometry) around a common
+// centre line: the two lower wires are the track a marble rolls on, the two upper ones the guard
+// wires that keep it in where it flies (crests, the spring, the lift). From the top of the lift
+// the track curves away, plunges down a steep ramp into the spring (a coil of 25 mm radius where
+// a marble at 3 m/s turns by more than 90° per frame), leaves it into a wide helix, runs round
+// two curves and back along a gentle slope to the foot of the lift, where the marbles queue.
+// The lift is a paddle wheel: eight arms, each on its own motor-driven hinge about the same
+// axle, sweep through the lift's half circle of track and push one marble each up to the top
+// (box against spline has no contact, so the arms pass through the wires). Nothing is moved by
+// the script: the arms are dynamic bodies turned by their hinge motors, the marbles only by
+// contacts and gravity.
+//
+// The script reads the marbles once per frame (progress along the centre line, searched near
+// the previous frame's place: laps, marbles on the track, speed and turn per frame in the
+// spring) and writes the world only where a knob asks (velocity pass, lift speed, marble count).
+
+#include "scenes/scenes.h"
+
+#include "physics/collision/spline_tube.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace substep::scenes {
+
+namespace {
+
+// Marbles: 25 mm glass, the size of Morrell's.
+constexpr double kMarbleRadius = 0.0125;  ///< m
+constexpr double kGlassDensity = 2500;    ///< kg/m³
+constexpr int kMaxMarbles = 24;
+constexpr double kMarbleFriction = 0.2;
+constexpr double kMarbleRestitution = 0.3;
+
+// Wires: each at kCageRadius from the centre line, at ±45° from the track's down direction.
+constexpr double kWireRadius = 0.0015;  ///< m
+/// 1.5 mm of play: a marble touches the two lower wires and clears the guard wires by 3 mm,
+/// while the gap between two neighbouring wires (2 x 11 mm - 3 mm) stays below its diameter.
+constexpr double kCageRadius = kMarbleRadius + kWireRadius + 0.0015;
+constexpr double kSampleSpacing = 0.02;  ///< m of centre line between control points
+
+// The lift: a half circle of track in the plane z = 0 around the axle, swept by the arms.
+const Vec3 kAxle(0.0, 0.85, 0.0);
+constexpr double kLiftRadius = 0.55;  ///< m: the track's centre line around the axle
+constexpr int kArms = 8;
+constexpr double kArmInner = 0.05;            ///< m from the axle
+constexpr double kArmOuter = kLiftRadius + kCageRadius + 0.01;
+constexpr double kArmThickness = 0.012;       ///< m, along the arm's motion
+constexpr double kArmWidth = 0.024;           ///< m, along the axle
+constexpr double kArmMass = 0.1;              ///< kg
+constexpr double kDefaultLiftSpeed = 1.2;     ///< rad/s
+
+// The spring (Fig. 14): a coil of 3 turns, the centre line 25 mm from its axis.
+constexpr double kSpringRadius = 0.025;
+constexpr double kSpringTurns = 3.0;
+constexpr double kSpringSlope = 0.25;  ///< drop per horizontal metre: a pitch of 39 mm
+
+/// A point of the centre line with the cage's cross-section frame there.
+struct PathPoint {
+    Vec3 position;
+    Vec3 side;  ///< unit, normal to the line; the wires sit at ±45° between side and up
+    Vec3 up;    ///< unit, normal to the line and to side: away from the lower wires
+};
+
+/// The circuit's centre line, in running order from the top of the lift, with where the spring
+/// is along it (indices into points).
+struct SculpturePath {
+    std::vector<PathPoint> points;
+    std::vector<double> distance;  ///< arc length from points[0] (m)
+    double length = 0.0;           ///< of the closed loop (m)
+    size_t springBegin = 0;
+    size_t springEnd = 0;
+    size_t liftBegin = 0;  ///< the foot of the lift: the lift runs from here to the end
+};
+
+/// Draws the descending part of the track like a turtle: a heading in the horizontal plane,
+/// turning at a curvature, and a slope (drop per horizontal metre) blended between pieces.
+class Turtle {
+  public:
+    Turtle(const Vec3& start, double heading) : position_(start), heading_(heading) {}
+
+    /// `length` horizontal metres turning at `curvature` (1/m, positive to the left seen from
+    /// above), the slope blending smoothly from the current one to `slopeEnd`.
+    void run(double length, double curvature, double slopeEnd, std::vector<PathPoint>& out) {
+        const int steps = std::max(1, static_cast<int>(std::ceil(length / kSampleSpacing)));
+        const double slopeStart = slope_;
+        constexpr int kSubsteps = 16;  // integration steps per control point
+        for (int i = 1; i <= steps; ++i) {
+            for (int k = 1; k <= kSubsteps; ++k) {
+                const double u = (static_cast<double>(i - 1) + (k - 0.5) / kSubsteps) / steps;
+                const double blend = u * u * (3.0 - 2.0 * u);
+                slope_ = slopeStart + (slopeEnd - slopeStart) * blend;
+                const double dl = length / (steps * kSubsteps);
+                heading_ += 0.5 * curvature * dl;
+                position_ += dl * Vec3(std::cos(heading_), -slope_, -std::sin(heading_));
+                heading_ += 0.5 * curvature * dl;
+            }
+            out.push_back(framed(position_, direction()));
+        }
+        slope_ = slopeEnd;
+    }
+
+    const Vec3& position() const { return position_; }
+    double heading() const { return heading_; }
+    double slope() const { return slope_; }
+    Vec3 direction() const {
+        return Vec3(std::cos(heading_), -slope_, -std::sin(heading_)).normalized();
+    }
+
+    /// The cage frame of a descending track: side horizontal, up as near the vertical as the
+    /// slope allows.
+    static PathPoint framed(const Vec3& position, const Vec3& tangent) {
+        const Vec3 side = tangent.cross(Vec3::UnitY()).normalized();
+        return {position, side, side.cross(tangent).normalized()};
+    }
+
+  private:
+    Vec3 position_;
+    double heading_;  ///< rad: direction (cos, 0, −sin), so 0 is +x and π/2 is −z
+    double slope_ = 0.0;
+};
+
+SculpturePath buildPath() {
+    SculpturePath path;
+    std::vector<PathPoint>& points = path.points;
+    const Vec3 top = kAxle + Vec3(0.0, kLiftRadius, 0.0);
+    const Vec3 foot = kAxle - Vec3(0.0, kLiftRadius, 0.0);
+
+    // From the top of the lift, heading −x, curving away from the wheel's plane.
+    Turtle turtle(top, M_PI);
+    points.push_back(Turtle::framed(top, turtle.direction()));
+    turtle.run(0.2 * M_PI / 2, -1.0 / 0.2, 0.05, points);  // a quarter turn to −z
+    turtle.run(0.25, 0.0, 1.2, points);                   // the plunge: steepening to 50°
+    turtle.run(0.35, 0.0, kSpringSlope, points);          // and easing into the spring
+    path.springBegin = points.size() - 1;
+    turtle.run(2.0 * M_PI * kSpringRadius * kSpringTurns, -1.0 / kSpringRadius, kSpringSlope,
+               points);
+    path.springEnd = points.size() - 1;
+    turtle.run(0.15, 0.0, 0.12, points);
+    turtle.run(2.0 * M_PI * 0.15 * 1.25, 1.0 / 0.15, 0.12, points);  // the helix, to −x
+    turtle.run(0.45, 0.0, 0.08, points);
+    turtle.run(0.2 * M_PI / 2, 1.0 / 0.2, 0.08, points);  // to +z
+    // Back to the foot of the lift: along +z to the last curve, which turns to +x on the line
+    // z = 0, then straight to the foot, the drop shared evenly over what is left.
+    const double curve = 0.2;
+    const Vec3 here = turtle.position();
+    const double alongZ = (foot.z() - here.z()) - curve;
+    const double alongX = (foot.x() - here.x()) - curve;
+    // The slope blends in over the first straight, which drops by its mean slope there.
+    const double start = turtle.slope();
+    const double slope = (here.y() - foot.y() - 0.5 * alongZ * start) /
+                         (0.5 * alongZ + curve * M_PI / 2 + alongX);
+    turtle.run(alongZ, 0.0, slope, points);
+    turtle.run(curve * M_PI / 2, 1.0 / curve, slope, points);
+    turtle.run(alongX, 0.0, slope, points);
+    points.pop_back();  // the lift's first point is the foot itself
+    path.liftBegin = points.size();
+
+    // The lift: a half circle up the +x side of the axle. Its cage keeps the same frame all
+    // the way (side along the axle, up towards it), so a marble rests in the valley of the two
+    // outer wires while gravity presses it outwards and of the inner two beyond the side.
+    const int liftSamples = static_cast<int>(std::ceil(M_PI * kLiftRadius / kSampleSpacing));
+    for (int i = 0; i < liftSamples; ++i) {
+        const double theta = -M_PI / 2 + M_PI * i / liftSamples;
+        const Vec3 inward(-std::cos(theta), -std::sin(theta), 0.0);
+        points.push_back({kAxle - kLiftRadius * inward, Vec3::UnitZ(), inward});
+    }
+    path.distance.resize(points.size());
+    path.distance[0] = 0.0;
+    for (size_t i = 1; i < points.size(); ++i)
+        path.distance[i] = path.distance[i - 1] + (points[i].position - points[i - 1].position).norm();
+    path.length = path.distance.back() + (points.front().position - points.back().position).norm();
+    return path;
+}
+
+const SculpturePath& sculpturePath() {
+    static const SculpturePath path = buildPath();
+    return path;
+}
+
+/// One of the cage's two wires. Over the top of the lift the cage's frame comes back turned
+/// half a turn about the line (the lift turns the marbles over, the descending track does not),
+/// so a wire that leaves the top as a lower wire returns to it in the opposite corner, as a
+/// guard wire, and closes only after a second lap: each wire runs twice round the circuit,
+/// wire k through corners k and 3 − k. Corners: 0, 1 the lower wires, 2, 3 the guard wires,
+/// seen down the descending track.
+std::shared_ptr<const SplineTube> cageWire(const SculpturePath& path, int k) {
+    constexpr std::array<double, 4> kSide{-1.0, 1.0, -1.0, 1.0};
+    constexpr std::array<double, 4> kUp{-1.0, -1.0, 1.0, 1.0};
+    const double offset = kCageRadius / std::sqrt(2.0);
+    std::vector<Vec3> points;
+    points.reserve(2 * path.points.size());
+    for (const int corner : {k, 3 - k})
+        for (const PathPoint& p : path.points)
+            points.push_back(p.position + offset * (kSide[corner] * p.side + kUp[corner] * p.up));
+    return makeSplineTube(std::move(points), kWireRadius, true);
+}
+
+/// Where a marble rests on the lower wires: below the centre line by this much along `up`.
+double restingDrop() {
+    const double half = kCageRadius / std::sqrt(2.0);
+    const double reach = kMarbleRadius + kWireRadius;
+    return half - std::sqrt(reach * reach - half * half);
+}
+
+std::string marbleName(int i) {
+    char name[16];
+    std::snprintf(name, sizeof name, "marble_%02d", i);
+    return name;
+}
+
+SceneDescription buildRollingBalls() {
+    const SculpturePath& path = sculpturePath();
+    SceneDescription scene{.name = "rolling_balls", .gravity = kPaperGravity, .substeps = 10};
+    scene.bodies.push_back(
+        {"base", BodyDef{.shape = planeShape(Vec3::UnitY(), 0.0), .type = BodyType::Static},
+         Vec3(0.35, 0.33, 0.3)});
+    static constexpr std::array<const char*, 2> kWireNames{"wire_0", "wire_1"};
+    for (int k = 0; k < 2; ++k)
+        scene.bodies.push_back({kWireNames[k],
+                                BodyDef{.shape = splineShape(cageWire(path, k)),
+                                        .type = BodyType::Static,
+                                        .staticFriction = kMarbleFriction,
+                                        .dynamicFriction = kMarbleFriction},
+                                Vec3(0.75, 0.75, 0.78)});
+    scene.bodies.push_back({"axle", BodyDef{.shape = cylinderShape(0.03, 0.08),
+                                            .type = BodyType::Static,
+                                            .position = kAxle,
+                                            .orientation = Quat(Eigen::AngleAxisd(M_PI / 2, Vec3::UnitX())),
+                                            .collide = false},
+                            Vec3(0.3, 0.3, 0.32)});
+
+    // The arms: each turned by its own hinge motor about the axle, all at the same rate, so
+    // they keep their spacing without being joined to one another.
+    const double armLength = kArmOuter - kArmInner;
+    for (int i = 0; i < kArms; ++i) {
+        const double angle = 2.0 * M_PI * i / kArms;
+        const Vec3 radial(std::cos(angle), std::sin(angle), 0.0);
+        const std::string name = "arm_" + std::to_string(i);
+        scene.bodies.push_back(
+            {name,
+             BodyDef{.shape = boxShape(Vec3(armLength, kArmThickness, kArmWidth)),
+                     .mass = kArmMass,
+                     .position = kAxle + (kArmInner + 0.5 * armLength) * radial,
+                     .orientation = Quat(Eigen::AngleAxisd(angle, Vec3::UnitZ())),
+                     .staticFriction = kMarbleFriction,
+                     .dynamicFriction = kMarbleFriction},
+             Vec3(0.8, 0.55, 0.2)});
+        addJoint(scene, "lift_" + std::to_string(i), "", name,
+                 JointDef{.type = JointType::Hinge,
+                          .anchor0 = kAxle,
+                          .anchor1 = Vec3(-kArmInner - 0.5 * armLength, 0.0, 0.0),
+                          .axis0 = Vec3::UnitZ(),
+                          .axis1 = Vec3::UnitZ(),
+                          .normal0 = radial,
+                          .normal1 = Vec3::UnitX(),
+                          .targetVelocity = kDefaultLiftSpeed});
+    }
+
+    // The marbles, spread evenly along the descending track (not on the lift), resting on the
+    // lower wires.
+    const double runLength = path.distance[path.liftBegin];
+    size_t at = 0;
+    for (int i = 0; i < kMaxMarbles; ++i) {
+        const double s = runLength * (i + 0.5) / kMaxMarbles;
+        while (at + 1 < path.liftBegin && path.distance[at + 1] <= s) ++at;
+        const PathPoint& p = path.points[at];
+        scene.bodies.push_back(
+            {marbleName(i), BodyDef{.shape = sphereShape(kMarbleRadius),
+                                    .density = kGlassDensity,
+                                    .position = p.position - restingDrop() * p.up,
+                                    .staticFriction = kMarbleFriction,
+                                    .dynamicFriction = kMarbleFriction,
+                                    .restitution = kMarbleRestitution},
+             Vec3(0.1 + 0.8 * ((i * 7) % kMaxMarbles) / kMaxMarbles, 0.35,
+                  0.9 - 0.8 * ((i * 5) % kMaxMarbles) / kMaxMarbles)});
+    }
+    scene.camera =
+        SceneCamera{.position = Vec3(1.3, 1.5, 1.9), .target = Vec3(-0.3, 0.7, -0.45), .fov = 0.8};
+    return scene;
+}
+
+}  // namespace
+
+SceneEntry rollingBallsEntry() {
+    return {.name = "rolling_balls",
+            .description = "Figs. 1, 14: marbles circulating on a wire sculpture with a spring and a paddle-wheel lift",
+            .build = buildRollingBalls,
+            .paperMsPerFrame = 15};
+}
+
+}  // namespace substep::scenes
