@@ -27,6 +27,9 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <limits>
+#include <optional>
+#include <stdexcept>
 #include <memory>
 #include <string>
 #include <vector>
@@ -39,7 +42,7 @@ namespace {
 constexpr double kMarbleRadius = 0.0125;  ///< m
 constexpr double kGlassDensity = 2500;    ///< kg/m³
 constexpr int kMaxMarbles = 24;
-constexpr double kMarbleFriction = 0.2;
+constexpr double kMarbleFriction = 0.05;
 constexpr double kMarbleRestitution = 0.3;
 
 // Wires: each at kCageRadius from the centre line, at ±45° from the track's down direction.
@@ -50,8 +53,8 @@ constexpr double kCageRadius = kMarbleRadius + kWireRadius + 0.0015;
 constexpr double kSampleSpacing = 0.02;  ///< m of centre line between control points
 
 // The lift: a half circle of track in the plane z = 0 around the axle, swept by the arms.
-const Vec3 kAxle(0.0, 0.85, 0.0);
-constexpr double kLiftRadius = 0.55;  ///< m: the track's centre line around the axle
+const Vec3 kAxle(0.0, 0.9, 0.0);
+constexpr double kLiftRadius = 0.6;  ///< m: the track's centre line around the axle
 constexpr int kArms = 8;
 constexpr double kArmInner = 0.05;            ///< m from the axle
 constexpr double kArmOuter = kLiftRadius + kCageRadius + 0.01;
@@ -59,11 +62,16 @@ constexpr double kArmThickness = 0.012;       ///< m, along the arm's motion
 constexpr double kArmWidth = 0.024;           ///< m, along the axle
 constexpr double kArmMass = 0.1;              ///< kg
 constexpr double kDefaultLiftSpeed = 1.2;     ///< rad/s
+/// The arms' motors give way (rad per N·m) rather than crush a marble against the wires: lifting
+/// three marbles (0.36 N·m) lags by 1°, a marble jammed sideways is passed over.
+constexpr double kLiftCompliance = 0.05;
+constexpr double kLiftDamping = 2.0;          ///< 1/s: the sprung arms settle
 
 // The spring (Fig. 14): a coil of 3 turns, the centre line 25 mm from its axis.
-constexpr double kSpringRadius = 0.025;
+constexpr double kSpringRadius = 0.02;
+constexpr double kSpringEase = 0.04;  ///< m of clothoid into and out of the coil
 constexpr double kSpringTurns = 3.0;
-constexpr double kSpringSlope = 0.25;  ///< drop per horizontal metre: a pitch of 39 mm
+constexpr double kSpringSlope = 0.4;  ///< drop per horizontal metre: a pitch of 40 mm
 
 /// A point of the centre line with the cage's cross-section frame there.
 struct PathPoint {
@@ -92,22 +100,13 @@ class Turtle {
     /// `length` horizontal metres turning at `curvature` (1/m, positive to the left seen from
     /// above), the slope blending smoothly from the current one to `slopeEnd`.
     void run(double length, double curvature, double slopeEnd, std::vector<PathPoint>& out) {
-        const int steps = std::max(1, static_cast<int>(std::ceil(length / kSampleSpacing)));
-        const double slopeStart = slope_;
-        constexpr int kSubsteps = 16;  // integration steps per control point
-        for (int i = 1; i <= steps; ++i) {
-            for (int k = 1; k <= kSubsteps; ++k) {
-                const double u = (static_cast<double>(i - 1) + (k - 0.5) / kSubsteps) / steps;
-                const double blend = u * u * (3.0 - 2.0 * u);
-                slope_ = slopeStart + (slopeEnd - slopeStart) * blend;
-                const double dl = length / (steps * kSubsteps);
-                heading_ += 0.5 * curvature * dl;
-                position_ += dl * Vec3(std::cos(heading_), -slope_, -std::sin(heading_));
-                heading_ += 0.5 * curvature * dl;
-            }
-            out.push_back(framed(position_, direction()));
-        }
-        slope_ = slopeEnd;
+        advance(length, curvature, curvature, slopeEnd, out);
+    }
+
+    /// The same with the curvature changing evenly from the current one to `curvatureEnd` (a
+    /// clothoid: a marble entering the spring is pressed outwards gradually, not at once).
+    void ease(double length, double curvatureEnd, double slopeEnd, std::vector<PathPoint>& out) {
+        advance(length, curvature_, curvatureEnd, slopeEnd, out);
     }
 
     const Vec3& position() const { return position_; }
@@ -125,9 +124,36 @@ class Turtle {
     }
 
   private:
+    void advance(double length, double curvatureStart, double curvatureEnd, double slopeEnd,
+                 std::vector<PathPoint>& out) {
+        // A control point every kSampleSpacing, and at least every 15° of turn (the spring).
+        const double turn = std::max(std::abs(curvatureStart), std::abs(curvatureEnd)) * length;
+        const int steps = std::max(
+            {1, static_cast<int>(std::ceil(length / kSampleSpacing)),
+             static_cast<int>(std::ceil(turn / (M_PI / 12)))});
+        const double slopeStart = slope_;
+        constexpr int kSubsteps = 16;  // integration steps per control point
+        const double dl = length / (steps * kSubsteps);
+        for (int i = 1; i <= steps; ++i) {
+            for (int k = 1; k <= kSubsteps; ++k) {
+                const double u = (static_cast<double>(i - 1) + (k - 0.5) / kSubsteps) / steps;
+                const double blend = u * u * (3.0 - 2.0 * u);
+                slope_ = slopeStart + (slopeEnd - slopeStart) * blend;
+                const double curvature = curvatureStart + (curvatureEnd - curvatureStart) * u;
+                heading_ += 0.5 * curvature * dl;
+                position_ += dl * Vec3(std::cos(heading_), -slope_, -std::sin(heading_));
+                heading_ += 0.5 * curvature * dl;
+            }
+            out.push_back(framed(position_, direction()));
+        }
+        slope_ = slopeEnd;
+        curvature_ = curvatureEnd;
+    }
+
     Vec3 position_;
     double heading_;  ///< rad: direction (cos, 0, −sin), so 0 is +x and π/2 is −z
     double slope_ = 0.0;
+    double curvature_ = 0.0;  ///< 1/m, where the last piece ended
 };
 
 SculpturePath buildPath() {
@@ -140,29 +166,42 @@ SculpturePath buildPath() {
     Turtle turtle(top, M_PI);
     points.push_back(Turtle::framed(top, turtle.direction()));
     turtle.run(0.2 * M_PI / 2, -1.0 / 0.2, 0.05, points);  // a quarter turn to −z
-    turtle.run(0.25, 0.0, 1.2, points);                   // the plunge: steepening to 50°
-    turtle.run(0.35, 0.0, kSpringSlope, points);          // and easing into the spring
+    turtle.run(0.3, 0.0, 1.2, points);                    // the plunge: steepening to 50°
+    turtle.run(0.45, 0.0, kSpringSlope, points);          // and easing into the spring
     path.springBegin = points.size() - 1;
-    turtle.run(2.0 * M_PI * kSpringRadius * kSpringTurns, -1.0 / kSpringRadius, kSpringSlope,
-               points);
+    // Into and out of the coil along clothoids of kSpringEase each, which turn by half as much
+    // as the same length of coil.
+    turtle.ease(kSpringEase, -1.0 / kSpringRadius, kSpringSlope, points);
+    turtle.run(2.0 * M_PI * kSpringRadius * kSpringTurns - kSpringEase, -1.0 / kSpringRadius,
+               kSpringSlope, points);
+    turtle.ease(kSpringEase, 0.0, kSpringSlope, points);
     path.springEnd = points.size() - 1;
     turtle.run(0.15, 0.0, 0.12, points);
-    turtle.run(2.0 * M_PI * 0.15 * 1.25, 1.0 / 0.15, 0.12, points);  // the helix, to −x
-    turtle.run(0.45, 0.0, 0.08, points);
-    turtle.run(0.2 * M_PI / 2, 1.0 / 0.2, 0.08, points);  // to +z
-    // Back to the foot of the lift: along +z to the last curve, which turns to +x on the line
-    // z = 0, then straight to the foot, the drop shared evenly over what is left.
-    const double curve = 0.2;
+    turtle.run(2.0 * M_PI * 0.15 * 1.25, 1.0 / 0.15, 0.12, points);  // the helix, out to −x
+    // Back to the foot of the lift round the front: a left turn to +z, a wide left U-turn to
+    // −z and a last right turn onto the line to the foot, heading +x. The drop is shared evenly
+    // over this part.
+    constexpr double kCurve = 0.2;       // m, the quarter turns
+    constexpr double kUTurn = 0.4;       // m, the U-turn's radius
+    constexpr double kFinalRun = 0.4;    // m, straight along −z before the last turn
+    // m, straight in the arms' plane to the foot: the track enters that plane beyond the arms'
+    // reach, so they meet the queue only face on.
+    constexpr double kFootRun = 0.25;
     const Vec3 here = turtle.position();
-    const double alongZ = (foot.z() - here.z()) - curve;
-    const double alongX = (foot.x() - here.x()) - curve;
+    const double alongX = here.x() - foot.x() + 2.0 * kUTurn + kFootRun;
+    const double alongZ = foot.z() + kFinalRun - here.z();
+    if (!(alongX > 0.0 && alongZ > 0.0)) throw std::logic_error("rolling_balls: the return does not fit");
     // The slope blends in over the first straight, which drops by its mean slope there.
     const double start = turtle.slope();
-    const double slope = (here.y() - foot.y() - 0.5 * alongZ * start) /
-                         (0.5 * alongZ + curve * M_PI / 2 + alongX);
-    turtle.run(alongZ, 0.0, slope, points);
-    turtle.run(curve * M_PI / 2, 1.0 / curve, slope, points);
+    const double slope = (here.y() - foot.y() - 0.5 * alongX * start) /
+                         (0.5 * alongX + kCurve * M_PI + kUTurn * M_PI + alongZ + kFinalRun + kFootRun);
     turtle.run(alongX, 0.0, slope, points);
+    turtle.run(kCurve * M_PI / 2, 1.0 / kCurve, slope, points);
+    turtle.run(alongZ, 0.0, slope, points);
+    turtle.run(kUTurn * M_PI, 1.0 / kUTurn, slope, points);
+    turtle.run(kFinalRun, 0.0, slope, points);
+    turtle.run(kCurve * M_PI / 2, -1.0 / kCurve, slope, points);
+    turtle.run(kFootRun, 0.0, slope, points);
     points.pop_back();  // the lift's first point is the foot itself
     path.liftBegin = points.size();
 
@@ -264,7 +303,9 @@ SceneDescription buildRollingBalls() {
                           .axis1 = Vec3::UnitZ(),
                           .normal0 = radial,
                           .normal1 = Vec3::UnitX(),
-                          .targetVelocity = kDefaultLiftSpeed});
+                          .targetVelocity = kDefaultLiftSpeed,
+                          .driveCompliance = kLiftCompliance,
+                          .angularDamping = kLiftDamping});
     }
 
     // The marbles, spread evenly along the descending track (not on the lift), resting on the
@@ -290,13 +331,204 @@ SceneDescription buildRollingBalls() {
     return scene;
 }
 
+/// Where a marble is along the centre line, found near where it was the frame before.
+struct Tracked {
+    BodyId id;
+    size_t segment = 0;      ///< centre-line segment [segment, segment + 1] it is nearest to
+    double offTrack = 0.0;   ///< distance from the centre line (m)
+    double progress = 0.0;   ///< unwrapped distance run along the line since the start (m)
+    double along = 0.0;      ///< position along the line in [0, length) (m)
+    Vec3 velocity = Vec3::Zero();
+    double turn = 0.0;       ///< angle its velocity turned by over the last frame (rad)
+};
+
+class RollingBallsScript : public SceneScript {
+  public:
+    RollingBallsScript() {
+        marbles_ = addKnob({.name = "marbles",
+                            .label = "marbles (more on restart)",
+                            .value = kMaxMarbles,
+                            .min = 1,
+                            .max = kMaxMarbles,
+                            .format = "%.0f"});
+        liftSpeed_ = addKnob({.name = "lift_speed",
+                              .label = "lift speed (rad/s)",
+                              .value = kDefaultLiftSpeed,
+                              .min = 0.0,
+                              .max = 3.0,
+                              .format = "%.2f"});
+        velocityPass_ = addKnob({.name = "velocity_pass",
+                                 .label = "velocity pass (off: plain PBD)",
+                                 .kind = SceneKnob::Kind::Toggle,
+                                 .value = 1.0});
+        std::vector<std::string> follow{"the whole sculpture"};
+        for (int i = 0; i < kMaxMarbles; ++i) follow.push_back(marbleName(i));
+        follow_ = addKnob({.name = "follow",
+                           .label = "camera",
+                           .kind = SceneKnob::Kind::Choice,
+                           .choices = std::move(follow)});
+    }
+
+    void start(SceneInstance& scene) override {
+        tracked_.clear();
+        for (int i = 0; i < kMaxMarbles; ++i) {
+            const BodyId id = scene.bodyNamed(marbleName(i));
+            if (scene.world.isValid(id)) tracked_.push_back({.id = id});
+        }
+        lifts_.clear();
+        for (int i = 0; i < kArms; ++i) lifts_.push_back(scene.jointNamed("lift_" + std::to_string(i)));
+        applyKnobs(scene.world);
+        // Place each marble on the line by a search over all of it, once.
+        const SculpturePath& path = sculpturePath();
+        for (Tracked& marble : tracked_) {
+            marble.segment = nearestSegment(path, scene.world.body(marble.id).x, 0, path.points.size());
+            observe(scene.world, marble, true);
+        }
+        fastestTurn_ = 0.0;
+        recordTurn_ = 0.0;
+    }
+
+    void knobChanged(SceneInstance& scene, size_t /*index*/) override { applyKnobs(scene.world); }
+
+    void beforeFrame(SceneInstance& scene, double /*time*/, double /*dt*/) override {
+        // The state the last frame left (the first call sees the start).
+        fastestSpeed_ = 0.0;
+        fastestTurn_ = 0.0;
+        for (Tracked& marble : tracked_) {
+            if (!scene.world.isValid(marble.id)) continue;
+            observe(scene.world, marble, false);
+            const double speed = marble.velocity.norm();
+            if (speed > fastestSpeed_) fastestSpeed_ = speed;
+        }
+        // The fastest marble in the spring, and how far its path turned over the last frame.
+        const SculpturePath& path = sculpturePath();
+        double fastestInSpring = -1.0;
+        for (const Tracked& marble : tracked_) {
+            if (!scene.world.isValid(marble.id) || marble.segment < path.springBegin ||
+                marble.segment >= path.springEnd)
+                continue;
+            const double speed = marble.velocity.norm();
+            if (speed > fastestInSpring) {
+                fastestInSpring = speed;
+                fastestTurn_ = marble.turn;
+            }
+        }
+        recordTurn_ = std::max(recordTurn_, fastestTurn_);
+    }
+
+    void readouts(const SceneInstance& scene, std::vector<SceneReadout>& out) const override {
+        const SculpturePath& path = sculpturePath();
+        int laps = 0;
+        int onTrack = 0;
+        for (const Tracked& marble : tracked_) {
+            if (!scene.world.isValid(marble.id)) continue;
+            laps += static_cast<int>(std::floor(marble.progress / path.length));
+            onTrack += marble.offTrack < kCageRadius;
+        }
+        constexpr double kDegree = M_PI / 180.0;
+        out.push_back({"laps completed", static_cast<double>(laps), "%.0f"});
+        out.push_back({"marbles on the track", static_cast<double>(onTrack), "%.0f"});
+        out.push_back({"fastest marble (m/s)", fastestSpeed_, "%.2f"});
+        out.push_back({"turn per frame in the spring (deg)", fastestTurn_ / kDegree, "%.0f"});
+        out.push_back({"largest turn per frame so far (deg)", recordTurn_ / kDegree, "%.0f"});
+    }
+
+    std::optional<SceneCamera> camera(const SceneInstance& scene) const override {
+        const size_t followed = static_cast<size_t>(knob(follow_));
+        if (followed == 0 || followed > tracked_.size()) return std::nullopt;
+        const Tracked& marble = tracked_[followed - 1];
+        if (!scene.world.isValid(marble.id)) return std::nullopt;
+        // From behind and above the marble, looking along the track.
+        const SculpturePath& path = sculpturePath();
+        const PathPoint& p = path.points[marble.segment];
+        const Vec3 ahead = (path.points[(marble.segment + 1) % path.points.size()].position -
+                            p.position).normalized();
+        const Vec3& x = scene.world.body(marble.id).x;
+        return SceneCamera{.position = x - 0.25 * ahead + 0.12 * Vec3::UnitY(), .target = x, .fov = 1.0};
+    }
+
+  private:
+    /// Where the knobs act on the world: solver settings, the lift's motors, the marble count.
+    void applyKnobs(World& world) {
+        WorldSettings settings = world.settings();
+        settings.velocityPass = toggled(velocityPass_);
+        world.setSettings(settings);
+        for (JointId lift : lifts_)
+            if (world.isValid(lift)) world.joint(lift).targetVelocity = knob(liftSpeed_);
+        // Fewer marbles: the last ones are taken out of the sculpture.
+        const size_t count = static_cast<size_t>(knob(marbles_));
+        for (size_t i = count; i < tracked_.size(); ++i) world.destroyBody(tracked_[i].id);
+    }
+
+    /// Reads one marble: its place along the centre line (searched from a little behind where
+    /// it was to as far ahead as it can run in a frame), velocity and turn.
+    void observe(const World& world, Tracked& marble, bool first) const {
+        const SculpturePath& path = sculpturePath();
+        const Body& body = world.body(marble.id);
+        const size_t n = path.points.size();
+        if (!first) {
+            constexpr size_t kBehind = 5;
+            constexpr size_t kAhead = 40;  // 0.8 m of line: 48 m/s at 60 frames per second
+            marble.segment = nearestSegment(path, body.x, marble.segment + n - kBehind, kBehind + kAhead);
+        }
+        const Vec3& a = path.points[marble.segment].position;
+        const Vec3& b = path.points[(marble.segment + 1) % n].position;
+        const Vec3 ab = b - a;
+        const double u = std::clamp((body.x - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+        marble.offTrack = (body.x - (a + u * ab)).norm();
+        const double along = path.distance[marble.segment] + u * ab.norm();
+        if (!first) {
+            double step = along - marble.along;
+            if (step > 0.5 * path.length) step -= path.length;
+            if (step < -0.5 * path.length) step += path.length;
+            marble.progress += step;
+            const double cross = marble.velocity.cross(body.v).norm();
+            marble.turn = std::atan2(cross, marble.velocity.dot(body.v));
+        }
+        marble.along = along;
+        marble.velocity = body.v;
+    }
+
+    /// The segment of the closed centre line nearest to x among `count` from `first` (mod n).
+    static size_t nearestSegment(const SculpturePath& path, const Vec3& x, size_t first, size_t count) {
+        const size_t n = path.points.size();
+        size_t best = first % n;
+        double bestDistance2 = std::numeric_limits<double>::infinity();
+        for (size_t k = 0; k < count; ++k) {
+            const size_t i = (first + k) % n;
+            const Vec3& a = path.points[i].position;
+            const Vec3 ab = path.points[(i + 1) % n].position - a;
+            const double u = std::clamp((x - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+            const double d2 = (x - a - u * ab).squaredNorm();
+            if (d2 < bestDistance2) {
+                bestDistance2 = d2;
+                best = i;
+            }
+        }
+        return best;
+    }
+
+    size_t marbles_ = 0;
+    size_t liftSpeed_ = 0;
+    size_t velocityPass_ = 0;
+    size_t follow_ = 0;
+    std::vector<Tracked> tracked_;
+    std::vector<JointId> lifts_;
+    double fastestSpeed_ = 0.0;
+    double fastestTurn_ = 0.0;  ///< rad, of the fastest marble in the spring, last frame
+    double recordTurn_ = 0.0;   ///< rad, the largest of those so far
+};
+
 }  // namespace
 
 SceneEntry rollingBallsEntry() {
     return {.name = "rolling_balls",
             .description = "Figs. 1, 14: marbles circulating on a wire sculpture with a spring and a paddle-wheel lift",
             .build = buildRollingBalls,
-            .paperMsPerFrame = 15};
+            .paperMsPerFrame = 15,
+            .makeScript = []() -> std::unique_ptr<SceneScript> {
+                return std::make_unique<RollingBallsScript>();
+            }};
 }
 
 }  // namespace substep::scenes
