@@ -264,14 +264,6 @@ SceneDescription buildRollingBalls() {
     scene.bodies.push_back(
         {"base", BodyDef{.shape = planeShape(Vec3::UnitY(), 0.0), .type = BodyType::Static},
          Vec3(0.35, 0.33, 0.3)});
-    static constexpr std::array<const char*, 2> kWireNames{"wire_0", "wire_1"};
-    for (int k = 0; k < 2; ++k)
-        scene.bodies.push_back({kWireNames[k],
-                                BodyDef{.shape = splineShape(cageWire(path, k)),
-                                        .type = BodyType::Static,
-                                        .staticFriction = kMarbleFriction,
-                                        .dynamicFriction = kMarbleFriction},
-                                Vec3(0.75, 0.75, 0.78)});
     scene.bodies.push_back({"axle", BodyDef{.shape = cylinderShape(0.03, 0.08),
                                             .type = BodyType::Static,
                                             .position = kAxle,
@@ -307,6 +299,17 @@ SceneDescription buildRollingBalls() {
                           .driveCompliance = kLiftCompliance,
                           .angularDamping = kLiftDamping});
     }
+
+    // The wires after the arms: contact pairs are solved in body order, so a marble an arm
+    // presses against a wire is pushed out of the wire last (the sprung arm gives way).
+    static constexpr std::array<const char*, 2> kWireNames{"wire_0", "wire_1"};
+    for (int k = 0; k < 2; ++k)
+        scene.bodies.push_back({kWireNames[k],
+                                BodyDef{.shape = splineShape(cageWire(path, k)),
+                                        .type = BodyType::Static,
+                                        .staticFriction = kMarbleFriction,
+                                        .dynamicFriction = kMarbleFriction},
+                                Vec3(0.75, 0.75, 0.78)});
 
     // The marbles, spread evenly along the descending track (not on the lift), resting on the
     // lower wires.
