@@ -68,7 +68,7 @@ constexpr double kLiftCompliance = 0.05;
 constexpr double kLiftDamping = 2.0;          ///< 1/s: the sprung arms settle
 
 // The spring (Fig. 14): a coil of 3 turns, the centre line 25 mm from its axis.
-constexpr double kSpringRadius = 0.02;
+constexpr double kSpringRadius = 0.016;
 constexpr double kSpringEase = 0.04;  ///< m of clothoid into and out of the coil
 constexpr double kSpringTurns = 3.0;
 constexpr double kSpringSlope = 0.4;  ///< drop per horizontal metre: a pitch of 40 mm
@@ -166,7 +166,7 @@ SculpturePath buildPath() {
     Turtle turtle(top, M_PI);
     points.push_back(Turtle::framed(top, turtle.direction()));
     turtle.run(0.2 * M_PI / 2, -1.0 / 0.2, 0.05, points);  // a quarter turn to −z
-    turtle.run(0.3, 0.0, 1.2, points);                    // the plunge: steepening to 50°
+    turtle.run(0.3, 0.0, 0.5, points);                    // the plunge: steepening to 27°
     turtle.run(0.45, 0.0, kSpringSlope, points);          // and easing into the spring
     path.springBegin = points.size() - 1;
     // Into and out of the coil along clothoids of kSpringEase each, which turn by half as much

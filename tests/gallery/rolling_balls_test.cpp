@@ -108,10 +108,7 @@ CircuitRun runCircuit(LiveScene& scene, double seconds) {
             const Vec3& x = marble.x;
             if (!s.bounds.contains({x, x})) ++run.framesOutside;
             const double gap = nearestGap(s, x);
-            if (-gap > run.deepestSink) {
-                run.deepestSink = -gap;
-                std::printf("sink %.3f mm at t %.2f, (%.3f %.3f %.3f), v %.2f\n", -gap * 1e3, scene.time(), x.x(), x.y(), x.z(), marble.v.norm());
-            }
+            run.deepestSink = std::max(run.deepestSink, -gap);
             // A circuit: up the lift to the top, then round to where it started.
             if (x.y() > s.top - 0.05) passedTop[i] = true;
             const double fromStart = (x - start[i]).norm();
