@@ -50,6 +50,19 @@ void BM_ClosestPointOnCubicSegment(benchmark::State& state) {
 }
 BENCHMARK(BM_ClosestPointOnCubicSegment);
 
+// The same queries by Newton from the chord's projection (what a marble near a wire takes).
+void BM_ClosestPointOnCubicSegmentFromChord(benchmark::State& state) {
+    const auto tube = helix();
+    const auto queries = marblesOn(*tube, 0.01, 1024);
+    const CubicSegment& segment = tube->segments[100];
+    std::size_t i = 0;
+    for (auto _ : state) {
+        const Vec3& q = queries[i++ & 1023];
+        benchmark::DoNotOptimize(closestOnCubicFrom(segment, q, chordParameter(segment, q)));
+    }
+}
+BENCHMARK(BM_ClosestPointOnCubicSegmentFromChord);
+
 void BM_ClosestPointOnSpline(benchmark::State& state) {
     const auto tube = helix();
     const auto queries = marblesOn(*tube, 0.01, 1024);

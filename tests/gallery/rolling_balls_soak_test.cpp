@@ -5,6 +5,8 @@
 #include "scenes/live_scene.h"
 #include "scenes/scene_registry.h"
 
+#include "physics/collision/spline_tube.h"
+
 #include <gtest/gtest.h>
 
 #include <cstdio>
