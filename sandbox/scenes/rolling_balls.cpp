@@ -3,12 +3,13 @@
 // a quarter turn in a single time step. Simulating such fast curved motions requires substepping
 // and the use of current constraint normals for each projection." Table 1: 10 substeps, 15 ms.
 //
-// One closed circuit of wire, four spline tubes (paper 3.5's curved geometry) around a common
-// centre line: the two lower wires are the track a marble rolls on, the two upper ones the guard
-// wires that keep it in where it flies (crests, the spring, the lift). From the top of the lift
-// the track curves away, plunges down a steep ramp into the spring (a coil of 25 mm radius where
-// a marble at 3 m/s turns by more than 90° per frame), leaves it into a wide helix, runs round
-// two curves and back along a gentle slope to the foot of the lift, where the marbles queue.
+// One closed circuit: a cage of four wires (spline tubes, paper 3.5's curved geometry) around a
+// common centre line. The two lower wires are the track a marble rolls on, the two upper ones the
+// guard wires that keep it in where it flies (the plunge, the spring, the lift); the lift turns
+// the cage over, so two closed wires, each running twice round, make all four (cageWire). From
+// the top of the lift the track curves away, plunges into the spring (a coil of 16 mm radius
+// where a marble at 1.8 m/s turns by about 100° per frame), leaves it into a wide helix, and runs
+// round two curves and a U-turn back to the foot of the lift, where the marbles queue.
 // The lift is a paddle wheel: eight arms, each on its own motor-driven hinge about the same
 // axle, sweep through the lift's half circle of track and push one marble each up to the top
 // (box against spline has no contact, so the arms pass through the wires). Nothing is moved by
@@ -28,9 +29,9 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <stdexcept>
-#include <memory>
 #include <string>
 #include <vector>
 
@@ -67,7 +68,7 @@ constexpr double kDefaultLiftSpeed = 1.2;     ///< rad/s
 constexpr double kLiftCompliance = 0.05;
 constexpr double kLiftDamping = 2.0;          ///< 1/s: the sprung arms settle
 
-// The spring (Fig. 14): a coil of 3 turns, the centre line 25 mm from its axis.
+// The spring (Fig. 14): a coil of 3 turns, the centre line 16 mm from its axis.
 constexpr double kSpringRadius = 0.016;
 constexpr double kSpringEase = 0.04;  ///< m of clothoid into and out of the coil
 constexpr double kSpringTurns = 3.0;
@@ -330,7 +331,7 @@ SceneDescription buildRollingBalls() {
                   0.9 - 0.8 * ((i * 5) % kMaxMarbles) / kMaxMarbles)});
     }
     scene.camera =
-        SceneCamera{.position = Vec3(1.3, 1.5, 1.9), .target = Vec3(-0.3, 0.7, -0.45), .fov = 0.8};
+        SceneCamera{.position = Vec3(1.5, 1.55, 1.75), .target = Vec3(-0.3, 0.8, -0.35), .fov = 0.75};
     return scene;
 }
 
