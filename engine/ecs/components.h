@@ -65,6 +65,8 @@ struct Collider {
     double dynamicFriction = 0.3;
     double restitution = 0.0;
     bool collide = true;  ///< false: the shape gives mass and a look but meets nothing
+    uint32_t collisionGroup = 1;   ///< collision filter (BodyDef::collisionGroup), fixed at creation
+    uint32_t collisionMask = ~0u;  ///< BodyDef::collisionMask
 };
 
 /// A joint between two body entities; a null entity is the world (anchor and axes then in world
