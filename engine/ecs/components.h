@@ -35,7 +35,8 @@ struct Name {
 /// The entity's user frame in world coordinates: the frame scenes give poses and joint anchors
 /// in and the renderer draws shapes in. For a simulated body the PhysicsSystem writes it after
 /// every step; before the body exists it is the pose the body is created at. Patched, it moves
-/// the body there (a static mount carried by hand, a body placed by a script).
+/// the body there (a static mount carried by hand, a body placed by a script). A static body that
+/// collides is filed once in the broadphase's static tree: move only those that do not collide.
 struct Transform {
     Vec3 position = Vec3::Zero();
     Quat rotation = Quat::Identity();
