@@ -13,6 +13,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <set>
 #include <string_view>
 
@@ -83,7 +84,12 @@ int renderFrames(const RenderOptions& options) {
             return 1;
         }
         if (frames[next] != frame) continue;
-        renderer.render(drawing.draw(live.instance()), target->target());
+        render::RenderScene picture = drawing.draw(live.instance());
+        // A script may ask for a camera of its own (one following a body).
+        if (live.script() != nullptr)
+            if (const std::optional<SceneCamera> camera = live.script()->camera(live.instance()))
+                picture.camera = renderCamera(*camera);
+        renderer.render(picture, target->target());
         AtomicFile file((directory / frameFileName(frame)).string());
         file.write(render::encodePng(target->readPixels()));
         file.commit();

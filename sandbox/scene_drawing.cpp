@@ -92,6 +92,13 @@ render::Colour debugColour(const DebugSegment& segment) {
 
 }  // namespace
 
+render::Camera renderCamera(const SceneCamera& camera) {
+    return {.position = toFloat(camera.position),
+            .target = toFloat(camera.target),
+            .up = render::Vec3f::UnitY(),
+            .fovY = static_cast<float>(camera.fov)};
+}
+
 render::Colour bodyColour(std::size_t index, bool isStatic) {
     if (isStatic) return {0.55f, 0.56f, 0.60f};
     // Warm and cool colours alternating, saturated enough to tell neighbours apart.
@@ -118,10 +125,7 @@ SceneDrawing::SceneDrawing(const SceneDescription& description, SceneInstance& s
     const double radius = box.isEmpty() ? 1.0 : std::max(box.diagonal().norm() / 2.0, 0.05);
 
     if (description.camera) {
-        camera_ = {.position = toFloat(description.camera->position),
-                   .target = toFloat(description.camera->target),
-                   .up = render::Vec3f::UnitY(),
-                   .fovY = static_cast<float>(description.camera->fov)};
+        camera_ = renderCamera(*description.camera);
     } else {
         camera_ = render::framingCamera(toFloat(centre), static_cast<float>(radius), 0.8f, aspect);
     }

@@ -27,6 +27,9 @@ struct DrawingOptions {
     bool contacts = false;
 };
 
+/// A scene's camera as the renderer takes it (y up).
+render::Camera renderCamera(const SceneCamera& camera);
+
 class SceneDrawing {
   public:
     /// Fixes the camera (the scene's own, else one that frames the bodies of `scene` for an image

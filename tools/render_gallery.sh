@@ -23,6 +23,7 @@ telling_frame() {
     coin) echo 60 ;;                 # rolling on its rim, tilted
     joint_types) echo 150 ;;         # every joint resting on its limit or target
     twisted_rope) echo 1500 ;;       # 25 s: turned 8 times, coiled
+    rolling_balls) echo 600 ;;       # 10 s: circulating, marbles queued at the lift and on it
     *) echo 60 ;;
   esac
 }

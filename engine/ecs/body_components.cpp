@@ -19,7 +19,9 @@ BodyComponents toBodyComponents(const BodyDef& def) {
                      .staticFriction = def.staticFriction,
                      .dynamicFriction = def.dynamicFriction,
                      .restitution = def.restitution,
-                     .collide = def.collide},
+                     .collide = def.collide,
+                     .collisionGroup = def.collisionGroup,
+                     .collisionMask = def.collisionMask},
     };
 }
 
@@ -40,6 +42,8 @@ BodyDef toBodyDef(const Transform& transform, const RigidBody& rigidBody,
         def.dynamicFriction = collider->dynamicFriction;
         def.restitution = collider->restitution;
         def.collide = collider->collide;
+        def.collisionGroup = collider->collisionGroup;
+        def.collisionMask = collider->collisionMask;
     } else {
         def.collide = false;
     }

@@ -35,7 +35,8 @@ struct Name {
 /// The entity's user frame in world coordinates: the frame scenes give poses and joint anchors
 /// in and the renderer draws shapes in. For a simulated body the PhysicsSystem writes it after
 /// every step; before the body exists it is the pose the body is created at. Patched, it moves
-/// the body there (a static mount carried by hand, a body placed by a script).
+/// the body there (a static mount carried by hand, a body placed by a script). A static body that
+/// collides is filed once in the broadphase's static tree: move only those that do not collide.
 struct Transform {
     Vec3 position = Vec3::Zero();
     Quat rotation = Quat::Identity();
@@ -65,6 +66,8 @@ struct Collider {
     double dynamicFriction = 0.3;
     double restitution = 0.0;
     bool collide = true;  ///< false: the shape gives mass and a look but meets nothing
+    uint32_t collisionGroup = 1;   ///< collision filter (BodyDef::collisionGroup), fixed at creation
+    uint32_t collisionMask = ~0u;  ///< BodyDef::collisionMask
 };
 
 /// A joint between two body entities; a null entity is the world (anchor and axes then in world

@@ -127,17 +127,16 @@ void PhysicsSystem::applyChanges() {
     // Poses before velocities: a script that places a body and sets it moving gets both.
     takeChanged<Transform>(registry, changed);
     for (const Entity entity : changed) {
-        const RigidBody* rigidBody = registry.tryGet<RigidBody>(entity);
-        const Transform* transform = registry.tryGet<Transform>(entity);
+        RigidBody* rigidBody = registry.tryGet<RigidBody>(entity);
+        Transform* transform = registry.tryGet<Transform>(entity);
         if (rigidBody == nullptr || transform == nullptr || !world.isValid(rigidBody->id)) continue;
         world.setBodyPose(rigidBody->id, transform->position, transform->rotation);
         // The Transform reads back as the world has it (the same pose, within rounding), as it
         // does after every step. Velocities are left alone: a patch of them may follow.
         const Body& body = world.body(rigidBody->id);
-        Transform& moved = *registry.tryGet<Transform>(entity);
-        moved.position = body.userPosition();
-        moved.rotation = body.userOrientation();
-        registry.tryGet<RigidBody>(entity)->centreOfMass = body.x;
+        transform->position = body.userPosition();
+        transform->rotation = body.userOrientation();
+        rigidBody->centreOfMass = body.x;
     }
     takeChanged<RigidBody>(registry, changed);
     for (const Entity entity : changed) {

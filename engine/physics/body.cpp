@@ -25,6 +25,8 @@ Body makeBody(const BodyDef& def) {
     body.dynamicFriction = def.dynamicFriction;
     body.restitution = def.restitution;
     body.collide = def.collide;
+    body.collisionGroup = def.collisionGroup;
+    body.collisionMask = def.collisionMask;
     body.alive = true;
 
     if (def.type == BodyType::Static) {

@@ -30,6 +30,10 @@ struct BodyDef {
     double dynamicFriction = 0.3;
     double restitution = 0.0;
     bool collide = true;
+    /// Collision filter (as Box2D's category and mask bits): two bodies meet only when each one's
+    /// group is in the other's mask. The defaults let everything meet.
+    uint32_t collisionGroup = 1;
+    uint32_t collisionMask = ~0u;
 };
 
 /// Simulation state of one body, in its principal frame: `x` is the centre of mass, `q` turns
@@ -60,6 +64,13 @@ struct Body {
     double dynamicFriction = 0.3;
     double restitution = 0.0;
     bool collide = true;
+    uint32_t collisionGroup = 1;   ///< BodyDef::collisionGroup
+    uint32_t collisionMask = ~0u;  ///< BodyDef::collisionMask
+
+    /// Whether the collision filters of two bodies let them meet.
+    static bool filtersMeet(const Body& a, const Body& b) {
+        return (a.collisionGroup & b.collisionMask) != 0 && (b.collisionGroup & a.collisionMask) != 0;
+    }
 
     bool isDynamic() const { return invMass > 0.0; }
     bool rotates() const { return type == BodyType::Dynamic; }

@@ -300,7 +300,7 @@ void World::collectContactPairs(double dt) {
         if (joined) continue;
         const Body& b0 = bodies_[candidate.body0];
         const Body& b1 = bodies_[candidate.body1];
-        if (!canCollide(b0.shape.type, b1.shape.type)) continue;
+        if (!canCollide(b0.shape.type, b1.shape.type) || !Body::filtersMeet(b0, b1)) continue;
         reaches_[candidate.body0] = shapeReach(b0.shape);
         reaches_[candidate.body1] = shapeReach(b1.shape);
         // Paper 3.5: a pair's coefficients are the averages of its bodies'.

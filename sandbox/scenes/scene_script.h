@@ -8,6 +8,7 @@
 
 #include <cstddef>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -54,6 +55,11 @@ class SceneScript {
     virtual void knobChanged(SceneInstance& /*scene*/, std::size_t /*index*/) {}
     /// Appends the values worth watching.
     virtual void readouts(const SceneInstance& /*scene*/, std::vector<SceneReadout>& /*out*/) const {}
+    /// The camera the scene asks for in its current state (one following a body), or none to
+    /// keep the scene's own or the viewer's.
+    virtual std::optional<SceneCamera> camera(const SceneInstance& /*scene*/) const {
+        return std::nullopt;
+    }
 
     std::span<SceneKnob> knobs() { return knobs_; }
     std::span<const SceneKnob> knobs() const { return knobs_; }

@@ -29,6 +29,7 @@ SceneEntry marblesOnWireEntry();  ///< Fig. 13 (marbles_on_wire.cpp)
 SceneEntry coinEntry();           ///< Fig. 15 (coin.cpp)
 SceneEntry robotArmEntry();       ///< Fig. 17 (robot_arm.cpp)
 SceneEntry twistedRopeEntry();    ///< Fig. 18 (twisted_rope.cpp)
+SceneEntry rollingBallsEntry();   ///< Figs. 1, 14 (rolling_balls.cpp)
 
 /// The paper's gravity (its demos use 10 m/s²).
 inline const Vec3 kPaperGravity(0.0, -10.0, 0.0);

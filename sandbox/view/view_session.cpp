@@ -150,6 +150,9 @@ void ViewSession::sample() {
 render::RenderScene ViewSession::draw(const render::Camera& camera) {
     render::RenderScene scene = drawing_->draw(live_->instance());
     scene.camera = camera;
+    // A script may ask for a camera of its own (one following a body): it wins while it asks.
+    if (const SceneScript* script = live_->script())
+        if (const std::optional<SceneCamera> own = script->camera(live_->instance())) scene.camera = renderCamera(*own);
     if (const std::optional<render::DebugLine> spring = dragger_.line(live_->instance().registry))
         scene.lines.push_back(*spring);
     return scene;

@@ -50,6 +50,43 @@ void BM_ClosestPointOnCubicSegment(benchmark::State& state) {
 }
 BENCHMARK(BM_ClosestPointOnCubicSegment);
 
+/// Marble centres resting on one segment of the wire (as the narrowphase asks of the segments
+/// next to a marble).
+std::vector<Vec3> marblesOnSegment(const SplineTube& tube, int index, double r, int count) {
+    std::mt19937 rng(2);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    const CubicSegment& s = tube.segments[index];
+    std::vector<Vec3> centres;
+    for (int i = 0; i < count; ++i) {
+        const double t = u(rng);
+        const Vec3 tangent = s.tangent(t).normalized();
+        const Vec3 side = Eigen::AngleAxisd(2.0 * M_PI * u(rng), tangent) * anyPerpendicular(tangent);
+        centres.push_back(s.point(t) + (tube.radius + r - 0.001 + 0.002 * u(rng)) * side);
+    }
+    return centres;
+}
+
+// A marble on the segment: the scan, then Newton from the chord's projection.
+void BM_ClosestPointNearSegmentScan(benchmark::State& state) {
+    const auto tube = helix();
+    const auto queries = marblesOnSegment(*tube, 100, 0.01, 1024);
+    std::size_t i = 0;
+    for (auto _ : state) benchmark::DoNotOptimize(closestOnCubic(tube->segments[100], queries[i++ & 1023]));
+}
+BENCHMARK(BM_ClosestPointNearSegmentScan);
+
+void BM_ClosestPointNearSegmentFromChord(benchmark::State& state) {
+    const auto tube = helix();
+    const auto queries = marblesOnSegment(*tube, 100, 0.01, 1024);
+    const CubicSegment& segment = tube->segments[100];
+    std::size_t i = 0;
+    for (auto _ : state) {
+        const Vec3& q = queries[i++ & 1023];
+        benchmark::DoNotOptimize(closestOnCubicFrom(segment, q, chordParameter(segment, q)));
+    }
+}
+BENCHMARK(BM_ClosestPointNearSegmentFromChord);
+
 void BM_ClosestPointOnSpline(benchmark::State& state) {
     const auto tube = helix();
     const auto queries = marblesOn(*tube, 0.01, 1024);

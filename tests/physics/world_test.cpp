@@ -327,3 +327,34 @@ TEST(WorldDampingTest, DampingSetOnALiveJointActs) {
 
 }  // namespace
 }  // namespace substep
+
+namespace substep {
+namespace {
+
+// Collision filters (BodyDef::collisionGroup / collisionMask): a ball dropped on a box rests on
+// it at its radius, unless either one's mask leaves out the other's group; then it falls through
+// freely, at g. Filters are symmetric: excluding from one side is enough.
+TEST(WorldCollisionFilterTest, MasksDecideWhichBodiesMeet) {
+    struct Case {
+        uint32_t ballGroup, ballMask, floorGroup, floorMask;
+        bool meet;
+    };
+    for (const Case& c : {Case{1, ~0u, 1, ~0u, true}, Case{2, ~4u, 4, ~0u, false}, Case{2, ~0u, 4, ~2u, false},
+                          Case{2, 4u, 4, 2u, true}, Case{1, 1u, 2, ~0u, false}}) {
+        World world(WorldSettings{.gravity = Vec3(0, -10, 0), .substeps = 20});
+        world.createBody({.shape = boxShape(Vec3(4, 1, 4)), .type = BodyType::Static, .position = Vec3(0, -0.5, 0),
+                          .collisionGroup = c.floorGroup, .collisionMask = c.floorMask});
+        const BodyId ball = world.createBody({.shape = sphereShape(0.1), .mass = 1.0, .position = Vec3(0, 0.1, 0),
+                                              .collisionGroup = c.ballGroup, .collisionMask = c.ballMask});
+        for (int frame = 0; frame < 30; ++frame) world.step(1.0 / 60.0);
+        if (c.meet) {
+            EXPECT_NEAR(world.body(ball).x.y(), 0.1, 1e-3);
+        } else {
+            // 0.5 s of free fall: y = 0.1 − g t²/2 within the substeps' discretisation.
+            EXPECT_NEAR(world.body(ball).x.y(), 0.1 - 0.5 * 10.0 * 0.25, 5e-3);
+        }
+    }
+}
+
+}  // namespace
+}  // namespace substep

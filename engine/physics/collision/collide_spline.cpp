@@ -75,7 +75,10 @@ void addSphereContacts(const SplineTube& tube, const Vec3& c, double r, double m
     tube.forSegmentsNear(c, range, [&](int i) {
         const Aabb& box = tube.segmentBounds[i];
         if ((box.min - c).cwiseMax(c - box.max).cwiseMax(0.0).squaredNorm() > range2) return;
-        const SegmentClosest closest = closestOnCubic(tube.segments[i], c);
+        // Newton from the chord's projection where the piece is short and gently bent against
+        // the distance (a marble on a wire); the scan elsewhere (closestOnCubicFrom).
+        const CubicSegment& segment = tube.segments[i];
+        const SegmentClosest closest = closestOnCubicFrom(segment, c, chordParameter(segment, c));
         if (closest.distanceSquared > range2) return;
         const Vec3 x = tube.segments[i].point(closest.t);
         if (!isLocalMinimum(tube, i, closest.t, x - c)) return;

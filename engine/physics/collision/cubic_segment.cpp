@@ -1,6 +1,7 @@
 #include "physics/collision/cubic_segment.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace substep {
 
@@ -82,6 +83,57 @@ SegmentClosest closestOnCubic(const CubicSegment& curve, const Vec3& q) {
         h = d1.squaredNorm() + r.dot(curve.secondDerivative(t));
     };
     return minimise(distance2, slopes);
+}
+
+// f''/2 = |p'|² + r·p'' with r = p − q is positive where |p'|² > |r| |p''|. Around the middle
+// m = p(1/2): p'' is linear in t, so |p''| ≤ A = max(|p''(0)|, |p''(1)|); |p'(t) − p'(½)| ≤ A/2,
+// so |p'| ≥ s − A/2 with s = |p'(½)|; and |p(t) − m| ≤ (s + A/2)/2, so |r| ≤ |m − q| + (s + A/2)/2.
+bool distanceIsConvex(const CubicSegment& curve, const Vec3& q) {
+    const double accel =
+        std::sqrt(std::max(curve.secondDerivative(0.0).squaredNorm(), curve.secondDerivative(1.0).squaredNorm()));
+    const double speed = curve.tangent(0.5).norm();
+    const double slowest = speed - 0.5 * accel;
+    if (!(slowest > 0.0)) return false;
+    const double farthest = (curve.point(0.5) - q).norm() + 0.5 * (speed + 0.5 * accel);
+    return slowest * slowest > farthest * accel;
+}
+
+double chordParameter(const CubicSegment& curve, const Vec3& q) {
+    const Vec3 chord = curve.point(1.0) - curve.c0;
+    const double length2 = chord.squaredNorm();
+    if (!(length2 > 0.0)) return 0.0;
+    return std::clamp((q - curve.c0).dot(chord) / length2, 0.0, 1.0);
+}
+
+SegmentClosest closestOnCubicFrom(const CubicSegment& curve, const Vec3& q, double guess) {
+    if (!distanceIsConvex(curve, q) || !std::isfinite(guess)) return closestOnCubic(curve, q);
+    // One minimum on [0, 1]: Newton on f' = 0 inside a bracket that the sign of f' shrinks,
+    // stepping onto an end of the segment when the step leaves it there (a minimum at the end).
+    double lo = 0.0, hi = 1.0;
+    double t = std::clamp(guess, 0.0, 1.0);
+    for (int i = 0; i < kMaxNewtonSteps; ++i) {
+        const Vec3 r = curve.point(t) - q;
+        const Vec3 d1 = curve.tangent(t);
+        const double g = r.dot(d1);
+        const double h = d1.squaredNorm() + r.dot(curve.secondDerivative(t));  // > 0: convex
+        if (g > 0.0) {
+            if (t == 0.0) break;  // rising from the start: the minimum is there
+            hi = t;
+        } else if (g < 0.0) {
+            if (t == 1.0) break;
+            lo = t;
+        } else {
+            break;
+        }
+        if (std::abs(g) < kParameterTolerance * h) break;
+        double next = t - g / h;
+        if (next <= 0.0 && lo == 0.0) next = 0.0;
+        else if (next >= 1.0 && hi == 1.0) next = 1.0;
+        else if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+        t = next;
+        if (hi - lo < kParameterTolerance) break;
+    }
+    return {.t = t, .distanceSquared = (curve.point(t) - q).squaredNorm()};
 }
 
 SegmentClosest closestOnCubicToSegment(const CubicSegment& curve, const Vec3& a, const Vec3& b) {
