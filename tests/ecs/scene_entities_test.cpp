@@ -90,10 +90,13 @@ TEST(SceneEntities, MovedInstanceStepsThroughItsPhysicsSystem) {
 TEST(SceneEntities, DestroyingABodyEntityDropsItsJointsFromTheWorld) {
     SceneInstance s = buildScene(pendulumScene());
     const JointId rope = s.namedJointIds()[0].second;
+    const std::vector<std::pair<std::string, BodyId>> bodies = s.namedBodyIds();
     s.physics().destroy(s.bodyEntities[2]);  // bob
     EXPECT_FALSE(s.world().isValid(rope));
-    EXPECT_FALSE(s.world().isValid(s.namedBodyIds()[1].second));
-    EXPECT_TRUE(s.world().isValid(s.namedBodyIds()[0].second));
+    EXPECT_FALSE(s.world().isValid(bodies[1].second));
+    EXPECT_TRUE(s.world().isValid(bodies[0].second));
+    // A destroyed entity's name goes with it.
+    EXPECT_EQ(s.namedBodyIds().size(), bodies.size() - 1);
     EXPECT_EQ(s.world().maxJointError(), 0.0);
 }
 
