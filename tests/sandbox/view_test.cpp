@@ -353,25 +353,29 @@ TEST(CompareSessionTest, KnobsReachBothRunsAndLeaveTheSplits) {
     EXPECT_EQ(session.run(1).world().settings().iterations, 10);
 }
 
-TEST(CompareSessionTest, SplitsTheWindowIntoHalves) {
+TEST(CompareSessionTest, SplitsTheViewBesideThePanelIntoHalves) {
     view::CompareSession session(resolveScene("pendulum3"), 16.0f / 9.0f);
-    render::RenderTarget whole = session.target(0, {1281, 720});
-    EXPECT_EQ(whole.originX, 0);
+    // The view: a 1661 x 720 window less a 380-wide panel at its left.
+    const view::ViewArea area{.left = 380.0f, .top = 0.0f, .width = 1281.0f, .height = 720.0f};
+    const render::RenderTarget view{.framebuffer = 0, .size = {1281, 720}, .originX = 380, .originY = 0};
+    render::RenderTarget whole = session.target(0, view);
+    EXPECT_EQ(whole.originX, 380);
     EXPECT_EQ(whole.size, (render::PixelSize{1281, 720}));
-    EXPECT_EQ(session.runAt(1200.0f, 1281.0f), 0u);
+    EXPECT_EQ(session.runAt(1500.0f, area), 0u);
 
     session.compare(view::kPaperCompareSplits);
-    const render::RenderTarget left = session.target(0, {1281, 720});
-    const render::RenderTarget right = session.target(1, {1281, 720});
-    EXPECT_EQ(left.originX, 0);
-    EXPECT_EQ(right.originX, left.size.width);
-    EXPECT_EQ(left.size.width + right.size.width, 1281);  // every column drawn once
+    const render::RenderTarget left = session.target(0, view);
+    const render::RenderTarget right = session.target(1, view);
+    EXPECT_EQ(left.originX, 380);
+    EXPECT_EQ(right.originX, 380 + left.size.width);
+    EXPECT_EQ(left.size.width + right.size.width, 1281);  // every column of the view drawn once
     EXPECT_EQ(right.size.height, 720);
-    EXPECT_EQ(session.runAt(100.0f, 1280.0f), 0u);
-    EXPECT_EQ(session.runAt(700.0f, 1280.0f), 1u);
-    EXPECT_EQ(session.runAt(5000.0f, 1280.0f), 1u);  // off the window: the nearest run
-    EXPECT_FLOAT_EQ(session.part(1, 1280.0f).left, 640.0f);
-    EXPECT_FLOAT_EQ(session.part(1, 1280.0f).width, 640.0f);
+    EXPECT_EQ(session.runAt(400.0f, area), 0u);
+    EXPECT_EQ(session.runAt(1100.0f, area), 1u);
+    EXPECT_EQ(session.runAt(5000.0f, area), 1u);  // off the window: the nearest run
+    EXPECT_EQ(session.runAt(10.0f, area), 0u);
+    EXPECT_FLOAT_EQ(session.part(1, area).left, 380.0f + 640.5f);
+    EXPECT_FLOAT_EQ(session.part(1, area).width, 640.5f);
 }
 
 // A static body that does not collide is moved by the cursor itself, and a body hanging from it
