@@ -75,15 +75,24 @@ class ImGuiLayer {
     }
 };
 
-/// What the left button is doing since its press in the view.
+/// What the left button is doing since its press in the view, and where it was pressed.
 enum class LeftDrag { None, Orbit, Grab, Missed };
+struct LeftButton {
+    LeftDrag drag = LeftDrag::None;
+    float pressX = 0.0f;
+    float pressY = 0.0f;
+};
+
+/// A press and release closer than this (screen units) is a click: it selects.
+constexpr float kClickSlop = 4.0f;
 
 /// The mouse in the view: the frame's queued clicks first, at the positions they happened (a
 /// Ctrl-click shorter than a frame still grabs), then the drags by the cursor's motion. A left
-/// press without Ctrl orbits; with Ctrl it grabs the body under the cursor, and a near miss does
-/// nothing until the button is released.
+/// press without Ctrl orbits, and released where it was pressed selects the body there for the
+/// inspector; with Ctrl it grabs the body under the cursor, and a near miss does nothing until
+/// the button is released.
 void steerMouse(OrbitCamera& camera, CompareSession& session, const ViewArea& area,
-                std::span<const InputEvent> events, LeftDrag& left) {
+                std::span<const InputEvent> events, LeftButton& left) {
     const ImGuiIO& io = ImGui::GetIO();
     // The ray through window point (x, y) in the view of run `index`.
     const auto ray = [&](std::size_t index, float x, float y) {
@@ -99,21 +108,28 @@ void steerMouse(OrbitCamera& camera, CompareSession& session, const ViewArea& ar
         const auto y = static_cast<float>(event.y);
         if (event.action == GLFW_PRESS) {
             if (io.WantCaptureMouse || !inView(x, y)) continue;
+            left.pressX = x;
+            left.pressY = y;
             if (!grabsBody(event.mods)) {
-                left = LeftDrag::Orbit;
+                left.drag = LeftDrag::Orbit;
                 continue;
             }
             const std::size_t under = session.runAt(x, area);
-            left = session.run(under).grab(ray(under, x, y)) ? LeftDrag::Grab : LeftDrag::Missed;
+            left.drag = session.run(under).grab(ray(under, x, y)) ? LeftDrag::Grab : LeftDrag::Missed;
         } else if (event.action == GLFW_RELEASE) {
             if (const std::optional<std::size_t> held = session.dragging()) session.run(*held).release();
-            left = LeftDrag::None;
+            if (left.drag == LeftDrag::Orbit && std::abs(x - left.pressX) < kClickSlop &&
+                std::abs(y - left.pressY) < kClickSlop) {
+                const std::size_t under = session.runAt(x, area);
+                session.run(under).select(ray(under, x, y));
+            }
+            left.drag = LeftDrag::None;
         }
     }
     if (const std::optional<std::size_t> held = session.dragging()) {
         session.run(*held).drag(ray(*held, io.MousePos.x, io.MousePos.y));
     }
-    if (left == LeftDrag::Orbit) camera.orbit(io.MouseDelta.x, io.MouseDelta.y);
+    if (left.drag == LeftDrag::Orbit) camera.orbit(io.MouseDelta.x, io.MouseDelta.y);
     if (io.WantCaptureMouse || !inView(io.MousePos.x, io.MousePos.y)) return;
     if (io.MouseDown[ImGuiMouseButton_Right] || io.MouseDown[ImGuiMouseButton_Middle]) {
         camera.pan(io.MouseDelta.x, io.MouseDelta.y, area.height);
@@ -214,7 +230,7 @@ ViewAppResult runViewApp(SceneSource source, const ViewAppOptions& options) {
     // can change the samples without a new window.
     std::unique_ptr<render::OffscreenTarget> multisampled;
     int multisampledSamples = 0;  ///< as asked for (the target holds what the driver gave)
-    LeftDrag left = LeftDrag::None;
+    LeftButton left;
     std::string title;
 
     SceneFileWatch fileWatch;

@@ -9,7 +9,7 @@ namespace substep::view {
 
 namespace {
 
-constexpr std::array<ControlHelp, 13> kControls{{
+constexpr std::array<ControlHelp, 14> kControls{{
     {"Space", "play / pause"},
     {"S", "step one frame (hold to repeat)"},
     {"R", "restart the scene (and reset the camera)"},
@@ -20,6 +20,7 @@ constexpr std::array<ControlHelp, 13> kControls{{
     {"Shift+P", "screenshot of the 3D view without the panel"},
     {"left drag", "orbit the camera"},
     {"Ctrl + left drag", "grab a body with a spring (paper Fig. 5) or move a mount"},
+    {"left click", "select a body: the panel's inspector shows it, the view outlines it"},
     {"right / middle drag", "pan"},
     {"wheel", "zoom"},
     {"panel: quality", "light / medium / full rendering (light on software GL)"},

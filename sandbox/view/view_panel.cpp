@@ -147,6 +147,36 @@ void drawRunOverlays(CompareSession& session, const ViewArea& view) {
     }
 }
 
+/// The selected body (a left click in the view): name, mass, pose, velocities and the joints on
+/// it; in compare mode the first run's that has one.
+void drawInspector(CompareSession& session) {
+    for (std::size_t index = 0; index < session.runCount(); ++index) {
+        const std::optional<BodyInspection> body = session.run(index).inspection();
+        if (!body) continue;
+        ImGui::Separator();
+        ImGui::TextColored(ImVec4(1.0f, 0.85f, 0.1f, 1.0f), "selected: %s%s", body->name.c_str(),
+                           session.comparing() ? (index == 0 ? " (left)" : " (right)") : "");
+        if (body->isStatic) {
+            ImGui::TextUnformatted("static (no mass)");
+        } else {
+            ImGui::Text("mass %.6g kg", body->mass);
+        }
+        ImGui::Text("position %.4g %.4g %.4g m", body->position.x(), body->position.y(), body->position.z());
+        ImGui::Text("velocity %.4g %.4g %.4g m/s (|v| %.4g)", body->velocity.x(), body->velocity.y(),
+                    body->velocity.z(), body->velocity.norm());
+        ImGui::Text("angular velocity %.4g %.4g %.4g rad/s", body->angularVelocity.x(), body->angularVelocity.y(),
+                    body->angularVelocity.z());
+        constexpr std::size_t kMaxJoints = 8;
+        for (std::size_t joint = 0; joint < body->joints.size() && joint < kMaxJoints; ++joint) {
+            const JointInspection& each = body->joints[joint];
+            ImGui::TextWrapped("joint %s: force %.4g N, torque %.4g N m, error %.3g m", each.name.c_str(), each.force,
+                               each.torque, each.error);
+        }
+        if (body->joints.size() > kMaxJoints) ImGui::TextDisabled("... %zu joints in all", body->joints.size());
+        return;
+    }
+}
+
 /// Frame rate, where the time goes (the swap is where a software rasteriser finishes drawing),
 /// the real-time factor with a note when the scene cannot keep up, and the quality level.
 void drawTiming(CompareSession& session, const ViewStatus& status, PanelRequests& requests) {
@@ -292,6 +322,8 @@ PanelRequests ViewPanel::draw(CompareSession& session, const ViewStatus& status,
         }
     }
 
+    drawInspector(session);
+
     // Measures; in compare mode each run's are drawn in its half of the window instead.
     if (!comparing) {
         ImGui::Separator();
@@ -300,7 +332,8 @@ PanelRequests ViewPanel::draw(CompareSession& session, const ViewStatus& status,
 
     ImGui::Separator();
     ImGui::TextDisabled("F1: every key; Tab hides the panel");
-    ImGui::TextDisabled("left drag orbits, Ctrl + left drag grabs a body");
+    ImGui::TextDisabled("left drag orbits, click selects,");
+    ImGui::TextDisabled("Ctrl + left drag grabs a body");
     ImGui::PopItemWidth();
     ImGui::End();
     return requests;
