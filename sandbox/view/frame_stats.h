@@ -34,8 +34,8 @@ class FrameStats {
     double physicsMs() const;
     double renderMs() const;
     double swapMs() const;
-    /// Simulated seconds per wall second over the window's playing frames; nullopt-like -1 when
-    /// nothing played in it.
+    /// Simulated seconds per wall second over the window's playing frames; -1 when nothing
+    /// played in it.
     double realTimeFactor() const;
     /// The last frame recorded.
     const FrameSample& last() const { return last_; }
