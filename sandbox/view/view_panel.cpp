@@ -162,9 +162,9 @@ void drawInspector(CompareSession& session) {
             ImGui::Text("mass %.6g kg", body->mass);
         }
         ImGui::Text("position %.4g %.4g %.4g m", body->position.x(), body->position.y(), body->position.z());
-        ImGui::Text("velocity %.4g %.4g %.4g m/s (|v| %.4g)", body->velocity.x(), body->velocity.y(),
+        ImGui::TextWrapped("velocity %.4g %.4g %.4g m/s (|v| %.4g)", body->velocity.x(), body->velocity.y(),
                     body->velocity.z(), body->velocity.norm());
-        ImGui::Text("angular velocity %.4g %.4g %.4g rad/s", body->angularVelocity.x(), body->angularVelocity.y(),
+        ImGui::TextWrapped("angular velocity %.4g %.4g %.4g rad/s", body->angularVelocity.x(), body->angularVelocity.y(),
                     body->angularVelocity.z());
         constexpr std::size_t kMaxJoints = 8;
         for (std::size_t joint = 0; joint < body->joints.size() && joint < kMaxJoints; ++joint) {
