@@ -9,7 +9,7 @@ packages=(
   python3-matplotlib
   libglfw3-dev libimgui-dev libstb-dev libassimp-dev
   libegl-dev libopengl-dev libgl-dev libegl1-mesa-dev libgl1-mesa-dri libosmesa6-dev
-  xvfb xauth
+  xvfb xauth xdotool
 )
 
 missing=()

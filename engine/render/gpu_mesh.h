@@ -29,6 +29,9 @@ class GpuMesh {
     void draw() const;
     /// Largest distance of a vertex from the mesh origin (for scene bounds).
     float boundingRadius() const { return boundingRadius_; }
+    /// Triangles of one instance, and instances set.
+    long long triangleCount() const { return indexCount_ / 3; }
+    long long instanceCount() const { return instanceCount_; }
 
   private:
     const GlApi& gl_;

@@ -58,6 +58,16 @@ void OffscreenTarget::release() {
     multisampledFramebuffer_ = resolveFramebuffer_ = colourBuffer_ = depthBuffer_ = resolveBuffer_ = 0;
 }
 
+void OffscreenTarget::resolveInto(GLuint framebuffer, const RenderTarget& from, const RenderTarget& to) const {
+    const bool scaled = from.size.width != to.size.width || from.size.height != to.size.height;
+    gl_.BindFramebuffer(GL_READ_FRAMEBUFFER, multisampledFramebuffer_);
+    gl_.BindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer);
+    gl_.BlitFramebuffer(from.originX, from.originY, from.originX + from.size.width, from.originY + from.size.height,
+                        to.originX, to.originY, to.originX + to.size.width, to.originY + to.size.height,
+                        GL_COLOR_BUFFER_BIT, scaled ? GL_LINEAR : GL_NEAREST);
+    gl_.BindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+}
+
 Image OffscreenTarget::readPixels() const {
     // Resolve the samples first: glReadPixels cannot read a multisampled buffer.
     gl_.BindFramebuffer(GL_READ_FRAMEBUFFER, multisampledFramebuffer_);

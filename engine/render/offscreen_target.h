@@ -23,6 +23,11 @@ class OffscreenTarget {
     RenderTarget target() const { return {multisampledFramebuffer_, size_}; }
     /// Resolves the samples and reads the frame back, rows top to bottom.
     Image readPixels() const;
+    /// Resolves the area `from` of this target's framebuffer into the area `to` of
+    /// `framebuffer`, scaled (bilinear) when the sizes differ, which needs a target of one
+    /// sample: the interactive app draws its scene here and shows it in the window's default
+    /// framebuffer (0).
+    void resolveInto(GLuint framebuffer, const RenderTarget& from, const RenderTarget& to) const;
     /// Samples per pixel actually allocated.
     int samples() const { return samples_; }
 

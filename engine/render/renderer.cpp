@@ -48,7 +48,39 @@ std::pair<Vec3f, Vec3f> planeBasis(const Vec3f& normal) {
     return {tangent, normal.cross(tangent)};
 }
 
+/// The shader's shadow filter (lighting.glsl's uShadowFilter): 0 the 4 x 4 filter, 1 one tap,
+/// 2 none.
+int shadowFilter(ShadowMode mode) {
+    switch (mode) {
+        case ShadowMode::Soft: return 0;
+        case ShadowMode::Hard: return 1;
+        case ShadowMode::Off: return 2;
+    }
+    return 0;
+}
+
+/// Orders `batch` nearest first by `depths` (squared distances, one per instance), so hidden
+/// fragments of a pile fail the depth test before they are shaded.
+void sortFrontToBack(std::vector<InstanceData>& batch, const std::vector<float>& depths) {
+    std::vector<std::size_t> order(batch.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return depths[a] < depths[b]; });
+    std::vector<InstanceData> sorted;
+    sorted.reserve(batch.size());
+    for (const std::size_t i : order) sorted.push_back(batch[i]);
+    batch.swap(sorted);
+}
+
 }  // namespace
+
+RendererSettings rendererSettings(const RenderQuality& quality) {
+    return {.shadowMapSize = quality.shadowMapSize,
+            .shadows = quality.shadows,
+            .sphereRings = quality.sphereRings,
+            .sphereSegments = quality.sphereSegments,
+            .coarseSphereBelowPixels = quality.coarseSphereBelowPixels,
+            .frontToBack = quality.frontToBack};
+}
 
 Renderer::Renderer(const GlApi& gl, const RendererSettings& settings) : gl_(gl), settings_(settings) {
     meshProgram_ = std::make_unique<ShaderProgram>(gl, std::initializer_list<std::string_view>{"mesh.vert"},
@@ -64,9 +96,7 @@ Renderer::Renderer(const GlApi& gl, const RendererSettings& settings) : gl_(gl),
 
     // Shadow map: a depth texture compared in hardware (sampler2DShadow), lit outside its area.
     gl_.GenTextures(1, &shadowTexture_);
-    gl_.BindTexture(GL_TEXTURE_2D, shadowTexture_);
-    gl_.TexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT24, settings_.shadowMapSize, settings_.shadowMapSize, 0,
-                   GL_DEPTH_COMPONENT, GL_UNSIGNED_INT, nullptr);
+    allocateShadowMap();
     gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
     gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_BORDER);
@@ -108,6 +138,24 @@ Renderer::Renderer(const GlApi& gl, const RendererSettings& settings) : gl_(gl),
     if (error != GL_NO_ERROR) throw std::runtime_error("renderer set-up: " + glErrorName(error));
 }
 
+void Renderer::allocateShadowMap() {
+    gl_.BindTexture(GL_TEXTURE_2D, shadowTexture_);
+    gl_.TexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT24, settings_.shadowMapSize, settings_.shadowMapSize, 0,
+                   GL_DEPTH_COMPONENT, GL_UNSIGNED_INT, nullptr);
+}
+
+void Renderer::setSettings(const RendererSettings& settings) {
+    if (settings == settings_) return;
+    const bool resize = settings.shadowMapSize != settings_.shadowMapSize;
+    const bool retessellate =
+        settings.sphereRings != settings_.sphereRings || settings.sphereSegments != settings_.sphereSegments;
+    settings_ = settings;
+    if (resize) allocateShadowMap();
+    // The shared unit sphere is built again at the new tessellation on its next use.
+    if (retessellate) meshes_.erase(MeshKey{ShapeKind::Sphere, 0.0f, 0.0f, nullptr});
+    if (settings_.coarseSphereBelowPixels <= 0.0f) meshes_.erase(MeshKey{ShapeKind::Sphere, 1.0f, 0.0f, nullptr});
+}
+
 Renderer::~Renderer() {
     meshes_.clear();
     gl_.DeleteTextures(1, &shadowTexture_);
@@ -119,9 +167,9 @@ Renderer::~Renderer() {
     gl_.DeleteBuffers(1, &lineBuffer_);
 }
 
-GpuMesh& Renderer::meshFor(const RenderInstance& instance, MeshKey& key) {
+GpuMesh& Renderer::meshFor(const RenderInstance& instance, bool coarse, MeshKey& key) {
     switch (instance.kind) {
-        case ShapeKind::Sphere:
+        case ShapeKind::Sphere: key = {instance.kind, coarse ? 1.0f : 0.0f, 0.0f, nullptr}; break;
         case ShapeKind::Box:
         case ShapeKind::Cylinder: key = {instance.kind, 0.0f, 0.0f, nullptr}; break;
         case ShapeKind::Capsule: key = {instance.kind, instance.dimensions.x(), instance.dimensions.y(), nullptr}; break;
@@ -131,7 +179,10 @@ GpuMesh& Renderer::meshFor(const RenderInstance& instance, MeshKey& key) {
     if (found == meshes_.end()) {
         CachedMesh cached;
         switch (instance.kind) {
-            case ShapeKind::Sphere: cached.mesh = std::make_unique<GpuMesh>(gl_, unitSphereMesh()); break;
+            case ShapeKind::Sphere:
+                cached.mesh = std::make_unique<GpuMesh>(
+                    gl_, coarse ? unitSphereMesh(6, 12) : unitSphereMesh(settings_.sphereRings, settings_.sphereSegments));
+                break;
             case ShapeKind::Box: cached.mesh = std::make_unique<GpuMesh>(gl_, unitBoxMesh()); break;
             case ShapeKind::Cylinder: cached.mesh = std::make_unique<GpuMesh>(gl_, unitCylinderMesh()); break;
             case ShapeKind::Capsule:
@@ -150,13 +201,19 @@ GpuMesh& Renderer::meshFor(const RenderInstance& instance, MeshKey& key) {
     return *found->second.mesh;
 }
 
-Renderer::Bounds Renderer::batchInstances(const RenderScene& scene) {
+Renderer::Bounds Renderer::batchInstances(const RenderScene& scene, float pixelsPerRadian) {
     for (auto& [key, cached] : meshes_) cached.used = false;
     std::map<MeshKey, std::vector<InstanceData>> batches;
     Eigen::AlignedBox3f box;
+    const float coarseBelow = settings_.coarseSphereBelowPixels;
+    std::map<MeshKey, std::vector<float>> depths;  // squared distances from the camera, frontToBack only
     for (const RenderInstance& instance : scene.instances) {
         MeshKey key;
-        const GpuMesh& mesh = meshFor(instance, key);
+        // Apparent radius ≈ r / distance radians, in pixels of the target's height.
+        const bool coarse = coarseBelow > 0.0f && instance.kind == ShapeKind::Sphere &&
+                            instance.dimensions.x() * pixelsPerRadian <
+                                coarseBelow * (instance.position - scene.camera.position).norm();
+        const GpuMesh& mesh = meshFor(instance, coarse, key);
         InstanceData data{};
         const Mat4f model = modelMatrix(instance.position, instance.orientation, instanceScale(instance));
         std::copy(model.data(), model.data() + 16, data.model);
@@ -165,6 +222,7 @@ Renderer::Bounds Renderer::batchInstances(const RenderScene& scene) {
         data.colour[2] = instance.colour.z();
         data.colour[3] = 1.0f;
         batches[key].push_back(data);
+        if (settings_.frontToBack) depths[key].push_back((instance.position - scene.camera.position).squaredNorm());
         const float radius = instanceRadius(instance, mesh.boundingRadius());
         box.extend(instance.position - Vec3f::Constant(radius));
         box.extend(instance.position + Vec3f::Constant(radius));
@@ -176,7 +234,9 @@ Renderer::Bounds Renderer::batchInstances(const RenderScene& scene) {
         if (!it->second.used && !shared) {
             it = meshes_.erase(it);
         } else {
-            it->second.mesh->setInstances(batches[it->first]);
+            std::vector<InstanceData>& batch = batches[it->first];
+            if (settings_.frontToBack && batch.size() > 1) sortFrontToBack(batch, depths[it->first]);
+            it->second.mesh->setInstances(batch);
             ++it;
         }
     }
@@ -233,6 +293,7 @@ void Renderer::setLighting(const ShaderProgram& program, const RenderScene& scen
     program.set("uShadowTexel", 1.0f / static_cast<float>(settings_.shadowMapSize));
     program.set("uShadowNormalOffset", normalOffset);
     program.set("uShadowMap", 0);
+    program.set("uShadowFilter", shadowFilter(settings_.shadows));
 }
 
 void Renderer::drawGround(const RenderScene& scene, const Ground& ground, float halfExtent) {
@@ -257,7 +318,9 @@ void Renderer::drawGround(const RenderScene& scene, const Ground& ground, float 
 }
 
 void Renderer::drawMeshes() {
+    lastTriangles_ = 0;
     for (const auto& [key, cached] : meshes_) {
+        lastTriangles_ += cached.mesh->triangleCount() * cached.mesh->instanceCount();
         if (cached.closed)
             gl_.Enable(GL_CULL_FACE);
         else
@@ -300,7 +363,9 @@ void Renderer::drawLines(const RenderScene& scene, const Mat4f& viewProjection) 
 }
 
 void Renderer::render(const RenderScene& scene, const RenderTarget& target) {
-    const Bounds bounds = batchInstances(scene);
+    const float pixelsPerRadian =
+        static_cast<float>(target.size.height) / (2.0f * std::tan(std::max(scene.camera.fovY, 1e-3f) / 2.0f));
+    const Bounds bounds = batchInstances(scene, pixelsPerRadian);
 
     // The sun's view: an orthographic box around the scene's bounding sphere.
     const Vec3f sunDirection = scene.sun.direction.normalized();
@@ -308,7 +373,8 @@ void Renderer::render(const RenderScene& scene, const RenderTarget& target) {
     const float r = bounds.radius;
     const Mat4f lightView = lookAt(bounds.centre + sunDirection * 2.0f * r, bounds.centre, sunUp);
     const Mat4f lightViewProjection = orthographic(-r, r, -r, r, 0.5f * r, 3.5f * r) * lightView;
-    drawShadowMap(lightViewProjection);
+    // Without shadows the pass is skipped: the shader then never reads the map.
+    if (settings_.shadows != ShadowMode::Off) drawShadowMap(lightViewProjection);
 
     // The camera: near and far from the distance to the target, wide enough for the ground.
     const Camera& camera = scene.camera;

@@ -9,6 +9,7 @@
 /// default framebuffer (0) in the interactive app.
 
 #include "render/gl_api.h"
+#include "render/render_quality.h"
 #include "render/render_scene.h"
 #include "render/render_target.h"
 
@@ -21,9 +22,25 @@ namespace substep::render {
 class GpuMesh;
 class ShaderProgram;
 
+/// What the renderer itself draws at a quality level (render_quality.h); multisampling belongs
+/// to the framebuffer drawn into. The defaults are the full level, which headless renders use.
 struct RendererSettings {
     int shadowMapSize = 2048;  ///< texels per side
+    ShadowMode shadows = ShadowMode::Soft;
+    int sphereRings = 24;      ///< the unit sphere's latitude bands
+    int sphereSegments = 48;   ///< and longitude slices
+    /// Spheres that look smaller than this radius (pixels of the target) are drawn with a coarse
+    /// mesh of 6 x 12 (a thousand small balls are otherwise mostly triangles smaller than a
+    /// pixel, which a software rasteriser sets up one by one); 0 never.
+    float coarseSphereBelowPixels = 0.0f;
+    /// Instances of a mesh drawn nearest first, so a pile's hidden fragments are rejected by the
+    /// depth test before shading (the same picture up to ties in depth).
+    bool frontToBack = false;
+    friend bool operator==(const RendererSettings&, const RendererSettings&) = default;
 };
+
+/// The renderer's part of a quality level.
+RendererSettings rendererSettings(const RenderQuality& quality);
 
 class Renderer {
   public:
@@ -37,6 +54,14 @@ class Renderer {
     /// Draws `scene` into `target`, covering every pixel of its area. Throws std::runtime_error on a
     /// GL error.
     void render(const RenderScene& scene, const RenderTarget& target);
+
+    /// Switches shadow map size, shadow filter and sphere tessellation from the next frame on
+    /// (the interactive app's quality levels); does nothing when they are the same.
+    void setSettings(const RendererSettings& settings);
+    const RendererSettings& settings() const { return settings_; }
+    /// Triangles drawn by the last render() call in the view pass (the shadow pass draws as many
+    /// again): what instancing submits, for the panel's readout.
+    long long lastTriangleCount() const { return lastTriangles_; }
 
   private:
     /// Which GPU mesh an instance uses: the shared unit sphere and box, a capsule per size, or
@@ -53,8 +78,11 @@ class Renderer {
         float radius = 1.0f;
     };
 
-    GpuMesh& meshFor(const RenderInstance& instance, MeshKey& key);
-    Bounds batchInstances(const RenderScene& scene);
+    void allocateShadowMap();
+    /// `coarse`: a sphere's coarse level of detail.
+    GpuMesh& meshFor(const RenderInstance& instance, bool coarse, MeshKey& key);
+    /// `pixelsPerRadian` of the target's height: a sphere's apparent size picks its detail.
+    Bounds batchInstances(const RenderScene& scene, float pixelsPerRadian);
     void drawShadowMap(const Mat4f& lightViewProjection);
     void drawSky(const RenderScene& scene, const Mat4f& viewProjection);
     void setLighting(const ShaderProgram& program, const RenderScene& scene, const Mat4f& viewProjection,
@@ -78,6 +106,7 @@ class Renderer {
     GLuint groundBuffer_ = 0;
     GLuint lineVertexArray_ = 0;
     GLuint lineBuffer_ = 0;
+    long long lastTriangles_ = 0;
 };
 
 }  // namespace substep::render

@@ -92,6 +92,7 @@ class CradleScript : public SceneScript {
         for (int i = 0; i < kRowSize; ++i)
             row_[i] = scene.bodyNamed(rowName(i));
         striker_ = scene.bodyNamed("striker");
+        leavingSpeed_ = 0.0;
         applyVelocityPass(scene);
         applyRestitution(scene);
         launch(scene);
@@ -107,12 +108,21 @@ class CradleScript : public SceneScript {
             launch(scene);
     }
 
+    void beforeFrame(SceneInstance& scene, double /*time*/, double /*dt*/) override {
+        // The far marble's speed in the first frame it moves: the paper's measure of the hit
+        // (Fig. 12, 0.98 of the striker's), before the ground's friction slows it further.
+        if (leavingSpeed_ > 0.0 || !scene.registry.isValid(row_[0])) return;
+        const double speed = scene.registry.get<ecs::RigidBody>(row_[0]).velocity.norm();
+        if (speed > 0.01 * launchedSpeed_) leavingSpeed_ = speed;
+    }
+
     void readouts(const SceneInstance& scene, std::vector<SceneReadout>& out) const override {
         if (!scene.registry.isValid(row_[0]) || !scene.registry.isValid(striker_)) return;
         const double initial = std::max(launchedSpeed_, 1e-9);
         const auto speed = [&](ecs::Entity marble) {
             return scene.registry.get<ecs::RigidBody>(marble).velocity.norm();
         };
+        out.push_back({"far marble's leaving speed / striker's (paper: 0.98)", leavingSpeed_ / initial, "%.3f"});
         out.push_back({"far marble speed / striker's initial", speed(row_[0]) / initial, "%.3f"});
         out.push_back({"striker speed / its initial", speed(striker_) / initial, "%.3f"});
     }
@@ -152,6 +162,7 @@ class CradleScript : public SceneScript {
     std::array<ecs::Entity, kRowSize> row_{};
     ecs::Entity striker_{};
     double launchedSpeed_ = kDefaultSpeed;
+    double leavingSpeed_ = 0.0;  ///< m/s, the far marble's in the first frame it moves; 0 before
 };
 
 }  // namespace

@@ -198,6 +198,7 @@ class RobotArmScript : public SceneScript {
             gliding_ = distance > step;
             placeTarget(scene.registry, gliding_ ? Vec3(from + (to - from) * (step / distance)) : to);
         }
+        if (!gliding_) followTarget(scene.registry);
         boundPull(scene);
     }
 
@@ -245,6 +246,17 @@ class RobotArmScript : public SceneScript {
         const double angle = startAngle + 0.35 * time;
         const double height = start.y() + 0.4 * std::sin(0.8 * time);
         return Vec3(radius * std::cos(angle), height, -radius * std::sin(angle));
+    }
+
+    /// The target sliders show where the box is (moved by its orbit or dragged in the window),
+    /// clamped to their ranges, so they never stand stale; while it glides they keep the point
+    /// it glides to.
+    void followTarget(const ecs::Registry& registry) {
+        const Vec3 at = targetPosition(registry);
+        for (const auto& [index, value] : {std::pair{x_, at.x()}, std::pair{y_, at.y()}, std::pair{z_, at.z()}}) {
+            const SceneKnob& slider = knobs()[index];
+            knobValue(index) = std::clamp(value, slider.min, slider.max);
+        }
     }
 
     Vec3 targetPosition(const ecs::Registry& registry) const {

@@ -146,22 +146,25 @@ void CompareSession::setJointCompliance(ecs::Entity joint, double compliance) {
     for (const std::unique_ptr<ViewSession>& each : runs_) each->setJointCompliance(joint, compliance);
 }
 
-render::RenderTarget CompareSession::target(std::size_t index, render::PixelSize window) const {
+render::RenderTarget CompareSession::target(std::size_t index, const render::RenderTarget& view) const {
     const int count = static_cast<int>(runs_.size());
     const int at = static_cast<int>(index);
-    const int left = window.width * at / count;
-    const int right = window.width * (at + 1) / count;
-    return {.framebuffer = 0, .size = {right - left, window.height}, .originX = left, .originY = 0};
+    const int left = view.size.width * at / count;
+    const int right = view.size.width * (at + 1) / count;
+    return {.framebuffer = view.framebuffer,
+            .size = {std::max(right - left, 1), view.size.height},
+            .originX = view.originX + left,
+            .originY = view.originY};
 }
 
-CompareSession::Part CompareSession::part(std::size_t index, float width) const {
-    const float partWidth = width / static_cast<float>(runs_.size());
-    return {partWidth * static_cast<float>(index), partWidth};
+CompareSession::Part CompareSession::part(std::size_t index, const ViewArea& area) const {
+    const float partWidth = area.width / static_cast<float>(runs_.size());
+    return {area.left + partWidth * static_cast<float>(index), partWidth};
 }
 
-std::size_t CompareSession::runAt(float x, float width) const {
-    if (width <= 0.0f) return 0;
-    const float slot = std::floor(x / width * static_cast<float>(runs_.size()));
+std::size_t CompareSession::runAt(float x, const ViewArea& area) const {
+    if (area.width <= 0.0f) return 0;
+    const float slot = std::floor((x - area.left) / area.width * static_cast<float>(runs_.size()));
     return static_cast<std::size_t>(std::clamp(slot, 0.0f, static_cast<float>(runs_.size() - 1)));
 }
 

@@ -7,6 +7,7 @@
 /// physics time. The frame loop and the panel drive this the same way in both modes: a loop over
 /// the runs, each drawn in its own part of the window.
 
+#include "view/view_layout.h"
 #include "view/view_session.h"
 
 #include "render/render_target.h"
@@ -90,18 +91,19 @@ class CompareSession {
     /// The camera the scene starts from, framed for one run's part of the window.
     const render::Camera& startCamera() const { return runs_.front()->startCamera(); }
 
-    /// The part of a window `window` pixels large that run `index` is drawn in: side by side,
-    /// left to right, full height.
-    render::RenderTarget target(std::size_t index, render::PixelSize window) const;
-    /// The horizontal span of a window `width` wide that run `index` is drawn in (in the units
-    /// of width: ImGui's window coordinates for the mouse).
+    /// The pixels run `index` is drawn in: its share of `view` (the window's area beside the
+    /// panel, view_layout.h), side by side left to right, full height; `view` is that area's
+    /// pixels in the window's framebuffer.
+    render::RenderTarget target(std::size_t index, const render::RenderTarget& view) const;
+    /// The horizontal span of `area` (ImGui's window coordinates, for the mouse) that run
+    /// `index` is drawn in.
     struct Part {
         float left = 0.0f;
         float width = 0.0f;
     };
-    Part part(std::size_t index, float width) const;
-    /// The run drawn under window x coordinate `x` of a window `width` wide.
-    std::size_t runAt(float x, float width) const;
+    Part part(std::size_t index, const ViewArea& area) const;
+    /// The run drawn under window x coordinate `x` of `area`.
+    std::size_t runAt(float x, const ViewArea& area) const;
 
     /// The run a body is held in (dragged with the mouse), if any.
     std::optional<std::size_t> dragging() const;

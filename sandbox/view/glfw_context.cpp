@@ -26,9 +26,10 @@ GlfwContext::GlfwContext(const std::string& title, render::PixelSize size) {
     glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
     glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
     glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
-    // Multisampling of the default framebuffer smooths the scene's edges as the headless
-    // OffscreenTarget's 4x does; drivers that cannot give it fall back to none.
-    glfwWindowHint(GLFW_SAMPLES, 4);
+    // No multisampling of the window itself: the scene is drawn into a multisampled offscreen
+    // buffer as the quality level asks (render_quality.h) and resolved into the window, so the
+    // level can change without a new window, and the panel is not drawn multisampled.
+    glfwWindowHint(GLFW_SAMPLES, 0);
     window_ = glfwCreateWindow(size.width, size.height, title.c_str(), nullptr, nullptr);
     if (window_ == nullptr) {
         const std::string reason = lastGlfwError();

@@ -6,6 +6,7 @@
 #include "scene_source.h"
 #include "scenes/scene_registry.h"
 #include "view/view_app.h"
+#include "view/view_controls.h"
 
 #include "render/png_codec.h"
 
@@ -37,6 +38,14 @@ int runView(const ViewOptions& options) {
                              "e.g. 20x1,1x20; got '" + *options.compare + "'");
         }
     }
+    std::optional<render::QualityLevel> quality;
+    if (!options.quality.empty()) {
+        render::QualityLevel level{};
+        if (!render::parseQualityLevel(options.quality, level)) {
+            throw UsageError("--quality: expected light, medium or full; got '" + options.quality + "'");
+        }
+        quality = level;
+    }
     SceneSource source = resolveScene(options.scene.empty() ? defaultViewScene() : options.scene);
     if (!hasDisplay()) {
         std::fprintf(stderr,
@@ -56,6 +65,8 @@ int runView(const ViewOptions& options) {
     appOptions.frames = options.frames;
     appOptions.captureLastFrame = screenshot != nullptr;
     appOptions.compare = compare;
+    appOptions.quality = quality;
+    appOptions.hidePanel = options.hidePanel;
     const std::string label = source.label;
     const ViewAppResult result = runViewApp(std::move(source), appOptions);
 
@@ -65,6 +76,14 @@ int runView(const ViewOptions& options) {
         screenshot->commit();
         std::printf("saved %s after %lld frame%s of %s (%dx%d)\n", options.screenshot.c_str(), options.frames,
                     options.frames == 1 ? "" : "s", label.c_str(), result.lastFrame->width, result.lastFrame->height);
+    }
+    if (options.frames > 0) {
+        const ViewFrameTiming& timing = result.timing;
+        std::printf("frames: %.2f ms median (%.1f fps) over %lld frames: physics %.2f, draw %.2f, swap %.2f ms; "
+                    "quality %s on %s\n",
+                    timing.frameMs, timing.frameMs > 0.0 ? 1000.0 / timing.frameMs : 0.0, timing.frames,
+                    timing.physicsMs, timing.renderMs, timing.swapMs, render::qualityName(timing.quality),
+                    timing.glRenderer.c_str());
     }
     if (!result.finite) {
         std::fprintf(stderr, "substep view: the state of %s turned non-finite\n", label.c_str());
@@ -95,6 +114,13 @@ CLI::App* addViewCommand(CLI::App& app, ViewOptions& options) {
         ->expected(0, 1)
         ->type_name("SxI,SxI");
     command->add_option("--size", options.size, "Window size in pixels (default 1280x720)")->type_name("WxH");
+    command
+        ->add_option("--quality", options.quality,
+                     "Rendering quality: light, medium or full (default: light on a software rasteriser such as "
+                     "llvmpipe, else full; the panel switches it)")
+        ->type_name("LEVEL");
+    command->add_flag("--hide-panel", options.hidePanel, "Start with the panel hidden (Tab shows it)");
+    command->footer(controlsHelpText());
     return command;
 }
 

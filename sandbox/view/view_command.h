@@ -1,10 +1,12 @@
 #pragma once
-/// `substep view [SCENE] [--compare [SxI,SxI]] [--frames N --screenshot F.png] [--size WxH]` and
+/// `substep view [SCENE] [--compare [SxI,SxI]] [--frames N --screenshot F.png] [--size WxH]
+/// [--quality light|medium|full] [--hide-panel]` and
 /// `substep` alone: the interactive window (DESIGN.md's command contract). --compare opens it in
 /// compare mode (compare_session.h). Without a display it says so, points to
 /// `substep render`, and exits 2. With --frames it runs N frames as fast as it can (one scene dt
 /// each, no waiting for real time), optionally saves the window as a PNG, and exits: the
-/// scripted form the tests run under Xvfb.
+/// scripted form the tests run under Xvfb; it then prints the frames' median times (the buffer
+/// swap included), what docs/PERFORMANCE.md records. `view --help` lists the window's keys.
 
 #include <CLI/CLI.hpp>
 
@@ -22,6 +24,9 @@ struct ViewOptions {
     /// Set: compare mode, with "SUBSTEPSxITERATIONS,SUBSTEPSxITERATIONS" or, empty, the paper's
     /// 20x1,1x20.
     std::optional<std::string> compare;
+    /// "light", "medium" or "full" (render_quality.h); empty: chosen from the GL renderer.
+    std::string quality;
+    bool hidePanel = false;  ///< start with the UI hidden (Tab shows it)
 };
 
 /// The scene `substep` alone opens.

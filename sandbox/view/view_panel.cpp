@@ -120,45 +120,115 @@ void drawRunMeasures(ViewSession& run, bool compact) {
 /// In compare mode each run's measures sit in its own half of the window, at the bottom right
 /// (the panel keeps the top left), under a line that splits the halves: each half then reads as
 /// one side of the paper's Fig. 10, and a screenshot says which run is which.
-void drawRunOverlays(CompareSession& session) {
+void drawRunOverlays(CompareSession& session, const ViewArea& view) {
     if (!session.comparing()) return;
-    const ImVec2 display = ImGui::GetIO().DisplaySize;
     for (std::size_t index = 0; index < session.runCount(); ++index) {
-        const CompareSession::Part part = session.part(index, display.x);
+        const CompareSession::Part part = session.part(index, view);
         if (index > 0) {
-            ImGui::GetBackgroundDrawList()->AddLine(ImVec2(part.left, 0.0f), ImVec2(part.left, display.y),
+            ImGui::GetBackgroundDrawList()->AddLine(ImVec2(part.left, view.top), ImVec2(part.left, view.top + view.height),
                                                     IM_COL32(20, 20, 24, 255), 3.0f);
         }
         ViewSession& run = session.run(index);
-        ImGui::SetNextWindowPos(ImVec2(part.left + part.width - 10.0f, display.y - 10.0f), ImGuiCond_Always,
+        // Inside its own half, at most half the view's height: the two never meet, and the
+        // scene keeps the upper half.
+        ImGui::SetNextWindowPos(ImVec2(part.left + part.width - 10.0f, view.top + view.height - 10.0f), ImGuiCond_Always,
                                 ImVec2(1.0f, 1.0f));
-        ImGui::SetNextWindowSize(ImVec2(std::min(300.0f, part.width - 20.0f), 0.0f), ImGuiCond_Always);
+        const float width = std::max(std::min(300.0f, part.width - 20.0f), 40.0f);
+        ImGui::SetNextWindowSizeConstraints(ImVec2(width, 0.0f), ImVec2(width, view.height * 0.5f));
         ImGui::SetNextWindowBgAlpha(0.75f);
         char name[32];
         std::snprintf(name, sizeof name, "##run%zu", index);
         ImGui::Begin(name, nullptr,
                      ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoSavedSettings |
                          ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav);
-        ImGui::Text("%s: %s (substeps x iterations)", index == 0 ? "left" : "right", splitLabel(run.controls()).c_str());
+        ImGui::TextWrapped("%s: %s (substeps x iterations)", index == 0 ? "left" : "right", splitLabel(run.controls()).c_str());
         drawRunMeasures(run, true);
         ImGui::End();
     }
-}}  // namespace
+}
 
-PanelRequests ViewPanel::draw(CompareSession& session, const FrameTimes& times, const std::string& loadError) {
+/// The selected body (a left click in the view): name, mass, pose, velocities and the joints on
+/// it; in compare mode the first run's that has one.
+void drawInspector(CompareSession& session) {
+    for (std::size_t index = 0; index < session.runCount(); ++index) {
+        const std::optional<BodyInspection> body = session.run(index).inspection();
+        if (!body) continue;
+        ImGui::Separator();
+        ImGui::TextColored(ImVec4(1.0f, 0.85f, 0.1f, 1.0f), "selected: %s%s", body->name.c_str(),
+                           session.comparing() ? (index == 0 ? " (left)" : " (right)") : "");
+        if (body->isStatic) {
+            ImGui::TextUnformatted("static (no mass)");
+        } else {
+            ImGui::Text("mass %.6g kg", body->mass);
+        }
+        ImGui::Text("position %.4g %.4g %.4g m", body->position.x(), body->position.y(), body->position.z());
+        ImGui::TextWrapped("velocity %.4g %.4g %.4g m/s (|v| %.4g)", body->velocity.x(), body->velocity.y(),
+                    body->velocity.z(), body->velocity.norm());
+        ImGui::TextWrapped("angular velocity %.4g %.4g %.4g rad/s", body->angularVelocity.x(), body->angularVelocity.y(),
+                    body->angularVelocity.z());
+        constexpr std::size_t kMaxJoints = 8;
+        for (std::size_t joint = 0; joint < body->joints.size() && joint < kMaxJoints; ++joint) {
+            const JointInspection& each = body->joints[joint];
+            ImGui::TextWrapped("joint %s: force %.4g N, torque %.4g N m, error %.3g m", each.name.c_str(), each.force,
+                               each.torque, each.error);
+        }
+        if (body->joints.size() > kMaxJoints) ImGui::TextDisabled("... %zu joints in all", body->joints.size());
+        return;
+    }
+}
+
+/// Frame rate, where the time goes (the swap is where a software rasteriser finishes drawing),
+/// the real-time factor with a note when the scene cannot keep up, and the quality level.
+void drawTiming(CompareSession& session, const ViewStatus& status, PanelRequests& requests) {
+    if (status.stats != nullptr) {
+        const FrameStats& stats = *status.stats;
+        ImGui::Text("%.1f fps: frame %.1f ms", stats.fps(), stats.frameMs());
+        ImGui::TextDisabled("physics %.1f  draw %.1f  swap %.1f ms", stats.physicsMs(), stats.renderMs(), stats.swapMs());
+        const double factor = stats.realTimeFactor();
+        if (factor >= 0.0) {
+            ImGui::Text("real-time factor %.2f", factor);
+            if (session.playback().playing && slowerThanRealTime(factor, session.playback().timeScale)) {
+                ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.75f, 0.3f, 1.0f));
+                ImGui::TextWrapped("slower than real time: a frame's physics and drawing take longer than the %.1f ms "
+                                   "of simulated time it may step (at most 4 steps a frame)%s",
+                                   1000.0 * session.source().description.dt,
+                                   status.quality != render::QualityLevel::Light ? "; try the light quality" : "");
+                ImGui::PopStyleColor();
+            }
+        }
+    }
+    int level = static_cast<int>(status.quality);
+    const char* levels[] = {render::qualityName(render::QualityLevel::Light), render::qualityName(render::QualityLevel::Medium),
+                            render::qualityName(render::QualityLevel::Full)};
+    if (ImGui::Combo("quality", &level, levels, 3)) requests.quality = static_cast<render::QualityLevel>(level);
+    if (ImGui::IsItemHovered()) {
+        const render::RenderQuality quality = render::qualitySettings(status.quality);
+        ImGui::SetTooltip("GL renderer: %s\n%d x MSAA, shadows %s (%d texels), spheres %d x %d\n%lld triangles drawn",
+                          status.glRenderer.c_str(), quality.msaaSamples,
+                          quality.shadows == render::ShadowMode::Off    ? "off"
+                          : quality.shadows == render::ShadowMode::Hard ? "hard"
+                                                                        : "soft",
+                          quality.shadowMapSize, quality.sphereRings, quality.sphereSegments, status.triangles);
+    }
+    if (!status.notice.empty()) ImGui::TextWrapped("%s", status.notice.c_str());
+}
+
+}  // namespace
+
+PanelRequests ViewPanel::draw(CompareSession& session, const ViewStatus& status, const ViewArea& view,
+                              const std::string& loadError) {
     PanelRequests requests;
     Playback& playback = session.playback();
     ViewSession& first = session.first();
     SessionControls& shared = first.controls();  // gravity and the debug layers: every run's
     const bool comparing = session.comparing();
-    drawRunOverlays(session);
-    ImGui::SetNextWindowPos(ImVec2(10.0f, 10.0f), ImGuiCond_FirstUseEver);
-    if (shownComparing_ != comparing) {
-        // Fit the height to what the mode shows (the measures move out in compare mode).
-        ImGui::SetNextWindowSize(ImVec2(360.0f, 0.0f), ImGuiCond_Always);
-        shownComparing_ = comparing;
-    }
-    ImGui::Begin("Substep");
+    drawRunOverlays(session, view);
+    // Docked at the left edge, full height, beside the view (view_layout.h): it never covers
+    // the scene, and scrolls when its content is taller than the window.
+    ImGui::SetNextWindowPos(ImVec2(0.0f, 0.0f), ImGuiCond_Always);
+    ImGui::SetNextWindowSize(ImVec2(view.left, ImGui::GetIO().DisplaySize.y), ImGuiCond_Always);
+    ImGui::Begin("Substep", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
+    ImGui::PushItemWidth(ImGui::GetContentRegionAvail().x * 0.6f);
 
     // Scene: the built-ins in a combo, any scene file by path.
     const std::string& label = session.source().label;
@@ -175,7 +245,11 @@ PanelRequests ViewPanel::draw(CompareSession& session, const FrameTimes& times, 
     ImGui::InputTextWithHint("##path", "path/to/scene.json", path_, sizeof path_);
     ImGui::SameLine();
     if (ImGui::Button("open") && path_[0] != '\0') requests.loadScene = std::string(path_);
-    if (!loadError.empty()) ImGui::TextColored(ImVec4(1.0f, 0.4f, 0.3f, 1.0f), "%s", loadError.c_str());
+    if (!loadError.empty()) {
+        ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.4f, 0.3f, 1.0f));
+        ImGui::TextWrapped("%s", loadError.c_str());
+        ImGui::PopStyleColor();
+    }
 
     // Time.
     ImGui::Separator();
@@ -185,9 +259,12 @@ PanelRequests ViewPanel::draw(CompareSession& session, const FrameTimes& times, 
     ImGui::SameLine();
     if (ImGui::Button("restart")) requests.restart = true;
     ImGui::SameLine();
-    ImGui::TextDisabled("(space, S, R)");
+    if (ImGui::Button("camera")) requests.resetCamera = true;
+    ImGui::SameLine();
+    ImGui::TextDisabled("(F1: keys)");
     ImGui::Text("frame %lld   t = %.3f s", first.frame(), first.simulatedTime());
     ImGui::SliderFloat("time scale", &playback.timeScale, 0.05f, 4.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
+    drawTiming(session, status, requests);
 
     // Solver: one column per run, each with its own substeps and iterations.
     ImGui::Separator();
@@ -245,6 +322,8 @@ PanelRequests ViewPanel::draw(CompareSession& session, const FrameTimes& times, 
         }
     }
 
+    drawInspector(session);
+
     // Measures; in compare mode each run's are drawn in its half of the window instead.
     if (!comparing) {
         ImGui::Separator();
@@ -252,10 +331,10 @@ PanelRequests ViewPanel::draw(CompareSession& session, const FrameTimes& times, 
     }
 
     ImGui::Separator();
-    ImGui::Text("render %.2f ms   frame %.1f ms (%.0f fps)", times.renderMs, times.frameMs,
-                times.frameMs > 0.0 ? 1000.0 / times.frameMs : 0.0);
-    ImGui::TextDisabled("mouse: left drag a body or orbit,");
-    ImGui::TextDisabled("right/middle pan, wheel zoom");
+    ImGui::TextDisabled("F1: every key; Tab hides the panel");
+    ImGui::TextDisabled("left drag orbits, click selects,");
+    ImGui::TextDisabled("Ctrl + left drag grabs a body");
+    ImGui::PopItemWidth();
     ImGui::End();
     return requests;
 }

@@ -1,5 +1,6 @@
 #pragma once
-/// The viewer's ImGui panel: scene picker and file box, play/pause/step/restart, time scale, the
+/// The viewer's ImGui panel, docked at the window's left edge: scene picker and file box,
+/// play/pause/step/restart, time scale, rendering quality, the
 /// compare mode switch, substeps and iterations per run, gravity, the debug layers, and per run
 /// live plots of total energy, of the largest joint error and of a chain's elongation, with its
 /// physics time. It edits the controls in place and returns what must happen to the session as a
@@ -7,16 +8,23 @@
 /// run's measures are drawn over its own half of the window.
 
 #include "view/compare_session.h"
+#include "view/frame_stats.h"
+#include "view/view_layout.h"
+
+#include "render/render_quality.h"
 
 #include <optional>
 #include <string>
 
 namespace substep::view {
 
-/// Times of the last frame, for the readout (ms).
-struct FrameTimes {
-    double renderMs = 0.0;  ///< the renderer's draw calls, CPU side
-    double frameMs = 0.0;   ///< the whole frame, wall clock
+/// What the window reports in the panel beside the session's own state.
+struct ViewStatus {
+    const FrameStats* stats = nullptr;  ///< frame times and the real-time factor
+    render::QualityLevel quality = render::QualityLevel::Full;
+    std::string glRenderer;   ///< GL_RENDERER, which chose the starting quality
+    long long triangles = 0;  ///< drawn in the view pass of the last frame
+    std::string notice;       ///< the last screenshot saved (or why it failed)
 };
 
 /// What the user asked for in this frame beyond editing controls().
@@ -27,16 +35,20 @@ struct PanelRequests {
     bool controlsChanged = false;  ///< substeps, iterations or gravity
     bool drawingChanged = false;   ///< a debug layer toggled
     std::optional<bool> compare;   ///< compare mode switched on or off
+    bool resetCamera = false;
+    std::optional<render::QualityLevel> quality;  ///< a rendering quality chosen
 };
 
 class ViewPanel {
   public:
-    /// Draws the panel for this ImGui frame. `loadError` is shown under the file box when set.
-    PanelRequests draw(CompareSession& session, const FrameTimes& times, const std::string& loadError);
+    /// Draws the panel for this ImGui frame, docked at the left of the window beside `view`
+    /// (view_layout.h), and in compare mode each run's measures over its part of the view.
+    /// `loadError` is shown, wrapped, under the file box when set.
+    PanelRequests draw(CompareSession& session, const ViewStatus& status, const ViewArea& view,
+                       const std::string& loadError);
 
   private:
     char path_[512] = {};  ///< the file box's text
-    std::optional<bool> shownComparing_;  ///< compare mode at the last frame: the panel refits when it changes
 };
 
 }  // namespace substep::view

@@ -34,6 +34,7 @@ void ViewSession::restart() { rebuild(true); }
 
 void ViewSession::rebuild(bool keepScript) {
     dragger_.forget();  // its spring goes with the old world
+    selected_.reset();
     // A restart keeps the script, and with it the knobs the user turned.
     if (keepScript && live_) {
         live_->restart();
@@ -73,6 +74,17 @@ void ViewSession::drag(const Ray& ray) {
 void ViewSession::release() {
     dragger_.release(live_->physics());
     live_->sync();
+}
+
+bool ViewSession::select(const Ray& ray) {
+    const std::optional<BodyHit> hit = pickBody(live_->instance().registry, ray);
+    selected_ = hit ? std::optional(hit->entity) : std::nullopt;
+    return selected_.has_value();
+}
+
+std::optional<BodyInspection> ViewSession::inspection() {
+    if (!selected_) return std::nullopt;
+    return inspectBody(live_->instance().registry, *selected_);
 }
 
 double ViewSession::jointCompliance(ecs::Entity joint) const {
@@ -155,6 +167,7 @@ render::RenderScene ViewSession::draw(const render::Camera& camera) {
         if (const std::optional<SceneCamera> own = script->camera(live_->instance())) scene.camera = renderCamera(*own);
     if (const std::optional<render::DebugLine> spring = dragger_.line(live_->instance().registry))
         scene.lines.push_back(*spring);
+    if (selected_) outlineBody(live_->instance().registry, *selected_, render::Colour(1.0f, 0.85f, 0.1f), scene.lines);
     return scene;
 }
 

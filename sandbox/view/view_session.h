@@ -8,6 +8,7 @@
 #include "scene_drawing.h"
 #include "scene_source.h"
 #include "view/body_dragger.h"
+#include "view/body_inspector.h"
 #include "view/plot_history.h"
 
 #include "render/render_scene.h"
@@ -56,7 +57,13 @@ class ViewSession {
     void release();
     bool dragging() const { return dragger_.active(); }
 
-    /// The current state to draw, seen through `camera`.
+    /// Selects the body under `ray` for the inspector (body_inspector.h), or clears the
+    /// selection when the ray meets none. True when a body is selected.
+    bool select(const Ray& ray);
+    /// The selected body as it is now; nullopt with none (a restart or load clears it).
+    std::optional<BodyInspection> inspection();
+
+    /// The current state to draw, seen through `camera`, the selected body outlined.
     render::RenderScene draw(const render::Camera& camera);
 
     /// The scene's named joints, for the panel's compliance sliders.
@@ -99,6 +106,7 @@ class ViewSession {
     std::unique_ptr<LiveScene> live_;
     std::unique_ptr<SceneDrawing> drawing_;
     BodyDragger dragger_;
+    std::optional<ecs::Entity> selected_;  ///< the inspector's body
     /// Measures the chain's elongation as `substep sweep` does; null without a chain.
     std::unique_ptr<ErrorRecorder> chainMeasure_;
     std::vector<std::pair<std::string, ecs::Entity>> namedJoints_;  ///< of the current build

@@ -6,6 +6,8 @@
 #include "scenes/live_scene.h"
 #include "scenes/scene_registry.h"
 
+#include "ecs/components.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -179,6 +181,52 @@ TEST_F(RobotArm, OutOfReachTheGripperStopsOnTheLineAtFullReach) {
         EXPECT_LT(worstOff, 5e-3) << d.transpose();
     }
     EXPECT_LT(worstViolation_, 0.015);
+}
+
+}  // namespace
+}  // namespace substep
+
+namespace substep {
+namespace {
+
+double knobValue(LiveScene& scene, std::string_view name) {
+    for (const SceneKnob& knob : scene.script()->knobs())
+        if (knob.name == name) return knob.value;
+    ADD_FAILURE() << "no knob " << name;
+    return 0.0;
+}
+
+// The target sliders follow the box wherever it goes, so the window's sliders never stand stale:
+// along its orbit, and after the window's mouse moves it (a Transform patch, as body_dragger does).
+TEST(RobotArmSliders, FollowTheTargetOnItsOrbitAndAfterADrag) {
+    const SceneEntry* entry = findBuiltinScene("robot_arm");
+    LiveScene scene(entry->build(), entry);
+    const auto targetAt = [&] {
+        for (const auto& [name, id] : scene.instance().namedBodyIds())
+            if (name == "target") return scene.world().body(id).userPosition();
+        ADD_FAILURE() << "no target";
+        return Vec3(Vec3::Zero());
+    };
+    for (int frame = 0; frame < 90; ++frame) scene.step();  // orbiting, on by default
+    Vec3 at = targetAt();
+    EXPECT_NEAR(knobValue(scene, "target_x"), at.x(), 0.05);  // within the last frame's motion
+    EXPECT_NEAR(knobValue(scene, "target_y"), at.y(), 0.05);
+    EXPECT_NEAR(knobValue(scene, "target_z"), at.z(), 0.05);
+
+    ASSERT_TRUE(scene.script()->setKnob(scene.instance(), "orbit", 0));
+    for (int frame = 0; frame < 5; ++frame) scene.step();
+    const Vec3 dropped(0.7, 0.4, -0.3);
+    ecs::Entity target{};
+    for (const ecs::Entity entity : scene.instance().bodyEntities)
+        if (const ecs::Name* name = scene.instance().registry.tryGet<ecs::Name>(entity); name && name->value == "target")
+            target = entity;
+    scene.instance().registry.patch<ecs::Transform>(target, [&](ecs::Transform& box) { box.position = dropped; });
+    scene.step();
+    at = targetAt();
+    EXPECT_NEAR((at - dropped).norm(), 0.0, 1e-12);  // it stays where it was put
+    EXPECT_DOUBLE_EQ(knobValue(scene, "target_x"), dropped.x());
+    EXPECT_DOUBLE_EQ(knobValue(scene, "target_y"), dropped.y());
+    EXPECT_DOUBLE_EQ(knobValue(scene, "target_z"), dropped.z());
 }
 
 }  // namespace

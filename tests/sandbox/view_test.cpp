@@ -86,7 +86,7 @@ TEST_F(ViewCommandTest, ScriptedRunUnderXvfbSavesTheWindow) {
     }
     EXPECT_GT(colours.size(), 200u);
 
-    // The panel sits at the top left over the scene: ImGui's dark window is darker there than
+    // The panel is docked at the left beside the scene: ImGui's dark window is darker there than
     // the sky at the top right.
     auto meanBrightness = [&](int x0, int y0, int x1, int y1) {
         double sum = 0.0;
@@ -353,25 +353,29 @@ TEST(CompareSessionTest, KnobsReachBothRunsAndLeaveTheSplits) {
     EXPECT_EQ(session.run(1).world().settings().iterations, 10);
 }
 
-TEST(CompareSessionTest, SplitsTheWindowIntoHalves) {
+TEST(CompareSessionTest, SplitsTheViewBesideThePanelIntoHalves) {
     view::CompareSession session(resolveScene("pendulum3"), 16.0f / 9.0f);
-    render::RenderTarget whole = session.target(0, {1281, 720});
-    EXPECT_EQ(whole.originX, 0);
+    // The view: a 1661 x 720 window less a 380-wide panel at its left.
+    const view::ViewArea area{.left = 380.0f, .top = 0.0f, .width = 1281.0f, .height = 720.0f};
+    const render::RenderTarget view{.framebuffer = 0, .size = {1281, 720}, .originX = 380, .originY = 0};
+    render::RenderTarget whole = session.target(0, view);
+    EXPECT_EQ(whole.originX, 380);
     EXPECT_EQ(whole.size, (render::PixelSize{1281, 720}));
-    EXPECT_EQ(session.runAt(1200.0f, 1281.0f), 0u);
+    EXPECT_EQ(session.runAt(1500.0f, area), 0u);
 
     session.compare(view::kPaperCompareSplits);
-    const render::RenderTarget left = session.target(0, {1281, 720});
-    const render::RenderTarget right = session.target(1, {1281, 720});
-    EXPECT_EQ(left.originX, 0);
-    EXPECT_EQ(right.originX, left.size.width);
-    EXPECT_EQ(left.size.width + right.size.width, 1281);  // every column drawn once
+    const render::RenderTarget left = session.target(0, view);
+    const render::RenderTarget right = session.target(1, view);
+    EXPECT_EQ(left.originX, 380);
+    EXPECT_EQ(right.originX, 380 + left.size.width);
+    EXPECT_EQ(left.size.width + right.size.width, 1281);  // every column of the view drawn once
     EXPECT_EQ(right.size.height, 720);
-    EXPECT_EQ(session.runAt(100.0f, 1280.0f), 0u);
-    EXPECT_EQ(session.runAt(700.0f, 1280.0f), 1u);
-    EXPECT_EQ(session.runAt(5000.0f, 1280.0f), 1u);  // off the window: the nearest run
-    EXPECT_FLOAT_EQ(session.part(1, 1280.0f).left, 640.0f);
-    EXPECT_FLOAT_EQ(session.part(1, 1280.0f).width, 640.0f);
+    EXPECT_EQ(session.runAt(400.0f, area), 0u);
+    EXPECT_EQ(session.runAt(1100.0f, area), 1u);
+    EXPECT_EQ(session.runAt(5000.0f, area), 1u);  // off the window: the nearest run
+    EXPECT_EQ(session.runAt(10.0f, area), 0u);
+    EXPECT_FLOAT_EQ(session.part(1, area).left, 380.0f + 640.5f);
+    EXPECT_FLOAT_EQ(session.part(1, area).width, 640.5f);
 }
 
 // A static body that does not collide is moved by the cursor itself, and a body hanging from it
@@ -454,22 +458,25 @@ TEST_F(ViewCommandTest, CompareModeUnderXvfbShowsTwoRunsSideBySide) {
     if (!haveXvfbRun()) GTEST_SKIP() << "xvfb-run is not installed (Debian package xvfb)";
     const auto shoot = [&](const std::string& splits, const std::string& file) {
         const Result result =
-            substep("view pendulum3 --compare " + splits + " --frames 90 --size 2400x700 --screenshot " + file,
+            substep("view pendulum3 --compare " + splits + " --frames 90 --size 2460x700 --screenshot " + file,
                     "xvfb-run -a -s '-screen 0 2560x800x24'");
         EXPECT_EQ(result.exitCode, 0) << result.err;
         return render::decodePng(readFile(work() / file));
     };
     const render::Image different = shoot("20x1,1x20", "compare.png");
     const render::Image same = shoot("20x1,20x1", "same.png");
-    ASSERT_EQ(different.width, 2400);
+    ASSERT_EQ(different.width, 2460);
     ASSERT_EQ(same.height, 700);
 
-    // A band of each half clear of the panel (top left, 370 px wide) and of the run's measures
-    // (bottom right of each half), above the horizon: sky, bodies and joint markers. Each half is
-    // wide enough that the pendulum's swing, 3 m either side of its pivot, stays in the band.
-    constexpr int kHalf = 1200;
-    constexpr int kBandLeft = 380;
-    constexpr int kBandRight = 1190;
+    // A band of each half of the view (beside the 380 px panel docked at the left: halves of
+    // 1040 px from x = 380) clear of the run's measures (bottom right of each half, at most half
+    // its height), above the horizon: sky, bodies and joint markers. Each half is wide enough
+    // that the pendulum's swing, 3 m either side of its pivot, stays in the band. The halves
+    // start at the same phase of the sky's 4 x 4 dither, at full and at half resolution (the
+    // light quality), so the same split gives the same pixels.
+    constexpr int kHalf = 1040;
+    constexpr int kBandLeft = 390;
+    constexpr int kBandRight = 1380;
     constexpr int kBandTop = 10;
     constexpr int kBandBottom = 300;
     const auto meanDifference = [&](const render::Image& image) {

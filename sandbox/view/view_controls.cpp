@@ -1,0 +1,86 @@
+#include "view/view_controls.h"
+
+#include <GLFW/glfw3.h>
+
+#include <array>
+#include <cstdio>
+
+namespace substep::view {
+
+namespace {
+
+constexpr std::array<ControlHelp, 14> kControls{{
+    {"Space", "play / pause"},
+    {"S", "step one frame (hold to repeat)"},
+    {"R", "restart the scene (and reset the camera)"},
+    {"C, Home", "reset the camera to the scene's"},
+    {"Tab", "hide / show the panel"},
+    {"F1", "this help"},
+    {"P", "screenshot of the window as shown (PNG in the working folder)"},
+    {"Shift+P", "screenshot of the 3D view without the panel"},
+    {"left drag", "orbit the camera"},
+    {"Ctrl + left drag", "grab a body with a spring (paper Fig. 5) or move a mount"},
+    {"left click", "select a body: the panel's inspector shows it, the view outlines it"},
+    {"right / middle drag", "pan"},
+    {"wheel", "zoom"},
+    {"panel: quality", "light / medium / full rendering (light on software GL)"},
+}};
+
+}  // namespace
+
+std::span<const ControlHelp> viewControls() { return kControls; }
+
+std::string controlsHelpText() {
+    std::string text = "Controls in the window:\n";
+    for (const ControlHelp& control : kControls) {
+        char line[160];
+        std::snprintf(line, sizeof line, "  %-20s %s\n", control.keys, control.does);
+        text += line;
+    }
+    return text;
+}
+
+KeyActions keyActions(std::span<const InputEvent> events, bool textInput) {
+    KeyActions actions;
+    for (const InputEvent& event : events) {
+        if (event.kind != InputEvent::Kind::Key || event.action == GLFW_RELEASE) continue;
+        const bool repeat = event.action == GLFW_REPEAT;
+        switch (event.code) {
+            case GLFW_KEY_F1:
+                if (!repeat) ++actions.toggleHelp;
+                continue;
+            case GLFW_KEY_TAB:
+                if (!repeat && !textInput) ++actions.toggleUi;
+                continue;
+            default: break;
+        }
+        if (textInput) continue;
+        switch (event.code) {
+            case GLFW_KEY_SPACE:
+                if (!repeat) ++actions.togglePlay;
+                break;
+            case GLFW_KEY_S: ++actions.steps; break;
+            case GLFW_KEY_R:
+                if (!repeat) actions.restart = true;
+                break;
+            case GLFW_KEY_C:
+            case GLFW_KEY_HOME:
+                if (!repeat) actions.resetCamera = true;
+                break;
+            case GLFW_KEY_P:
+                if (repeat) break;
+                if (event.mods & GLFW_MOD_SHIFT) {
+                    actions.screenshotViewOnly = true;
+                } else {
+                    actions.screenshot = true;
+                }
+                break;
+            default: break;
+        }
+    }
+    return actions;
+}
+
+bool grabsBody(int mods) { return (mods & GLFW_MOD_CONTROL) != 0; }
+
+}  // namespace substep::view

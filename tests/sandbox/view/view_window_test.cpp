@@ -1,0 +1,214 @@
+// sandbox/view (view_app.cpp with input_queue.cpp): the real window under Xvfb, driven by
+// xdotool as a user would. Key taps arrive through the input queue, so a tap of Space pauses and
+// a second resumes even while each frame takes a tenth of a second or more (the full quality on
+// Mesa's software rasteriser); F1 shows the controls over the view; P and Shift+P write PNGs in
+// the working folder, of the window and of the view alone; Tab hides the panel. The window's
+// title says when it is paused and at which frame, which is what the script reads back.
+
+#include "../command_test_support.h"
+
+#include "render/png_codec.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <map>
+#include <regex>
+
+namespace substep::command_test {
+namespace {
+
+bool haveXvfbAndXdotool() {
+    return std::system("command -v xvfb-run >/dev/null 2>&1 && command -v xdotool >/dev/null 2>&1") == 0;
+}
+
+/// Helpers of every driving script: the window's id once it is mapped, waits on its title and on
+/// files (each gives up after 60 s and says so), and a clean stop of the program.
+constexpr const char* kScriptPrelude = R"sh(
+set -u
+"$SUBSTEP" "$@" >app.out 2>app.err &
+app=$!
+trap 'kill $app 2>/dev/null; wait $app 2>/dev/null' EXIT
+win=$(timeout 60 xdotool search --sync --onlyvisible --name '^Substep - ' | head -n 1)
+[ -n "$win" ] || { echo "NO WINDOW"; exit 1; }
+xdotool mousemove --window "$win" 700 20 windowfocus "$win" 2>/dev/null
+title() { xdotool getwindowname "$win"; }
+wait_title() {  # a substring the title must come to contain ("" waits for none of "paused")
+  for _ in $(seq 1 600); do
+    t=$(title)
+    if [ -n "$1" ]; then case "$t" in *"$1"*) echo "$t"; return 0;; esac
+    else case "$t" in *paused*) ;; *) echo "$t"; return 0;; esac; fi
+    sleep 0.1
+  done
+  echo "TIMEOUT waiting for '$1': $t"; exit 1
+}
+wait_files() {  # until N files match the glob
+  for _ in $(seq 1 600); do
+    [ "$(ls $2 2>/dev/null | wc -l)" -ge "$1" ] && { ls $2; return 0; }
+    sleep 0.1
+  done
+  echo "TIMEOUT waiting for $1 of $2"; exit 1
+}
+sleep 1
+)sh";
+
+class ViewWindowTest : public CommandTest {
+  protected:
+    /// Runs `body` after the prelude under xvfb-run with `arguments` for substep; its stdout.
+    std::string drive(const std::string& arguments, const std::string& body) {
+        const fs::path script = work().parent_path() / "drive.sh";
+        {
+            std::ofstream file(script);
+            file << kScriptPrelude << body << "\necho DONE\n";
+        }
+        const fs::path out = work().parent_path() / "drive.out";
+        const std::string command = "cd " + quoted(work().string()) + " && SUBSTEP=" + quoted(SUBSTEP_EXECUTABLE) +
+                                    " timeout 300 xvfb-run -a -s '-screen 0 1600x1000x24' bash " +
+                                    quoted(script.string()) + " " + arguments + " >" + quoted(out.string()) + " 2>&1";
+        std::system(command.c_str());
+        return readFile(out);
+    }
+
+    /// The frame in a title "Substep - cradle (paused at frame 42, t = ...)".
+    static long long pausedFrame(const std::string& line) {
+        std::smatch match;
+        if (!std::regex_search(line, match, std::regex("paused at frame ([0-9]+)"))) return -1;
+        return std::stoll(match[1]);
+    }
+};
+
+TEST_F(ViewWindowTest, SpaceTapsPauseAndResumeAtALowFrameRate) {
+    if (!haveXvfbAndXdotool()) GTEST_SKIP() << "needs xvfb-run and xdotool (tools/install-deps.sh)";
+    // Full quality on a software rasteriser at this size: frames of 100 ms and more, so each tap
+    // (press and release a few milliseconds apart) falls within one frame.
+    const std::string out = drive("view cradle --size 1200x800 --quality full", R"sh(
+xdotool key space
+echo "first $(wait_title 'paused at frame')"
+sleep 1
+echo "still $(title)"
+xdotool key space
+echo "resumed $(wait_title '')"
+sleep 1
+xdotool key space
+echo "second $(wait_title 'paused at frame')"
+)sh");
+    ASSERT_NE(out.find("DONE"), std::string::npos) << out;
+    const std::vector<std::string> output = lines(out);
+    std::map<std::string, std::string> said;
+    for (const std::string& line : output) said[line.substr(0, line.find(' '))] = line;
+    const long long first = pausedFrame(said["first"]);
+    ASSERT_GE(first, 0) << out;
+    EXPECT_EQ(pausedFrame(said["still"]), first) << "a paused scene must not step: " << out;
+    EXPECT_EQ(said["resumed"].find("paused"), std::string::npos) << out;
+    EXPECT_GT(pausedFrame(said["second"]), first) << "resumed, the scene steps on: " << out;
+}
+
+TEST_F(ViewWindowTest, F1ShowsTheControlsAndScreenshotKeysWritePngs) {
+    if (!haveXvfbAndXdotool()) GTEST_SKIP() << "needs xvfb-run and xdotool (tools/install-deps.sh)";
+    const std::string out = drive("view cradle --size 1000x700", R"sh(
+xdotool key space
+wait_title 'paused at frame'
+sleep 0.5
+xdotool key p
+wait_files 1 'substep_cradle_f*.png'
+xdotool key F1
+sleep 0.5
+xdotool key p
+wait_files 2 'substep_cradle_f*.png'
+xdotool key F1 Tab
+sleep 0.5
+xdotool key p
+wait_files 3 'substep_cradle_f*.png'
+xdotool key Tab shift+p
+wait_files 4 'substep_cradle_f*.png'
+)sh");
+    ASSERT_NE(out.find("DONE"), std::string::npos) << out;
+    // Paused at frame N, every shot is named substep_cradle_fN[_k].png, in taking order.
+    std::vector<std::string> shots;
+    for (const std::string& name : workEntries())
+        if (name.rfind("substep_cradle_f", 0) == 0) shots.push_back(name);
+    ASSERT_EQ(shots.size(), 4u) << out;
+    std::sort(shots.begin(), shots.end(), [](const std::string& a, const std::string& b) {
+        return a.size() != b.size() ? a.size() < b.size() : a < b;
+    });
+    const render::Image plain = render::decodePng(readFile(work() / shots[0]));
+    const render::Image help = render::decodePng(readFile(work() / shots[1]));
+    const render::Image hidden = render::decodePng(readFile(work() / shots[2]));
+    const render::Image viewOnly = render::decodePng(readFile(work() / shots[3]));
+    ASSERT_EQ(plain.width, 1000);
+    ASSERT_EQ(plain.height, 700);
+    EXPECT_EQ(viewOnly.width, 1000 - 380);  // the view beside the panel, without it
+    EXPECT_EQ(viewOnly.height, 700);
+
+    auto meanBrightness = [](const render::Image& image, int x0, int y0, int x1, int y1) {
+        double sum = 0.0;
+        for (int y = y0; y < y1; ++y) {
+            for (int x = x0; x < x1; ++x) {
+                const uint8_t* p = image.pixel(x, y);
+                sum += (p[0] + p[1] + p[2]) / 3.0;
+            }
+        }
+        return sum / ((x1 - x0) * (y1 - y0));
+    };
+    // The overlay is a dark table in the middle of the view (x 380..1000), over the sky and the
+    // ground; the panel a dark column at the left, gone once Tab hides it.
+    const double viewPlain = meanBrightness(plain, 600, 300, 780, 400);
+    EXPECT_LT(meanBrightness(help, 600, 300, 780, 400), 0.6 * viewPlain) << "F1 must darken the view with its table";
+    EXPECT_LT(meanBrightness(plain, 20, 300, 300, 400), 0.5 * meanBrightness(hidden, 20, 300, 300, 400))
+        << "Tab must hide the panel";
+    // Shift+P's picture is the view itself: its middle matches the window's view.
+    EXPECT_NEAR(meanBrightness(viewOnly, 220, 300, 400, 400), viewPlain, 2.0);
+}
+
+TEST_F(ViewWindowTest, AClickSelectsTheBodyAndOutlinesIt) {
+    if (!haveXvfbAndXdotool()) GTEST_SKIP() << "needs xvfb-run and xdotool (tools/install-deps.sh)";
+    // hinge_bar's start camera frames the mount and the bar: the middle of the view (x 380..1000
+    // beside the panel) is on the bar. The inspector's readout of it (mass 1 kg, the hinge's
+    // 2 N m) is checked in process (body_inspector_test.cpp); here the click through the real
+    // window selects it and the view outlines it in yellow.
+    const std::string out = drive("view hinge_bar --size 1000x700", R"sh(
+xdotool mousemove --window "$win" 690 350 key space
+wait_title 'paused at frame'
+sleep 0.5
+xdotool key shift+p
+wait_files 1 'substep_hinge_bar_f*.png'
+xdotool click 1
+sleep 0.5
+xdotool key shift+p
+wait_files 2 'substep_hinge_bar_f*.png'
+)sh");
+    ASSERT_NE(out.find("DONE"), std::string::npos) << out;
+    std::vector<std::string> shots;
+    for (const std::string& name : workEntries())
+        if (name.rfind("substep_hinge_bar_f", 0) == 0) shots.push_back(name);
+    ASSERT_EQ(shots.size(), 2u) << out;
+    std::sort(shots.begin(), shots.end(), [](const std::string& a, const std::string& b) {
+        return a.size() != b.size() ? a.size() < b.size() : a < b;
+    });
+    const auto yellowPixels = [](const render::Image& image) {
+        std::size_t count = 0;
+        for (int y = 0; y < image.height; ++y) {
+            for (int x = 0; x < image.width; ++x) {
+                const uint8_t* p = image.pixel(x, y);
+                if (p[0] > 200 && p[1] > 150 && p[1] < 240 && p[2] < 90) ++count;
+            }
+        }
+        return count;
+    };
+    const std::size_t before = yellowPixels(render::decodePng(readFile(work() / shots[0])));
+    const std::size_t after = yellowPixels(render::decodePng(readFile(work() / shots[1])));
+    EXPECT_LT(before, 20u);
+    EXPECT_GT(after, 300u) << "the selected bar's outline";
+}
+
+TEST_F(ViewWindowTest, HelpListsTheControls) {
+    const Result result = substep("view --help");
+    EXPECT_EQ(result.exitCode, 0);
+    for (const char* expected : {"Controls in the window", "Space", "F1", "Tab", "Ctrl + left drag", "--quality"}) {
+        EXPECT_NE(result.out.find(expected), std::string::npos) << expected << "\n" << result.out;
+    }
+}
+
+}  // namespace
+}  // namespace substep::command_test
