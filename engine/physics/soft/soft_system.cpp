@@ -1,5 +1,6 @@
 #include "physics/soft/soft_system.h"
 
+#include "physics/soft/rigid_mode.h"
 #include "physics/soft/shape_matching.h"
 
 #include <Eigen/LU>
@@ -163,12 +164,37 @@ void SoftSystem::forgetBody(uint32_t bodyIndex) {
 }
 
 void SoftSystem::integrate(double h, const Vec3& gravity) {
-    // Algorithm 2 without the rotation; λ is zeroed before each substep's solve.
+    // Algorithm 2 without the rotation, except that each soft body's rigid mode turns on an
+    // arc (rigid_mode.h): x += h v + (Rot(h ω) − 1 − h [ω₀]×)(x − c), where ω₀ = I⁻¹ L is the
+    // spin in the velocities and ω the turn that keeps L. λ is zeroed before each substep's
+    // solve.
     const Vec3 gravityStep = h * gravity;
-    for (size_t i = 0; i < x_.size(); ++i) {
-        xPrev_[i] = x_[i];
-        v_[i] += gravityStep;
-        x_[i] += h * v_[i];
+    for (SoftBodyData& body : bodies_) {
+        if (!body.alive) continue;
+        const uint32_t first = body.firstParticle, end = first + body.particleCount;
+        const RigidModeMoments moments =
+            rigidModeMoments(&x_[first], &v_[first], &mass_[first], body.particleCount);
+        const Vec3 spin = momentumKeepingSpin(moments.inertia, moments.angularMomentum, h);
+        body.turn = Quat::Identity();
+        if (spin.isZero(0.0)) {
+            for (uint32_t i = first; i < end; ++i) {
+                xPrev_[i] = x_[i];
+                v_[i] += gravityStep;
+                x_[i] += h * v_[i];
+            }
+            continue;
+        }
+        integrateRotation(body.turn, h * spin);
+        const Vec3 linearSpin = moments.inertia.inverse() * moments.angularMomentum;
+        const Mat3 arc = body.turn.toRotationMatrix() - Mat3::Identity() - h * crossMatrix(linearSpin);
+        for (uint32_t i = first; i < end; ++i) {
+            xPrev_[i] = x_[i];
+            v_[i] += gravityStep;
+            x_[i] += h * v_[i] + arc * (xPrev_[i] - moments.centre);
+        }
+        // The elements turn with the body: their rotations' warm start.
+        for (uint32_t e = body.firstElement; e < body.firstElement + body.elementCount; ++e)
+            rotations_[e] = body.turn * rotations_[e];
     }
     std::fill(lambda_.begin(), lambda_.end(), 0.0);
     std::fill(volumeLambda_.begin(), volumeLambda_.end(), 0.0);
@@ -217,10 +243,44 @@ void SoftSystem::solveElements(double invH2) {
 }
 
 void SoftSystem::deriveVelocities(double h) {
+    // v = (x − x_prev) / h, with each soft body's rigid turn R over the substep (the best-fit
+    // rotation from x_prev to x about the centres of mass) counted on its arc rather than its
+    // chord: v = v̄ + ω × r + (r − R r_prev) / h, ω = log(R) / h (rigid_mode.h). A rigid motion
+    // gets its exact spin back, the momentum is the chord's, and the angular momentum about
+    // the centre is I ω, since R zeroes Σ m r × R r_prev.
     const double invH = 1.0 / h;
-    for (size_t i = 0; i < x_.size(); ++i) {
-        vPrev_[i] = v_[i];
-        v_[i] = (x_[i] - xPrev_[i]) * invH;
+    for (SoftBodyData& body : bodies_) {
+        if (!body.alive) continue;
+        const uint32_t first = body.firstParticle, end = first + body.particleCount;
+        Mat3 correction = Mat3::Zero();
+        Mat3 turnBack = Mat3::Zero();
+        Vec3 centre = Vec3::Zero(), centrePrev = Vec3::Zero();
+        if (!body.turn.vec().isZero(0.0)) {
+            const Vec3 origin = xPrev_[first];
+            Vec3 first1 = Vec3::Zero(), first0 = Vec3::Zero();
+            Mat3 cross = Mat3::Zero();
+            double mass = 0.0, spread = 0.0;
+            for (uint32_t i = first; i < end; ++i) {
+                const Vec3 p = x_[i] - origin, q = xPrev_[i] - origin;
+                first1 += mass_[i] * p;
+                first0 += mass_[i] * q;
+                cross.noalias() += mass_[i] * p * q.transpose();
+                spread += mass_[i] * q.squaredNorm();
+                mass += mass_[i];
+            }
+            const Vec3 d1 = first1 / mass, d0 = first0 / mass;
+            centre = origin + d1;
+            centrePrev = origin + d0;
+            const Mat3 covariance = cross - mass * d1 * d0.transpose();  // Σ m r r_prevᵀ
+            const Mat3 r = extractRotation(covariance, spread - mass * d0.squaredNorm(), body.turn);
+            const Vec3 spin = angularVelocityBetween(Quat::Identity(), body.turn, invH);
+            correction = crossMatrix(spin);
+            turnBack = (r - Mat3::Identity()) * invH;
+        }
+        for (uint32_t i = first; i < end; ++i) {
+            vPrev_[i] = v_[i];
+            v_[i] = (x_[i] - xPrev_[i]) * invH + correction * (x_[i] - centre) - turnBack * (xPrev_[i] - centrePrev);
+        }
     }
 }
 

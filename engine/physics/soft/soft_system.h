@@ -89,6 +89,9 @@ private:
         std::vector<std::array<uint32_t, 4>> quads;  ///< boundary faces, body-local indices
         /// Rigid bodies it is attached to: its particles do not collide with them.
         std::vector<uint32_t> attachedBodies;
+        /// The rigid mode's turn in this substep (rigid_mode.h): predicted by integrate, the
+        /// warm start of the best-fit rotation in deriveVelocities.
+        Quat turn = Quat::Identity();
     };
     /// A particle held to a point of a rigid body (principal frame).
     struct Attachment {
