@@ -98,6 +98,11 @@ SoftBodyId SoftSystem::create(const SoftBodyDef& def, std::span<const Body> bodi
         invMass_[i] = 1.0 / mass_[i];
         data.mass += mass_[i];
     }
+    for (uint32_t e = data.firstElement; e < elements_.size(); ++e) {
+        std::array<double, 8> w;
+        for (int j = 0; j < 8; ++j) w[j] = invMass_[elements_[e][j]];
+        cornerInvMass_.push_back(w);
+    }
     addAttachments(def, data, lattice, bodies);
 
     uint32_t index;
@@ -127,7 +132,7 @@ void SoftSystem::destroy(SoftBodyId id) {
     };
     eraseParticles(x_), eraseParticles(xPrev_), eraseParticles(v_), eraseParticles(vPrev_);
     eraseParticles(mass_), eraseParticles(invMass_);
-    eraseElements(elements_), eraseElements(restOffsets_), eraseElements(volumeGradients_);
+    eraseElements(elements_), eraseElements(cornerInvMass_), eraseElements(restOffsets_), eraseElements(volumeGradients_);
     eraseElements(rotations_), eraseElements(scale2_), eraseElements(compliance_);
     eraseElements(volumeCompliance_), eraseElements(elementDamping_), eraseElements(lambda_), eraseElements(volumeLambda_);
     // Later bodies' particles moved down by the removed count.
@@ -208,15 +213,24 @@ void SoftSystem::solvePositions(SolverContext& ctx) {
 }
 
 void SoftSystem::solveElements(double invH2) {
-    std::array<Vec3, 8> deviation;
+    // The corners as the columns of 3 x 8 matrices (an element's rest offsets are stored
+    // that way), so the shape matrix, the goals and the update are a few fixed-size products.
+    using Corners = Eigen::Matrix<double, 3, 8>;
+    using CornerRow = Eigen::Matrix<double, 1, 8>;
     for (size_t e = 0; e < elements_.size(); ++e) {
         const HexElement& element = elements_[e];
-        std::array<Vec3, 8> x = corners(x_, element);
-        const std::array<Vec3, 8>& rest = restOffsets_[e];
-        const Mat3 r = extractRotation(shapeMatrix(x, rest), scale2_[e], rotations_[e]);
-        const double c = shapeMatchingError(x, rest, r, deviation);
-        double weighted = 0.0;  // Σ w_j |d_j|², so Σ w_j |∇_j C|² = weighted / (64 C²)
-        for (int j = 0; j < 8; ++j) weighted += invMass_[element[j]] * deviation[j].squaredNorm();
+        const Eigen::Map<const Corners> rest(restOffsets_[e][0].data());
+        const Eigen::Map<const CornerRow> w(cornerInvMass_[e].data());
+        Corners x;
+        for (int j = 0; j < 8; ++j) x.col(j) = x_[element[j]];
+        const Mat3 a = (x * rest.transpose()) * 0.125;  // A = Σ ⅛ x_j q_jᵀ (Σ q_j = 0)
+        const Mat3 r = extractRotation(a, scale2_[e], rotations_[e]);
+        const Vec3 centre = x.rowwise().sum() * 0.125;
+        Corners deviation = x - r * rest;  // d_j = x_j − c − R q_j
+        deviation.colwise() -= centre;
+        const CornerRow squared = deviation.colwise().squaredNorm();
+        const double c = std::sqrt(0.125 * squared.sum());
+        const double weighted = squared.dot(w);  // Σ w_j |d_j|², so Σ w_j |∇_j C|² = weighted / (64 C²)
         const double alphaTilde = compliance_[e] * invH2;
         if (c > 1e-12 * std::sqrt(scale2_[e]) && weighted > 0.0) {
             // Eq. 4 for the shape-matching constraint (header of shape_matching.h).
@@ -224,21 +238,22 @@ void SoftSystem::solveElements(double invH2) {
             const double deltaLambda = (-c - alphaTilde * lambda_[e]) / denominator;
             lambda_[e] += deltaLambda;
             const double step = deltaLambda / (8.0 * c);
-            for (int j = 0; j < 8; ++j) x[j] += (invMass_[element[j]] * step) * deviation[j];
+            x.noalias() += deviation * (step * w).asDiagonal();
         }
         if (volumeCompliance_[e] >= 0.0) {
-            std::array<Vec3, 8> gradient;
-            const double cv = volumeError(x, volumeGradients_[e], gradient);
-            double w = 0.0;
-            for (int j = 0; j < 8; ++j) w += invMass_[element[j]] * gradient[j].squaredNorm();
+            std::array<Vec3, 8> corners, gradient;
+            for (int j = 0; j < 8; ++j) corners[j] = x.col(j);
+            const double cv = volumeError(corners, volumeGradients_[e], gradient);
+            double wv = 0.0;
+            for (int j = 0; j < 8; ++j) wv += w[j] * gradient[j].squaredNorm();
             const double alphaV = volumeCompliance_[e] * invH2;
-            if (w + alphaV > 1e-30 && std::isfinite(cv)) {
-                const double deltaLambda = (-cv - alphaV * volumeLambda_[e]) / (w + alphaV);
+            if (wv + alphaV > 1e-30 && std::isfinite(cv)) {
+                const double deltaLambda = (-cv - alphaV * volumeLambda_[e]) / (wv + alphaV);
                 volumeLambda_[e] += deltaLambda;
-                for (int j = 0; j < 8; ++j) x[j] += (invMass_[element[j]] * deltaLambda) * gradient[j];
+                for (int j = 0; j < 8; ++j) x.col(j) += (w[j] * deltaLambda) * gradient[j];
             }
         }
-        for (int j = 0; j < 8; ++j) x_[element[j]] = x[j];
+        for (int j = 0; j < 8; ++j) x_[element[j]] = x.col(j);
     }
 }
 

@@ -132,6 +132,7 @@ private:
     // Elements.
     std::vector<HexElement> elements_;
     std::vector<std::array<Vec3, 8>> restOffsets_;     ///< q_j, world rest frame at creation
+    std::vector<std::array<double, 8>> cornerInvMass_; ///< w_j: the corners' inverse masses
     std::vector<std::array<Vec3, 8>> volumeGradients_; ///< b_j = ⅛ A_qq⁻¹ q_j
     std::vector<Quat> rotations_;                      ///< warm start of the rotation extraction
     std::vector<double> scale2_;                       ///< ℓ² = Σ ⅛ |q_j|²
