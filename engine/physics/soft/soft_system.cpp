@@ -55,7 +55,15 @@ SoftBodyId SoftSystem::create(const SoftBodyDef& def, std::span<const Body> bodi
 
     // Elements: rest offsets from the rest centroid in the world frame at creation (so the
     // extracted rotation starts at the identity), their scale, compliance and mass.
-    for (const HexElement& local : lattice.elements) {
+    // Elements colour by colour, so that runs of one colour can be projected side by side
+    // (element_batch.h).
+    const std::vector<uint8_t> colours = colourElements(lattice.elements, lattice.positions.size());
+    std::vector<uint32_t> order(lattice.elements.size());
+    for (uint32_t k = 0; k < order.size(); ++k) order[k] = k;
+    std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return colours[a] < colours[b]; });
+    for (const uint32_t k : order) {
+        const HexElement& local = lattice.elements[k];
+        elementColour_.push_back(colours[k]);
         HexElement e;
         for (int j = 0; j < 8; ++j) e[j] = local[j] + data.firstParticle;
         const std::array<Vec3, 8> x = corners(x_, e);
@@ -98,11 +106,8 @@ SoftBodyId SoftSystem::create(const SoftBodyDef& def, std::span<const Body> bodi
         invMass_[i] = 1.0 / mass_[i];
         data.mass += mass_[i];
     }
-    for (uint32_t e = data.firstElement; e < elements_.size(); ++e) {
-        std::array<double, 8> w;
-        for (int j = 0; j < 8; ++j) w[j] = invMass_[elements_[e][j]];
-        cornerInvMass_.push_back(w);
-    }
+    appendBatches(elementArrays(), std::span(elementColour_).subspan(data.firstElement), data.firstElement,
+                  data.elementCount, batches_);
     addAttachments(def, data, lattice, bodies);
 
     uint32_t index;
@@ -132,7 +137,7 @@ void SoftSystem::destroy(SoftBodyId id) {
     };
     eraseParticles(x_), eraseParticles(xPrev_), eraseParticles(v_), eraseParticles(vPrev_);
     eraseParticles(mass_), eraseParticles(invMass_);
-    eraseElements(elements_), eraseElements(cornerInvMass_), eraseElements(restOffsets_), eraseElements(volumeGradients_);
+    eraseElements(elements_), eraseElements(elementColour_), eraseElements(restOffsets_), eraseElements(volumeGradients_);
     eraseElements(rotations_), eraseElements(scale2_), eraseElements(compliance_);
     eraseElements(volumeCompliance_), eraseElements(elementDamping_), eraseElements(lambda_), eraseElements(volumeLambda_);
     // Later bodies' particles moved down by the removed count.
@@ -154,6 +159,30 @@ void SoftSystem::destroy(SoftBodyId id) {
     dead = SoftBodyData{};
     freeBodies_.push_back(id.index);
     --liveBodies_;
+    rebuildBatches();
+}
+
+ElementArrays SoftSystem::elementArrays() {
+    return {.positions = x_,
+            .elements = elements_,
+            .restOffsets = restOffsets_,
+            .volumeGradients = volumeGradients_,
+            .rotations = rotations_,
+            .scale2 = scale2_,
+            .compliance = compliance_,
+            .volumeCompliance = volumeCompliance_,
+            .lambda = lambda_,
+            .volumeLambda = volumeLambda_,
+            .invMass = invMass_};
+}
+
+void SoftSystem::rebuildBatches() {
+    batches_.clear();
+    const ElementArrays arrays = elementArrays();
+    for (const SoftBodyData& body : bodies_)
+        if (body.alive)
+            appendBatches(arrays, std::span(elementColour_).subspan(body.firstElement), body.firstElement,
+                          body.elementCount, batches_);
 }
 
 bool SoftSystem::isValid(SoftBodyId id) const {
@@ -181,7 +210,8 @@ void SoftSystem::integrate(double h, const Vec3& gravity) {
             rigidModeMoments(&x_[first], &v_[first], &mass_[first], body.particleCount);
         const Vec3 spin = momentumKeepingSpin(moments.inertia, moments.angularMomentum, h);
         body.turn = Quat::Identity();
-        if (spin.isZero(0.0)) {
+        // A turn under 1e-7 rad per substep: the chord's loss, (h ω)², is below rounding.
+        if (h * h * spin.squaredNorm() < 1e-14) {
             for (uint32_t i = first; i < end; ++i) {
                 xPrev_[i] = x_[i];
                 v_[i] += gravityStep;
@@ -212,50 +242,7 @@ void SoftSystem::solvePositions(SolverContext& ctx) {
     solveContacts(ctx);
 }
 
-void SoftSystem::solveElements(double invH2) {
-    // The corners as the columns of 3 x 8 matrices (an element's rest offsets are stored
-    // that way), so the shape matrix, the goals and the update are a few fixed-size products.
-    using Corners = Eigen::Matrix<double, 3, 8>;
-    using CornerRow = Eigen::Matrix<double, 1, 8>;
-    for (size_t e = 0; e < elements_.size(); ++e) {
-        const HexElement& element = elements_[e];
-        const Eigen::Map<const Corners> rest(restOffsets_[e][0].data());
-        const Eigen::Map<const CornerRow> w(cornerInvMass_[e].data());
-        Corners x;
-        for (int j = 0; j < 8; ++j) x.col(j) = x_[element[j]];
-        const Mat3 a = (x * rest.transpose()) * 0.125;  // A = Σ ⅛ x_j q_jᵀ (Σ q_j = 0)
-        const Mat3 r = extractRotation(a, scale2_[e], rotations_[e]);
-        const Vec3 centre = x.rowwise().sum() * 0.125;
-        Corners deviation = x - r * rest;  // d_j = x_j − c − R q_j
-        deviation.colwise() -= centre;
-        const CornerRow squared = deviation.colwise().squaredNorm();
-        const double c = std::sqrt(0.125 * squared.sum());
-        const double weighted = squared.dot(w);  // Σ w_j |d_j|², so Σ w_j |∇_j C|² = weighted / (64 C²)
-        const double alphaTilde = compliance_[e] * invH2;
-        if (c > 1e-12 * std::sqrt(scale2_[e]) && weighted > 0.0) {
-            // Eq. 4 for the shape-matching constraint (header of shape_matching.h).
-            const double denominator = weighted / (64.0 * c * c) + alphaTilde;
-            const double deltaLambda = (-c - alphaTilde * lambda_[e]) / denominator;
-            lambda_[e] += deltaLambda;
-            const double step = deltaLambda / (8.0 * c);
-            x.noalias() += deviation * (step * w).asDiagonal();
-        }
-        if (volumeCompliance_[e] >= 0.0) {
-            std::array<Vec3, 8> corners, gradient;
-            for (int j = 0; j < 8; ++j) corners[j] = x.col(j);
-            const double cv = volumeError(corners, volumeGradients_[e], gradient);
-            double wv = 0.0;
-            for (int j = 0; j < 8; ++j) wv += w[j] * gradient[j].squaredNorm();
-            const double alphaV = volumeCompliance_[e] * invH2;
-            if (wv + alphaV > 1e-30 && std::isfinite(cv)) {
-                const double deltaLambda = (-cv - alphaV * volumeLambda_[e]) / (wv + alphaV);
-                volumeLambda_[e] += deltaLambda;
-                for (int j = 0; j < 8; ++j) x.col(j) += (w[j] * deltaLambda) * gradient[j];
-            }
-        }
-        for (int j = 0; j < 8; ++j) x_[element[j]] = x.col(j);
-    }
-}
+void SoftSystem::solveElements(double invH2) { solveElementBatches(batches_, elementArrays(), invH2); }
 
 void SoftSystem::deriveVelocities(double h) {
     // v = (x − x_prev) / h, with each soft body's rigid turn R over the substep (the best-fit

@@ -14,6 +14,7 @@
 #include "physics/correction.h"
 #include "physics/handles.h"
 #include "physics/math.h"
+#include "physics/soft/element_batch.h"
 #include "physics/soft/lattice.h"
 #include "physics/soft/soft_body.h"
 
@@ -123,6 +124,10 @@ private:
     void solveAttachments(SolverContext& ctx);
     void solveContacts(SolverContext& ctx);
     void solveContactVelocities(Body* bodies, double h, double gravity);
+    /// The element arrays as the batch kernel reads them.
+    ElementArrays elementArrays();
+    /// Rebuilds batches_ from every live body's elements.
+    void rebuildBatches();
     void addAttachments(const SoftBodyDef& def, SoftBodyData& data, const Lattice& lattice,
                         std::span<const Body> bodies);
 
@@ -132,7 +137,6 @@ private:
     // Elements.
     std::vector<HexElement> elements_;
     std::vector<std::array<Vec3, 8>> restOffsets_;     ///< q_j, world rest frame at creation
-    std::vector<std::array<double, 8>> cornerInvMass_; ///< w_j: the corners' inverse masses
     std::vector<std::array<Vec3, 8>> volumeGradients_; ///< b_j = ⅛ A_qq⁻¹ q_j
     std::vector<Quat> rotations_;                      ///< warm start of the rotation extraction
     std::vector<double> scale2_;                       ///< ℓ² = Σ ⅛ |q_j|²
@@ -140,6 +144,10 @@ private:
     std::vector<double> volumeCompliance_;             ///< α_V / V; negative: no volume constraint
     std::vector<double> elementDamping_;               ///< k (1/s): deformation rates decay as exp(−k t)
     std::vector<double> lambda_, volumeLambda_;
+    /// Per element: its colour (no two elements of a colour share a particle); each body's
+    /// elements are stored colour by colour.
+    std::vector<uint8_t> elementColour_;
+    std::vector<ElementBatch> batches_;  ///< the projection's batches (element_batch.h)
     // Bodies, couplings, contacts.
     std::vector<SoftBodyData> bodies_;
     std::vector<uint32_t> freeBodies_;
