@@ -2,7 +2,7 @@
 
 #include "physics/soft/shape_matching.h"
 
-#include <bit>
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -201,20 +201,19 @@ constexpr double kLaneTurn2 = 1e-6;
 
 }  // namespace
 
-std::vector<uint8_t> colourElements(std::span<const HexElement> elements, size_t particleCount) {
-    std::vector<uint32_t> used(particleCount, 0);  // bit k: an element of colour k holds the particle
-    std::vector<uint8_t> colour(elements.size(), 0);
+std::vector<uint32_t> elementWaves(std::span<const HexElement> elements, size_t particleCount) {
+    std::vector<uint32_t> next(particleCount, 0);  // per particle: the first wave free of it
+    std::vector<uint32_t> wave(elements.size(), 0);
     for (size_t e = 0; e < elements.size(); ++e) {
-        uint32_t taken = 0;
-        for (uint32_t p : elements[e]) taken |= used[p];
-        const int k = std::min(std::countr_one(taken), 31);  // appendBatches checks the rest
-        colour[e] = static_cast<uint8_t>(k);
-        for (uint32_t p : elements[e]) used[p] |= 1u << k;
+        uint32_t w = 0;
+        for (uint32_t p : elements[e]) w = std::max(w, next[p]);
+        wave[e] = w;
+        for (uint32_t p : elements[e]) next[p] = w + 1;
     }
-    return colour;
+    return wave;
 }
 
-void appendBatches(const ElementArrays& arrays, std::span<const uint8_t> colour, uint32_t first,
+void appendBatches(const ElementArrays& arrays, std::span<const uint32_t> wave, uint32_t first,
                    uint32_t count, std::vector<ElementBatch>& batches) {
     const uint32_t end = first + count;
     const auto shares = [&](uint32_t e, uint32_t from, uint32_t to) {
@@ -229,7 +228,7 @@ void appendBatches(const ElementArrays& arrays, std::span<const uint8_t> colour,
         batch.firstElement = e;
         batch.lanes = 1;
         while (batch.lanes < kLanes && e + batch.lanes < end &&
-               colour[e + batch.lanes - first] == colour[e - first] && !shares(e + batch.lanes, e, e + batch.lanes))
+               wave[e + batch.lanes - first] == wave[e - first] && !shares(e + batch.lanes, e, e + batch.lanes))
             ++batch.lanes;
         for (int l = 0; l < kLanes; ++l) {
             const uint32_t element = e + static_cast<uint32_t>(l < static_cast<int>(batch.lanes) ? l : 0);

@@ -1,11 +1,13 @@
 #pragma once
 /// Shape-matching projections four elements at a time.
 ///
-/// A soft body's elements are coloured at creation so that no two elements of one colour share
-/// a particle (colourElements) and stored colour by colour; runs of up to four consecutive
-/// elements of one colour form a batch. The elements of a batch are independent, so projecting
-/// them side by side, one per SIMD lane, gives exactly what projecting them one after the
-/// other would: a Gauss-Seidel sweep in colour order. The kernel is the one of
+/// A soft body's elements get a wave at creation (elementWaves): one more than the latest wave
+/// of the elements before them in the lattice's order that share a particle with them. Stored
+/// wave by wave, each element still comes after every earlier element it shares a particle
+/// with and before every later one, so the sweep is the Gauss-Seidel sweep in the lattice's
+/// order (the order decides how fast a stiff lattice converges: a sweep bottom to top carries a
+/// push through a whole column). Elements of one wave share no particle; runs of up to four
+/// consecutive elements of one wave form a batch, projected side by side, one per SIMD lane. The kernel is the one of
 /// shape_matching.h (Eq. 4 on C = sqrt(Σ ⅛ |x_j − c − R q_j|²)) with one warm-started Newton
 /// step of the rotation extraction in the lanes; the rare element that needs more (a turn over
 /// 1e-3 rad, an inverted or collapsed shape) and the optional volume constraint run through the
@@ -24,7 +26,7 @@ namespace substep {
 /// Elements projected side by side.
 inline constexpr int kBatchLanes = 4;
 
-/// Up to kBatchLanes consecutive elements of one colour, with their rest offsets and corner
+/// Up to kBatchLanes consecutive elements of one wave, with their rest offsets and corner
 /// inverse masses laid out lane-innermost (lanes past `lanes` repeat lane 0 and are not
 /// written back).
 struct ElementBatch {
@@ -49,13 +51,13 @@ struct ElementArrays {
     std::span<const double> invMass;  ///< per particle
 };
 
-/// A colour per element (0, 1, ...) such that elements sharing a particle differ; greedy in
-/// element order, at most 27 colours for a hexahedral lattice (the element and its 26
-/// neighbours).
-std::vector<uint8_t> colourElements(std::span<const HexElement> elements, size_t particleCount);
+/// Each element's wave (0, 1, ...): one more than the largest wave of the earlier elements it
+/// shares a particle with (0 if none). About nx + 2 ny + 4 nz waves for a box lattice.
+std::vector<uint32_t> elementWaves(std::span<const HexElement> elements, size_t particleCount);
 
-/// The batches of elements [first, first + count), which must be sorted by `colour`.
-void appendBatches(const ElementArrays& arrays, std::span<const uint8_t> colour, uint32_t first,
+/// The batches of elements [first, first + count), which must be sorted by `wave`
+/// (wave[k] belongs to element first + k).
+void appendBatches(const ElementArrays& arrays, std::span<const uint32_t> wave, uint32_t first,
                    uint32_t count, std::vector<ElementBatch>& batches);
 
 /// One Gauss-Seidel sweep of the shape-matching (and volume) constraints over the batches, with

@@ -56,7 +56,8 @@ inline RigidModeMoments rigidModeMoments(const Vec3* x, const Vec3* v, const dou
 
 /// The spin ω whose turn by h ω keeps the angular momentum L of a body of inertia I: the
 /// inertia turns with the body, so L after the turn is Rot(h ω) I ω, and ω solves
-/// I ω = Rot(−h ω) L (a fixed point, contracting by about h |ω| per iteration). Returns 0 for
+/// I ω = Rot(−h ω) L (a fixed point, contracting by about h |ω| per iteration: two or three
+/// iterations at the substeps in use, at most 16). Returns 0 for
 /// an inertia without a well-defined inverse (particles on a line or a point).
 inline Vec3 momentumKeepingSpin(const Mat3& inertia, const Vec3& angularMomentum, double h) {
     const double trace = inertia.trace();
@@ -64,7 +65,7 @@ inline Vec3 momentumKeepingSpin(const Mat3& inertia, const Vec3& angularMomentum
     if (!(trace > 0.0) || !(det > 1e-9 * trace * trace * trace)) return Vec3::Zero();
     const Mat3 inverse = inertia.inverse();
     Vec3 omega = inverse * angularMomentum;
-    for (int iteration = 0; iteration < 8; ++iteration) {
+    for (int iteration = 0; iteration < 16; ++iteration) {
         Quat back = Quat::Identity();
         integrateRotation(back, -h * omega);
         const Vec3 next = inverse * (back * angularMomentum);

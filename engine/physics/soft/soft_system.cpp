@@ -55,15 +55,15 @@ SoftBodyId SoftSystem::create(const SoftBodyDef& def, std::span<const Body> bodi
 
     // Elements: rest offsets from the rest centroid in the world frame at creation (so the
     // extracted rotation starts at the identity), their scale, compliance and mass.
-    // Elements colour by colour, so that runs of one colour can be projected side by side
-    // (element_batch.h).
-    const std::vector<uint8_t> colours = colourElements(lattice.elements, lattice.positions.size());
+    // Elements wave by wave: the lattice's sweep order, with runs of independent elements to
+    // project side by side (element_batch.h).
+    const std::vector<uint32_t> waves = elementWaves(lattice.elements, lattice.positions.size());
     std::vector<uint32_t> order(lattice.elements.size());
     for (uint32_t k = 0; k < order.size(); ++k) order[k] = k;
-    std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return colours[a] < colours[b]; });
+    std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return waves[a] < waves[b]; });
     for (const uint32_t k : order) {
         const HexElement& local = lattice.elements[k];
-        elementColour_.push_back(colours[k]);
+        elementWave_.push_back(waves[k]);
         HexElement e;
         for (int j = 0; j < 8; ++j) e[j] = local[j] + data.firstParticle;
         const std::array<Vec3, 8> x = corners(x_, e);
@@ -106,7 +106,7 @@ SoftBodyId SoftSystem::create(const SoftBodyDef& def, std::span<const Body> bodi
         invMass_[i] = 1.0 / mass_[i];
         data.mass += mass_[i];
     }
-    appendBatches(elementArrays(), std::span(elementColour_).subspan(data.firstElement), data.firstElement,
+    appendBatches(elementArrays(), std::span(elementWave_).subspan(data.firstElement), data.firstElement,
                   data.elementCount, batches_);
     addAttachments(def, data, lattice, bodies);
 
@@ -137,7 +137,7 @@ void SoftSystem::destroy(SoftBodyId id) {
     };
     eraseParticles(x_), eraseParticles(xPrev_), eraseParticles(v_), eraseParticles(vPrev_);
     eraseParticles(mass_), eraseParticles(invMass_);
-    eraseElements(elements_), eraseElements(elementColour_), eraseElements(restOffsets_), eraseElements(volumeGradients_);
+    eraseElements(elements_), eraseElements(elementWave_), eraseElements(restOffsets_), eraseElements(volumeGradients_);
     eraseElements(rotations_), eraseElements(scale2_), eraseElements(compliance_);
     eraseElements(volumeCompliance_), eraseElements(elementDamping_), eraseElements(lambda_), eraseElements(volumeLambda_);
     // Later bodies' particles moved down by the removed count.
@@ -181,7 +181,7 @@ void SoftSystem::rebuildBatches() {
     const ElementArrays arrays = elementArrays();
     for (const SoftBodyData& body : bodies_)
         if (body.alive)
-            appendBatches(arrays, std::span(elementColour_).subspan(body.firstElement), body.firstElement,
+            appendBatches(arrays, std::span(elementWave_).subspan(body.firstElement), body.firstElement,
                           body.elementCount, batches_);
 }
 

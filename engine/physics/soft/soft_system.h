@@ -144,9 +144,8 @@ private:
     std::vector<double> volumeCompliance_;             ///< α_V / V; negative: no volume constraint
     std::vector<double> elementDamping_;               ///< k (1/s): deformation rates decay as exp(−k t)
     std::vector<double> lambda_, volumeLambda_;
-    /// Per element: its colour (no two elements of a colour share a particle); each body's
-    /// elements are stored colour by colour.
-    std::vector<uint8_t> elementColour_;
+    /// Per element: its wave (element_batch.h); each body's elements are stored wave by wave.
+    std::vector<uint32_t> elementWave_;
     std::vector<ElementBatch> batches_;  ///< the projection's batches (element_batch.h)
     // Bodies, couplings, contacts.
     std::vector<SoftBodyData> bodies_;
