@@ -210,8 +210,9 @@ void SoftSystem::integrate(double h, const Vec3& gravity) {
             rigidModeMoments(&x_[first], &v_[first], &mass_[first], body.particleCount);
         const Vec3 spin = momentumKeepingSpin(moments.inertia, moments.angularMomentum, h);
         body.turn = Quat::Identity();
-        // A turn under 1e-7 rad per substep: the chord's loss, (h ω)², is below rounding.
-        if (h * h * spin.squaredNorm() < 1e-14) {
+        // A turn under 1e-7 rad per substep (the chord's loss, (h ω)², is below rounding) or
+        // not finite: straight lines.
+        if (!(h * h * spin.squaredNorm() >= 1e-14) || !spin.allFinite()) {
             for (uint32_t i = first; i < end; ++i) {
                 xPrev_[i] = x_[i];
                 v_[i] += gravityStep;
