@@ -111,14 +111,16 @@ constexpr double kLaneTurn2 = 1e-6;
         store(dq[3], ox * qy - oy * qx + oz * w);
         for (int l = 0; l < kLanes; ++l) scalar[l] = handOver[l] != 0;
     }
+    // One loop per operation, so that each runs in the lanes.
+    for (int k = 0; k < 4; ++k)
+        for (int l = 0; l < kLanes; ++l) q[k][l] += dq[k][l];
     double norm[kLanes];
-    for (int l = 0; l < kLanes; ++l) {
-        for (int k = 0; k < 4; ++k) q[k][l] += dq[k][l];
+    for (int l = 0; l < kLanes; ++l)
         norm[l] = q[0][l] * q[0][l] + q[1][l] * q[1][l] + q[2][l] * q[2][l] + q[3][l] * q[3][l];
-    }
     for (int l = 0; l < kLanes; ++l) norm[l] = 1.0 / std::sqrt(norm[l]);
+    for (int k = 0; k < 4; ++k)
+        for (int l = 0; l < kLanes; ++l) q[k][l] *= norm[l];
     for (int l = 0; l < kLanes; ++l) {
-        for (int k = 0; k < 4; ++k) q[k][l] *= norm[l];
         const double w = q[0][l], qx = q[1][l], qy = q[2][l], qz = q[3][l];
         rot[0][0][l] = 1 - 2 * (qy * qy + qz * qz), rot[0][1][l] = 2 * (qx * qy - w * qz), rot[0][2][l] = 2 * (qx * qz + w * qy);
         rot[1][0][l] = 2 * (qx * qy + w * qz), rot[1][1][l] = 1 - 2 * (qx * qx + qz * qz), rot[1][2][l] = 2 * (qy * qz - w * qx);
@@ -162,15 +164,19 @@ constexpr double kLaneTurn2 = 1e-6;
     double c[kLanes];
     for (int l = 0; l < kLanes; ++l) c[l] = std::sqrt(0.125 * sum[l]);
     double step[kLanes];
-    for (int l = 0; l < kLanes; ++l) {
+    {
+        Lanes sumL, weightedL, cL, spread, alphaL, lambdaL;
+        load(sumL, sum), load(weightedL, weighted), load(cL, c), load(spread, scale2);
+        load(alphaL, alphaTilde), load(lambdaL, lambda);
         // C ≤ 1e-12 ℓ (C² ≤ 1e-24 ℓ²): already at the goal.
-        const bool active = (sum[l] > 8e-24 * scale2[l]) & (weighted[l] > 0.0);
-        const double cc = active ? c[l] : 1.0;
-        const double denominator = weighted[l] / (64.0 * cc * cc) + alphaTilde[l];
-        const double solved = (-cc - alphaTilde[l] * lambda[l]) / denominator;  // inf or NaN when inactive
-        const double deltaLambda = active ? solved : 0.0;
-        lambda[l] += deltaLambda;
-        step[l] = deltaLambda / (8.0 * cc);
+        const auto active = (sumL > 8e-24 * spread) & (weightedL > 0.0);
+        const Lanes zero = {}, one = zero + 1.0;
+        const Lanes cc = active ? cL : one;
+        const Lanes denominator = weightedL / (64.0 * cc * cc) + alphaL;
+        const Lanes solved = (-cc - alphaL * lambdaL) / denominator;  // inf or NaN when inactive
+        const Lanes deltaLambda = active ? solved : zero;
+        store(lambda, lambdaL + deltaLambda);
+        store(step, deltaLambda / (8.0 * cc));
     }
     for (int r = 0; r < 3; ++r)
         for (int j = 0; j < 8; ++j)
