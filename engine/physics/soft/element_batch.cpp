@@ -16,9 +16,13 @@ using Lanes = double __attribute__((vector_size(kLanes * sizeof(double))));
 
 // Loads and stores through memory (vectors are not passed by value: a different ABI with and
 // without AVX).
-[[gnu::always_inline]] inline void load(Lanes& v, const double* p) { std::memcpy(&v, p, sizeof v); }
+[[gnu::always_inline]] inline void load(Lanes& v, const double* p) {
+    std::memcpy(&v, p, sizeof v);
+}
 
-[[gnu::always_inline]] inline void store(double* p, const Lanes& v) { std::memcpy(p, &v, sizeof v); }
+[[gnu::always_inline]] inline void store(double* p, const Lanes& v) {
+    std::memcpy(p, &v, sizeof v);
+}
 
 /// A lane's Newton step turned more than this (rad²) or met a matrix that is not positive
 /// definite: the lane's rotation is finished by extractRotation (as its second iteration would
@@ -27,7 +31,8 @@ constexpr double kLaneTurn2 = 1e-6;
 
 /// Projects one batch: the lanes' arithmetic is written lane-innermost so that the compiler
 /// can run the lanes side by side.
-[[gnu::always_inline]] inline void solveBatch(const ElementBatch& batch, const ElementArrays& arrays, double invH2) {
+[[gnu::always_inline]] inline void solveBatch(const ElementBatch& batch,
+                                              const ElementArrays& arrays, double invH2) {
     const uint32_t first = batch.firstElement;
     const int lanes = static_cast<int>(batch.lanes);
     double x[3][8][kLanes];
@@ -40,7 +45,8 @@ constexpr double kLaneTurn2 = 1e-6;
             x[0][j][l] = p.x(), x[1][j][l] = p.y(), x[2][j][l] = p.z();
         }
         const Quat& rotation = arrays.rotations[e];
-        q[0][l] = rotation.w(), q[1][l] = rotation.x(), q[2][l] = rotation.y(), q[3][l] = rotation.z();
+        q[0][l] = rotation.w(), q[1][l] = rotation.x(), q[2][l] = rotation.y(),
+        q[3][l] = rotation.z();
         scale2[l] = arrays.scale2[e];
         alphaTilde[l] = arrays.compliance[e] * invH2;
         lambda[l] = arrays.lambda[e];
@@ -51,10 +57,12 @@ constexpr double kLaneTurn2 = 1e-6;
     for (int r = 0; r < 3; ++r)
         for (int c = 0; c < 3; ++c)
             for (int j = 0; j < 8; ++j)
-                for (int l = 0; l < kLanes; ++l) a[r][c][l] += x[r][j][l] * batch.rest[c][j][l];
+                for (int l = 0; l < kLanes; ++l)
+                    a[r][c][l] += x[r][j][l] * batch.rest[c][j][l];
     for (int r = 0; r < 3; ++r)
         for (int c = 0; c < 3; ++c)
-            for (int l = 0; l < kLanes; ++l) a[r][c][l] *= 0.125;
+            for (int l = 0; l < kLanes; ++l)
+                a[r][c][l] *= 0.125;
 
     // One Newton step of extractRotation from the warm start, in all lanes at once (GCC vector
     // types: selects instead of branches).
@@ -64,12 +72,16 @@ constexpr double kLaneTurn2 = 1e-6;
     {
         Lanes w, qx, qy, qz, spread;
         load(w, q[0]), load(qx, q[1]), load(qy, q[2]), load(qz, q[3]), load(spread, scale2);
-        const Lanes r00 = 1 - 2 * (qy * qy + qz * qz), r01 = 2 * (qx * qy - w * qz), r02 = 2 * (qx * qz + w * qy);
-        const Lanes r10 = 2 * (qx * qy + w * qz), r11 = 1 - 2 * (qx * qx + qz * qz), r12 = 2 * (qy * qz - w * qx);
-        const Lanes r20 = 2 * (qx * qz - w * qy), r21 = 2 * (qy * qz + w * qx), r22 = 1 - 2 * (qx * qx + qy * qy);
+        const Lanes r00 = 1 - 2 * (qy * qy + qz * qz), r01 = 2 * (qx * qy - w * qz),
+                    r02 = 2 * (qx * qz + w * qy);
+        const Lanes r10 = 2 * (qx * qy + w * qz), r11 = 1 - 2 * (qx * qx + qz * qz),
+                    r12 = 2 * (qy * qz - w * qx);
+        const Lanes r20 = 2 * (qx * qz - w * qy), r21 = 2 * (qy * qz + w * qx),
+                    r22 = 1 - 2 * (qx * qx + qy * qy);
         Lanes am[3][3];
         for (int r = 0; r < 3; ++r)
-            for (int c = 0; c < 3; ++c) load(am[r][c], a[r][c]);
+            for (int c = 0; c < 3; ++c)
+                load(am[r][c], a[r][c]);
         // B = Rᵀ A.
         const Lanes b00 = r00 * am[0][0] + r10 * am[1][0] + r20 * am[2][0];
         const Lanes b01 = r00 * am[0][1] + r10 * am[1][1] + r20 * am[2][1];
@@ -84,8 +96,10 @@ constexpr double kLaneTurn2 = 1e-6;
         const Lanes trace = b00 + b11 + b22;
         const Lanes m00 = trace - b00, m11 = trace - b11, m22 = trace - b22;
         const Lanes m01 = -0.5 * (b01 + b10), m02 = -0.5 * (b02 + b20), m12 = -0.5 * (b12 + b21);
-        const Lanes c00 = m11 * m22 - m12 * m12, c01 = m02 * m12 - m01 * m22, c02 = m01 * m12 - m02 * m11;
-        const Lanes c11 = m00 * m22 - m02 * m02, c12 = m01 * m02 - m00 * m12, c22 = m00 * m11 - m01 * m01;
+        const Lanes c00 = m11 * m22 - m12 * m12, c01 = m02 * m12 - m01 * m22,
+                    c02 = m01 * m12 - m02 * m11;
+        const Lanes c11 = m00 * m22 - m02 * m02, c12 = m01 * m02 - m00 * m12,
+                    c22 = m00 * m11 - m01 * m01;
         const Lanes det = m00 * c00 + m01 * c01 + m02 * c02;
         const Lanes floor = 1e-6 * (trace < 0 ? -trace : trace) + 1e-9 * spread;
         const auto definite = (m00 > floor) & (c22 > floor * floor) & (det > floor * floor * floor);
@@ -109,22 +123,29 @@ constexpr double kLaneTurn2 = 1e-6;
         store(dq[1], ox * w + oy * qz - oz * qy);
         store(dq[2], -ox * qz + oy * w + oz * qx);
         store(dq[3], ox * qy - oy * qx + oz * w);
-        for (int l = 0; l < kLanes; ++l) scalar[l] = handOver[l] != 0;
+        for (int l = 0; l < kLanes; ++l)
+            scalar[l] = handOver[l] != 0;
     }
     // One loop per operation, so that each runs in the lanes.
     for (int k = 0; k < 4; ++k)
-        for (int l = 0; l < kLanes; ++l) q[k][l] += dq[k][l];
+        for (int l = 0; l < kLanes; ++l)
+            q[k][l] += dq[k][l];
     double norm[kLanes];
     for (int l = 0; l < kLanes; ++l)
         norm[l] = q[0][l] * q[0][l] + q[1][l] * q[1][l] + q[2][l] * q[2][l] + q[3][l] * q[3][l];
-    for (int l = 0; l < kLanes; ++l) norm[l] = 1.0 / std::sqrt(norm[l]);
+    for (int l = 0; l < kLanes; ++l)
+        norm[l] = 1.0 / std::sqrt(norm[l]);
     for (int k = 0; k < 4; ++k)
-        for (int l = 0; l < kLanes; ++l) q[k][l] *= norm[l];
+        for (int l = 0; l < kLanes; ++l)
+            q[k][l] *= norm[l];
     for (int l = 0; l < kLanes; ++l) {
         const double w = q[0][l], qx = q[1][l], qy = q[2][l], qz = q[3][l];
-        rot[0][0][l] = 1 - 2 * (qy * qy + qz * qz), rot[0][1][l] = 2 * (qx * qy - w * qz), rot[0][2][l] = 2 * (qx * qz + w * qy);
-        rot[1][0][l] = 2 * (qx * qy + w * qz), rot[1][1][l] = 1 - 2 * (qx * qx + qz * qz), rot[1][2][l] = 2 * (qy * qz - w * qx);
-        rot[2][0][l] = 2 * (qx * qz - w * qy), rot[2][1][l] = 2 * (qy * qz + w * qx), rot[2][2][l] = 1 - 2 * (qx * qx + qy * qy);
+        rot[0][0][l] = 1 - 2 * (qy * qy + qz * qz), rot[0][1][l] = 2 * (qx * qy - w * qz),
+        rot[0][2][l] = 2 * (qx * qz + w * qy);
+        rot[1][0][l] = 2 * (qx * qy + w * qz), rot[1][1][l] = 1 - 2 * (qx * qx + qz * qz),
+        rot[1][2][l] = 2 * (qy * qz - w * qx);
+        rot[2][0][l] = 2 * (qx * qz - w * qy), rot[2][1][l] = 2 * (qy * qz + w * qx),
+        rot[2][2][l] = 1 - 2 * (qx * qx + qy * qy);
     }
     for (int l = 0; l < lanes; ++l) {
         const uint32_t e = first + static_cast<uint32_t>(l);
@@ -136,33 +157,39 @@ constexpr double kLaneTurn2 = 1e-6;
         // The rare lane: the whole extraction from its warm start, as the scalar sweep does it.
         Mat3 matrix;
         for (int r = 0; r < 3; ++r)
-            for (int c = 0; c < 3; ++c) matrix(r, c) = a[r][c][l];
+            for (int c = 0; c < 3; ++c)
+                matrix(r, c) = a[r][c][l];
         const Mat3 r = extractRotation(matrix, scale2[l], arrays.rotations[e]);
         for (int i = 0; i < 3; ++i)
-            for (int k = 0; k < 3; ++k) rot[i][k][l] = r(i, k);
+            for (int k = 0; k < 3; ++k)
+                rot[i][k][l] = r(i, k);
     }
 
     // Deviations d_j = x_j − c − R q_j, C and the update (Eq. 4, shape_matching.h).
     double centre[3][kLanes] = {};
     for (int r = 0; r < 3; ++r)
         for (int j = 0; j < 8; ++j)
-            for (int l = 0; l < kLanes; ++l) centre[r][l] += 0.125 * x[r][j][l];
+            for (int l = 0; l < kLanes; ++l)
+                centre[r][l] += 0.125 * x[r][j][l];
     double d[3][8][kLanes];
     for (int r = 0; r < 3; ++r)
         for (int j = 0; j < 8; ++j)
             for (int l = 0; l < kLanes; ++l)
-                d[r][j][l] = x[r][j][l] - centre[r][l] -
-                             (rot[r][0][l] * batch.rest[0][j][l] + rot[r][1][l] * batch.rest[1][j][l] +
-                              rot[r][2][l] * batch.rest[2][j][l]);
+                d[r][j][l] =
+                    x[r][j][l] - centre[r][l] -
+                    (rot[r][0][l] * batch.rest[0][j][l] + rot[r][1][l] * batch.rest[1][j][l] +
+                     rot[r][2][l] * batch.rest[2][j][l]);
     double sum[kLanes] = {}, weighted[kLanes] = {};
     for (int j = 0; j < 8; ++j)
         for (int l = 0; l < kLanes; ++l) {
-            const double squared = d[0][j][l] * d[0][j][l] + d[1][j][l] * d[1][j][l] + d[2][j][l] * d[2][j][l];
+            const double squared =
+                d[0][j][l] * d[0][j][l] + d[1][j][l] * d[1][j][l] + d[2][j][l] * d[2][j][l];
             sum[l] += squared;
             weighted[l] += batch.invMass[j][l] * squared;  // Σ w_j |∇_j C|² = weighted / (64 C²)
         }
     double c[kLanes];
-    for (int l = 0; l < kLanes; ++l) c[l] = std::sqrt(0.125 * sum[l]);
+    for (int l = 0; l < kLanes; ++l)
+        c[l] = std::sqrt(0.125 * sum[l]);
     double step[kLanes];
     {
         Lanes sumL, weightedL, cL, spread, alphaL, lambdaL;
@@ -180,28 +207,33 @@ constexpr double kLaneTurn2 = 1e-6;
     }
     for (int r = 0; r < 3; ++r)
         for (int j = 0; j < 8; ++j)
-            for (int l = 0; l < kLanes; ++l) x[r][j][l] += step[l] * batch.invMass[j][l] * d[r][j][l];
+            for (int l = 0; l < kLanes; ++l)
+                x[r][j][l] += step[l] * batch.invMass[j][l] * d[r][j][l];
 
     for (int l = 0; l < lanes; ++l) {
         const uint32_t e = first + static_cast<uint32_t>(l);
         arrays.lambda[e] = lambda[l];
         const HexElement& element = arrays.elements[e];
         std::array<Vec3, 8> corners;
-        for (int j = 0; j < 8; ++j) corners[j] = Vec3(x[0][j][l], x[1][j][l], x[2][j][l]);
+        for (int j = 0; j < 8; ++j)
+            corners[j] = Vec3(x[0][j][l], x[1][j][l], x[2][j][l]);
         if (arrays.volumeCompliance[e] >= 0.0) {
             // The optional volume constraint, after the element's shape matching.
             std::array<Vec3, 8> gradient;
             const double cv = volumeError(corners, arrays.volumeGradients[e], gradient);
             double wv = 0.0;
-            for (int j = 0; j < 8; ++j) wv += arrays.invMass[element[j]] * gradient[j].squaredNorm();
+            for (int j = 0; j < 8; ++j)
+                wv += arrays.invMass[element[j]] * gradient[j].squaredNorm();
             const double alphaV = arrays.volumeCompliance[e] * invH2;
             if (wv + alphaV > 1e-30 && std::isfinite(cv)) {
                 const double deltaLambda = (-cv - alphaV * arrays.volumeLambda[e]) / (wv + alphaV);
                 arrays.volumeLambda[e] += deltaLambda;
-                for (int j = 0; j < 8; ++j) corners[j] += (arrays.invMass[element[j]] * deltaLambda) * gradient[j];
+                for (int j = 0; j < 8; ++j)
+                    corners[j] += (arrays.invMass[element[j]] * deltaLambda) * gradient[j];
             }
         }
-        for (int j = 0; j < 8; ++j) arrays.positions[element[j]] = corners[j];
+        for (int j = 0; j < 8; ++j)
+            arrays.positions[element[j]] = corners[j];
     }
 }
 
@@ -212,9 +244,11 @@ std::vector<uint32_t> elementWaves(std::span<const HexElement> elements, size_t 
     std::vector<uint32_t> wave(elements.size(), 0);
     for (size_t e = 0; e < elements.size(); ++e) {
         uint32_t w = 0;
-        for (uint32_t p : elements[e]) w = std::max(w, next[p]);
+        for (uint32_t p : elements[e])
+            w = std::max(w, next[p]);
         wave[e] = w;
-        for (uint32_t p : elements[e]) next[p] = w + 1;
+        for (uint32_t p : elements[e])
+            next[p] = w + 1;
     }
     return wave;
 }
@@ -234,12 +268,15 @@ void appendBatches(const ElementArrays& arrays, std::span<const uint32_t> wave, 
         batch.firstElement = e;
         batch.lanes = 1;
         while (batch.lanes < kLanes && e + batch.lanes < end &&
-               wave[e + batch.lanes - first] == wave[e - first] && !shares(e + batch.lanes, e, e + batch.lanes))
+               wave[e + batch.lanes - first] == wave[e - first] &&
+               !shares(e + batch.lanes, e, e + batch.lanes))
             ++batch.lanes;
         for (int l = 0; l < kLanes; ++l) {
-            const uint32_t element = e + static_cast<uint32_t>(l < static_cast<int>(batch.lanes) ? l : 0);
+            const uint32_t element =
+                e + static_cast<uint32_t>(l < static_cast<int>(batch.lanes) ? l : 0);
             for (int j = 0; j < 8; ++j) {
-                for (int r = 0; r < 3; ++r) batch.rest[r][j][l] = arrays.restOffsets[element][j][r];
+                for (int r = 0; r < 3; ++r)
+                    batch.rest[r][j][l] = arrays.restOffsets[element][j][r];
                 batch.invMass[j][l] = arrays.invMass[arrays.elements[element][j]];
             }
         }
@@ -248,9 +285,10 @@ void appendBatches(const ElementArrays& arrays, std::span<const uint32_t> wave, 
     }
 }
 
-[[gnu::target_clones("arch=x86-64-v3", "default")]] void solveElementBatches(std::span<const ElementBatch> batches,
-                                                                       const ElementArrays& arrays, double invH2) {
-    for (const ElementBatch& batch : batches) solveBatch(batch, arrays, invH2);
+[[gnu::target_clones("arch=x86-64-v3", "default")]] void solveElementBatches(
+    std::span<const ElementBatch> batches, const ElementArrays& arrays, double invH2) {
+    for (const ElementBatch& batch : batches)
+        solveBatch(batch, arrays, invH2);
 }
 
 }  // namespace substep

@@ -7,11 +7,11 @@
 /// with and before every later one, so the sweep is the Gauss-Seidel sweep in the lattice's
 /// order (the order decides how fast a stiff lattice converges: a sweep bottom to top carries a
 /// push through a whole column). Elements of one wave share no particle; runs of up to four
-/// consecutive elements of one wave form a batch, projected side by side, one per SIMD lane. The kernel is the one of
-/// shape_matching.h (Eq. 4 on C = sqrt(Σ ⅛ |x_j − c − R q_j|²)) with one warm-started Newton
-/// step of the rotation extraction in the lanes; the rare element that needs more (a turn over
-/// 1e-3 rad, an inverted or collapsed shape) and the optional volume constraint run through the
-/// scalar functions of shape_matching.h.
+/// consecutive elements of one wave form a batch, projected side by side, one per SIMD lane. The
+/// kernel is the one of shape_matching.h (Eq. 4 on C = sqrt(Σ ⅛ |x_j − c − R q_j|²)) with one
+/// warm-started Newton step of the rotation extraction in the lanes; the rare element that needs
+/// more (a turn over 1e-3 rad, an inverted or collapsed shape) and the optional volume constraint
+/// run through the scalar functions of shape_matching.h.
 
 #include "physics/math.h"
 #include "physics/soft/lattice.h"
@@ -62,6 +62,7 @@ void appendBatches(const ElementArrays& arrays, std::span<const uint32_t> wave, 
 
 /// One Gauss-Seidel sweep of the shape-matching (and volume) constraints over the batches, with
 /// α̃ = α_e invH2.
-void solveElementBatches(std::span<const ElementBatch> batches, const ElementArrays& arrays, double invH2);
+void solveElementBatches(std::span<const ElementBatch> batches, const ElementArrays& arrays,
+                         double invH2);
 
 }  // namespace substep

@@ -68,7 +68,8 @@ Lattice buildTyreLattice(double outerRadius, double innerRadius, double width,
             for (int r = 0; r < radial; ++r)
                 for (int a = parity; a < around; a += 2) {
                     HexElement e;
-                    for (int n = 0; n < 8; ++n) e[n] = index(a + (n & 1), r + ((n >> 1) & 1), c + ((n >> 2) & 1));
+                    for (int n = 0; n < 8; ++n)
+                        e[n] = index(a + (n & 1), r + ((n >> 1) & 1), c + ((n >> 2) & 1));
                     lattice.elements.push_back(e);
                 }
     return lattice;

@@ -30,7 +30,8 @@ struct RigidModeMoments {
 
 /// The moments of `count` particles, summed about the first particle's position (so the sums
 /// do not cancel far from the origin) and moved to the centre of mass.
-inline RigidModeMoments rigidModeMoments(const Vec3* x, const Vec3* v, const double* m, uint32_t count) {
+inline RigidModeMoments rigidModeMoments(const Vec3* x, const Vec3* v, const double* m,
+                                         uint32_t count) {
     RigidModeMoments out;
     if (count == 0) return out;
     const Vec3 origin = x[0];

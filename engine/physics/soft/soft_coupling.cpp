@@ -93,10 +93,11 @@ void SoftSystem::solveAttachments(SolverContext& ctx) {
             const double w = invMass_[a.particle];
             const double wb = bodyInverseMass(b, r, n);
             const double alphaTilde = a.compliance * ctx.invH2;
-            const double deltaLambda = (c - alphaTilde * a.lambda) / (w + wb + alphaTilde);  // Eq. 4
+            const double deltaLambda =
+                (c - alphaTilde * a.lambda) / (w + wb + alphaTilde);  // Eq. 4
             a.lambda += deltaLambda;
             const Vec3 p = deltaLambda * n;
-            x_[a.particle] += w * p;  // Eq. 6
+            x_[a.particle] += w * p;                                                    // Eq. 6
             if (wb > 0.0) applyImpulse(ctx, a.body, 0, -p, r.cross(-p), Vec3::Zero());  // Eqs. 7-9
         }
         return;
@@ -111,13 +112,15 @@ void SoftSystem::solveAttachments(SolverContext& ctx) {
     while (k < attachments_.size()) {
         const uint32_t bodyIndex = attachments_[k].body;
         size_t end = k;
-        while (end < attachments_.size() && attachments_[end].body == bodyIndex) ++end;
+        while (end < attachments_.size() && attachments_[end].body == bodyIndex)
+            ++end;
         Body& b = ctx.bodies[bodyIndex];
         const bool moves = b.invMass > 0.0;
         const bool turns = moves && b.rotates();
         const Mat3 rotation = b.q.toRotationMatrix();
         const Mat3 inverseInertia =
-            turns ? Mat3(rotation * b.invInertia.asDiagonal() * rotation.transpose()) : Mat3::Zero();
+            turns ? Mat3(rotation * b.invInertia.asDiagonal() * rotation.transpose())
+                  : Mat3::Zero();
         const double inverseMass = moves ? b.invMass : 0.0;
         Vec3 position = b.x, turned = Vec3::Zero();
         for (; k < end; ++k) {
@@ -132,12 +135,13 @@ void SoftSystem::solveAttachments(SolverContext& ctx) {
             const Vec3 rn = r.cross(n);
             const double wb = inverseMass + rn.dot(inverseInertia * rn);  // Eqs. 2-3
             const double alphaTilde = a.compliance * ctx.invH2;
-            const double deltaLambda = (c - alphaTilde * a.lambda) / (w + wb + alphaTilde);  // Eq. 4
+            const double deltaLambda =
+                (c - alphaTilde * a.lambda) / (w + wb + alphaTilde);  // Eq. 4
             a.lambda += deltaLambda;
             const Vec3 p = deltaLambda * n;
-            x_[a.particle] += w * p;                 // Eq. 6
-            position -= inverseMass * p;             // Eq. 7, the body receiving −p
-            turned -= inverseInertia * r.cross(p);   // Eq. 8
+            x_[a.particle] += w * p;                // Eq. 6
+            position -= inverseMass * p;            // Eq. 7, the body receiving −p
+            turned -= inverseInertia * r.cross(p);  // Eq. 8
         }
         if (moves) {
             b.x = position;

@@ -59,8 +59,10 @@ SoftBodyId SoftSystem::create(const SoftBodyDef& def, std::span<const Body> bodi
     // project side by side (element_batch.h).
     const std::vector<uint32_t> waves = elementWaves(lattice.elements, lattice.positions.size());
     std::vector<uint32_t> order(lattice.elements.size());
-    for (uint32_t k = 0; k < order.size(); ++k) order[k] = k;
-    std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return waves[a] < waves[b]; });
+    for (uint32_t k = 0; k < order.size(); ++k)
+        order[k] = k;
+    std::stable_sort(order.begin(), order.end(),
+                     [&](uint32_t a, uint32_t b) { return waves[a] < waves[b]; });
     for (const uint32_t k : order) {
         const HexElement& local = lattice.elements[k];
         elementWave_.push_back(waves[k]);
@@ -106,8 +108,8 @@ SoftBodyId SoftSystem::create(const SoftBodyDef& def, std::span<const Body> bodi
         invMass_[i] = 1.0 / mass_[i];
         data.mass += mass_[i];
     }
-    appendBatches(elementArrays(), std::span(elementWave_).subspan(data.firstElement), data.firstElement,
-                  data.elementCount, batches_);
+    appendBatches(elementArrays(), std::span(elementWave_).subspan(data.firstElement),
+                  data.firstElement, data.elementCount, batches_);
     addAttachments(def, data, lattice, bodies);
 
     uint32_t index;
@@ -137,7 +139,8 @@ void SoftSystem::destroy(SoftBodyId id) {
     };
     eraseParticles(x_), eraseParticles(xPrev_), eraseParticles(v_), eraseParticles(vPrev_);
     eraseParticles(mass_), eraseParticles(invMass_);
-    eraseElements(elements_), eraseElements(elementWave_), eraseElements(restOffsets_), eraseElements(volumeGradients_);
+    eraseElements(elements_), eraseElements(elementWave_), eraseElements(restOffsets_);
+    eraseElements(volumeGradients_);
     eraseElements(rotations_), eraseElements(scale2_), eraseElements(compliance_);
     eraseElements(volumeCompliance_), eraseElements(elementDamping_), eraseElements(lambda_), eraseElements(volumeLambda_);
     // Later bodies' particles moved down by the removed count.
@@ -181,8 +184,8 @@ void SoftSystem::rebuildBatches() {
     const ElementArrays arrays = elementArrays();
     for (const SoftBodyData& body : bodies_)
         if (body.alive)
-            appendBatches(arrays, std::span(elementWave_).subspan(body.firstElement), body.firstElement,
-                          body.elementCount, batches_);
+            appendBatches(arrays, std::span(elementWave_).subspan(body.firstElement),
+                          body.firstElement, body.elementCount, batches_);
 }
 
 bool SoftSystem::isValid(SoftBodyId id) const {
@@ -222,7 +225,8 @@ void SoftSystem::integrate(double h, const Vec3& gravity) {
         }
         integrateRotation(body.turn, h * spin);
         const Vec3 linearSpin = moments.inertia.inverse() * moments.angularMomentum;
-        const Mat3 arc = body.turn.toRotationMatrix() - Mat3::Identity() - h * crossMatrix(linearSpin);
+        const Mat3 arc =
+            body.turn.toRotationMatrix() - Mat3::Identity() - h * crossMatrix(linearSpin);
         for (uint32_t i = first; i < end; ++i) {
             xPrev_[i] = x_[i];
             v_[i] += gravityStep;
@@ -243,7 +247,9 @@ void SoftSystem::solvePositions(SolverContext& ctx) {
     solveContacts(ctx);
 }
 
-void SoftSystem::solveElements(double invH2) { solveElementBatches(batches_, elementArrays(), invH2); }
+void SoftSystem::solveElements(double invH2) {
+    solveElementBatches(batches_, elementArrays(), invH2);
+}
 
 void SoftSystem::deriveVelocities(double h) {
     // v = (x − x_prev) / h, with each soft body's rigid turn R over the substep (the best-fit
@@ -282,7 +288,8 @@ void SoftSystem::deriveVelocities(double h) {
         }
         for (uint32_t i = first; i < end; ++i) {
             vPrev_[i] = v_[i];
-            v_[i] = (x_[i] - xPrev_[i]) * invH + correction * (x_[i] - centre) - turnBack * (xPrev_[i] - centrePrev);
+            v_[i] = (x_[i] - xPrev_[i]) * invH + correction * (x_[i] - centre) -
+                    turnBack * (xPrev_[i] - centrePrev);
         }
     }
 }

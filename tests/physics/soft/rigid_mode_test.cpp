@@ -22,7 +22,8 @@ TEST(RigidMode, MomentsOfABoxsCornersFarFromTheOrigin) {
         v.push_back(velocity + omega.cross(r));
     }
     const RigidModeMoments moments = rigidModeMoments(x.data(), v.data(), masses.data(), 8);
-    const Mat3 inertia = 8 * m * Vec3(b * b + c * c, a * a + c * c, a * a + b * b).asDiagonal().toDenseMatrix();
+    const Mat3 inertia =
+        8 * m * Vec3(b * b + c * c, a * a + c * c, a * a + b * b).asDiagonal().toDenseMatrix();
     EXPECT_NEAR(moments.mass, 8 * m, 1e-15);
     EXPECT_LT((moments.centre - centre).norm(), 1e-12);
     EXPECT_LT((moments.velocity - velocity).norm(), 1e-14);
