@@ -58,13 +58,20 @@ Lattice buildTyreLattice(double outerRadius, double innerRadius, double width,
                                                radius * std::sin(theta));
                 lattice.inner.push_back(r == 0 ? 1 : 0);
             }
-    for (int c = 0; c < across; ++c)
-        for (int r = 0; r < radial; ++r)
-            for (int a = 0; a < around; ++a) {
-                HexElement e;
-                for (int n = 0; n < 8; ++n) e[n] = index(a + (n & 1), r + ((n >> 1) & 1), c + ((n >> 2) & 1));
-                lattice.elements.push_back(e);
-            }
+    // The sweep order (element_batch.h): the even cells around first, then the odd ones, each
+    // across, then out, then around. A ring swept around in one direction would chain every
+    // element to the one before it; cells two apart around share no particle, so a sweep in
+    // this order projects whole rings of them side by side, and still carries a push from the
+    // tread to the rim through the radial layers in one sweep.
+    for (int parity = 0; parity < 2; ++parity)
+        for (int c = 0; c < across; ++c)
+            for (int r = 0; r < radial; ++r)
+                for (int a = parity; a < around; a += 2) {
+                    HexElement e;
+                    for (int n = 0; n < 8; ++n)
+                        e[n] = index(a + (n & 1), r + ((n >> 1) & 1), c + ((n >> 2) & 1));
+                    lattice.elements.push_back(e);
+                }
     return lattice;
 }
 

@@ -82,21 +82,71 @@ void SoftSystem::addAttachments(const SoftBodyDef& def, SoftBodyData& data,
 void SoftSystem::solveAttachments(SolverContext& ctx) {
     // Eqs. 2-9 with body 0 the particle (w = 1/m, no rotation) and body 1 the rigid body:
     // the particle is moved onto the body's point, shared by generalised inverse mass.
-    for (Attachment& a : attachments_) {
-        const Body& b = ctx.bodies[a.body];
-        const Vec3 r = b.q * a.local;
-        const Vec3 delta = b.x + r - x_[a.particle];
-        const double c = delta.norm();
-        if (!(c > kDirectionEpsilon)) continue;
-        const Vec3 n = delta / c;
-        const double w = invMass_[a.particle];
-        const double wb = bodyInverseMass(b, r, n);
-        const double alphaTilde = a.compliance * ctx.invH2;
-        const double deltaLambda = (c - alphaTilde * a.lambda) / (w + wb + alphaTilde);  // Eq. 4
-        a.lambda += deltaLambda;
-        const Vec3 p = deltaLambda * n;
-        x_[a.particle] += w * p;  // Eq. 6
-        if (wb > 0.0) applyImpulse(ctx, a.body, 0, -p, r.cross(-p), Vec3::Zero());  // Eqs. 7-9
+    if (ctx.solver == SolverType::Jacobi) {
+        for (Attachment& a : attachments_) {
+            const Body& b = ctx.bodies[a.body];
+            const Vec3 r = b.q * a.local;
+            const Vec3 delta = b.x + r - x_[a.particle];
+            const double c = delta.norm();
+            if (!(c > kDirectionEpsilon)) continue;
+            const Vec3 n = delta / c;
+            const double w = invMass_[a.particle];
+            const double wb = bodyInverseMass(b, r, n);
+            const double alphaTilde = a.compliance * ctx.invH2;
+            const double deltaLambda =
+                (c - alphaTilde * a.lambda) / (w + wb + alphaTilde);  // Eq. 4
+            a.lambda += deltaLambda;
+            const Vec3 p = deltaLambda * n;
+            x_[a.particle] += w * p;                                                    // Eq. 6
+            if (wb > 0.0) applyImpulse(ctx, a.body, 0, -p, r.cross(-p), Vec3::Zero());  // Eqs. 7-9
+        }
+        return;
+    }
+    // Gauss-Seidel: attachments come grouped by rigid body, and a run of them to one body (a
+    // rim holds hundreds) keeps the body's pose in local variables: its rotation matrix and
+    // world inverse inertia from the start of the run, turned to first order by the run's
+    // accumulated rotation (microradians per substep), written back once at the end by the
+    // exact map. The same corrections as one attachment after the other, to second order in
+    // that rotation, without a quaternion update per particle.
+    size_t k = 0;
+    while (k < attachments_.size()) {
+        const uint32_t bodyIndex = attachments_[k].body;
+        size_t end = k;
+        while (end < attachments_.size() && attachments_[end].body == bodyIndex)
+            ++end;
+        Body& b = ctx.bodies[bodyIndex];
+        const bool moves = b.invMass > 0.0;
+        const bool turns = moves && b.rotates();
+        const Mat3 rotation = b.q.toRotationMatrix();
+        const Mat3 inverseInertia =
+            turns ? Mat3(rotation * b.invInertia.asDiagonal() * rotation.transpose())
+                  : Mat3::Zero();
+        const double inverseMass = moves ? b.invMass : 0.0;
+        Vec3 position = b.x, turned = Vec3::Zero();
+        for (; k < end; ++k) {
+            Attachment& a = attachments_[k];
+            const Vec3 r0 = rotation * a.local;
+            const Vec3 r = r0 + turned.cross(r0);
+            const Vec3 delta = position + r - x_[a.particle];
+            const double c = delta.norm();
+            if (!(c > kDirectionEpsilon)) continue;
+            const Vec3 n = delta / c;
+            const double w = invMass_[a.particle];
+            const Vec3 rn = r.cross(n);
+            const double wb = inverseMass + rn.dot(inverseInertia * rn);  // Eqs. 2-3
+            const double alphaTilde = a.compliance * ctx.invH2;
+            const double deltaLambda =
+                (c - alphaTilde * a.lambda) / (w + wb + alphaTilde);  // Eq. 4
+            a.lambda += deltaLambda;
+            const Vec3 p = deltaLambda * n;
+            x_[a.particle] += w * p;                // Eq. 6
+            position -= inverseMass * p;            // Eq. 7, the body receiving −p
+            turned -= inverseInertia * r.cross(p);  // Eq. 8
+        }
+        if (moves) {
+            b.x = position;
+            if (turns) integrateRotation(b.q, turned);  // Eq. 9 by the exact map, as moveBody does
+        }
     }
 }
 

@@ -1,5 +1,6 @@
 #include "physics/soft/soft_system.h"
 
+#include "physics/soft/rigid_mode.h"
 #include "physics/soft/shape_matching.h"
 
 #include <Eigen/LU>
@@ -54,7 +55,17 @@ SoftBodyId SoftSystem::create(const SoftBodyDef& def, std::span<const Body> bodi
 
     // Elements: rest offsets from the rest centroid in the world frame at creation (so the
     // extracted rotation starts at the identity), their scale, compliance and mass.
-    for (const HexElement& local : lattice.elements) {
+    // Elements wave by wave: the lattice's sweep order, with runs of independent elements to
+    // project side by side (element_batch.h).
+    const std::vector<uint32_t> waves = elementWaves(lattice.elements, lattice.positions.size());
+    std::vector<uint32_t> order(lattice.elements.size());
+    for (uint32_t k = 0; k < order.size(); ++k)
+        order[k] = k;
+    std::stable_sort(order.begin(), order.end(),
+                     [&](uint32_t a, uint32_t b) { return waves[a] < waves[b]; });
+    for (const uint32_t k : order) {
+        const HexElement& local = lattice.elements[k];
+        elementWave_.push_back(waves[k]);
         HexElement e;
         for (int j = 0; j < 8; ++j) e[j] = local[j] + data.firstParticle;
         const std::array<Vec3, 8> x = corners(x_, e);
@@ -97,6 +108,8 @@ SoftBodyId SoftSystem::create(const SoftBodyDef& def, std::span<const Body> bodi
         invMass_[i] = 1.0 / mass_[i];
         data.mass += mass_[i];
     }
+    appendBatches(elementArrays(), std::span(elementWave_).subspan(data.firstElement),
+                  data.firstElement, data.elementCount, batches_);
     addAttachments(def, data, lattice, bodies);
 
     uint32_t index;
@@ -126,7 +139,8 @@ void SoftSystem::destroy(SoftBodyId id) {
     };
     eraseParticles(x_), eraseParticles(xPrev_), eraseParticles(v_), eraseParticles(vPrev_);
     eraseParticles(mass_), eraseParticles(invMass_);
-    eraseElements(elements_), eraseElements(restOffsets_), eraseElements(volumeGradients_);
+    eraseElements(elements_), eraseElements(elementWave_), eraseElements(restOffsets_);
+    eraseElements(volumeGradients_);
     eraseElements(rotations_), eraseElements(scale2_), eraseElements(compliance_);
     eraseElements(volumeCompliance_), eraseElements(elementDamping_), eraseElements(lambda_), eraseElements(volumeLambda_);
     // Later bodies' particles moved down by the removed count.
@@ -148,6 +162,30 @@ void SoftSystem::destroy(SoftBodyId id) {
     dead = SoftBodyData{};
     freeBodies_.push_back(id.index);
     --liveBodies_;
+    rebuildBatches();
+}
+
+ElementArrays SoftSystem::elementArrays() {
+    return {.positions = x_,
+            .elements = elements_,
+            .restOffsets = restOffsets_,
+            .volumeGradients = volumeGradients_,
+            .rotations = rotations_,
+            .scale2 = scale2_,
+            .compliance = compliance_,
+            .volumeCompliance = volumeCompliance_,
+            .lambda = lambda_,
+            .volumeLambda = volumeLambda_,
+            .invMass = invMass_};
+}
+
+void SoftSystem::rebuildBatches() {
+    batches_.clear();
+    const ElementArrays arrays = elementArrays();
+    for (const SoftBodyData& body : bodies_)
+        if (body.alive)
+            appendBatches(arrays, std::span(elementWave_).subspan(body.firstElement),
+                          body.firstElement, body.elementCount, batches_);
 }
 
 bool SoftSystem::isValid(SoftBodyId id) const {
@@ -163,12 +201,40 @@ void SoftSystem::forgetBody(uint32_t bodyIndex) {
 }
 
 void SoftSystem::integrate(double h, const Vec3& gravity) {
-    // Algorithm 2 without the rotation; λ is zeroed before each substep's solve.
+    // Algorithm 2 without the rotation, except that each soft body's rigid mode turns on an
+    // arc (rigid_mode.h): x += h v + (Rot(h ω) − 1 − h [ω₀]×)(x − c), where ω₀ = I⁻¹ L is the
+    // spin in the velocities and ω the turn that keeps L. λ is zeroed before each substep's
+    // solve.
     const Vec3 gravityStep = h * gravity;
-    for (size_t i = 0; i < x_.size(); ++i) {
-        xPrev_[i] = x_[i];
-        v_[i] += gravityStep;
-        x_[i] += h * v_[i];
+    for (SoftBodyData& body : bodies_) {
+        if (!body.alive) continue;
+        const uint32_t first = body.firstParticle, end = first + body.particleCount;
+        const RigidModeMoments moments =
+            rigidModeMoments(&x_[first], &v_[first], &mass_[first], body.particleCount);
+        const Vec3 spin = momentumKeepingSpin(moments.inertia, moments.angularMomentum, h);
+        body.turn = Quat::Identity();
+        // A turn under 1e-7 rad per substep (the chord's loss, (h ω)², is below rounding) or
+        // not finite: straight lines.
+        if (!(h * h * spin.squaredNorm() >= 1e-14) || !spin.allFinite()) {
+            for (uint32_t i = first; i < end; ++i) {
+                xPrev_[i] = x_[i];
+                v_[i] += gravityStep;
+                x_[i] += h * v_[i];
+            }
+            continue;
+        }
+        integrateRotation(body.turn, h * spin);
+        const Vec3 linearSpin = moments.inertia.inverse() * moments.angularMomentum;
+        const Mat3 arc =
+            body.turn.toRotationMatrix() - Mat3::Identity() - h * crossMatrix(linearSpin);
+        for (uint32_t i = first; i < end; ++i) {
+            xPrev_[i] = x_[i];
+            v_[i] += gravityStep;
+            x_[i] += h * v_[i] + arc * (xPrev_[i] - moments.centre);
+        }
+        // The elements turn with the body: their rotations' warm start.
+        for (uint32_t e = body.firstElement; e < body.firstElement + body.elementCount; ++e)
+            rotations_[e] = body.turn * rotations_[e];
     }
     std::fill(lambda_.begin(), lambda_.end(), 0.0);
     std::fill(volumeLambda_.begin(), volumeLambda_.end(), 0.0);
@@ -182,45 +248,49 @@ void SoftSystem::solvePositions(SolverContext& ctx) {
 }
 
 void SoftSystem::solveElements(double invH2) {
-    std::array<Vec3, 8> deviation;
-    for (size_t e = 0; e < elements_.size(); ++e) {
-        const HexElement& element = elements_[e];
-        std::array<Vec3, 8> x = corners(x_, element);
-        const std::array<Vec3, 8>& rest = restOffsets_[e];
-        const Mat3 r = extractRotation(shapeMatrix(x, rest), scale2_[e], rotations_[e]);
-        const double c = shapeMatchingError(x, rest, r, deviation);
-        double weighted = 0.0;  // Σ w_j |d_j|², so Σ w_j |∇_j C|² = weighted / (64 C²)
-        for (int j = 0; j < 8; ++j) weighted += invMass_[element[j]] * deviation[j].squaredNorm();
-        const double alphaTilde = compliance_[e] * invH2;
-        if (c > 1e-12 * std::sqrt(scale2_[e]) && weighted > 0.0) {
-            // Eq. 4 for the shape-matching constraint (header of shape_matching.h).
-            const double denominator = weighted / (64.0 * c * c) + alphaTilde;
-            const double deltaLambda = (-c - alphaTilde * lambda_[e]) / denominator;
-            lambda_[e] += deltaLambda;
-            const double step = deltaLambda / (8.0 * c);
-            for (int j = 0; j < 8; ++j) x[j] += (invMass_[element[j]] * step) * deviation[j];
-        }
-        if (volumeCompliance_[e] >= 0.0) {
-            std::array<Vec3, 8> gradient;
-            const double cv = volumeError(x, volumeGradients_[e], gradient);
-            double w = 0.0;
-            for (int j = 0; j < 8; ++j) w += invMass_[element[j]] * gradient[j].squaredNorm();
-            const double alphaV = volumeCompliance_[e] * invH2;
-            if (w + alphaV > 1e-30 && std::isfinite(cv)) {
-                const double deltaLambda = (-cv - alphaV * volumeLambda_[e]) / (w + alphaV);
-                volumeLambda_[e] += deltaLambda;
-                for (int j = 0; j < 8; ++j) x[j] += (invMass_[element[j]] * deltaLambda) * gradient[j];
-            }
-        }
-        for (int j = 0; j < 8; ++j) x_[element[j]] = x[j];
-    }
+    solveElementBatches(batches_, elementArrays(), invH2);
 }
 
 void SoftSystem::deriveVelocities(double h) {
+    // v = (x − x_prev) / h, with each soft body's rigid turn R over the substep (the best-fit
+    // rotation from x_prev to x about the centres of mass) counted on its arc rather than its
+    // chord: v = v̄ + ω × r + (r − R r_prev) / h, ω = log(R) / h (rigid_mode.h). A rigid motion
+    // gets its exact spin back, the momentum is the chord's, and the angular momentum about
+    // the centre is I ω, since R zeroes Σ m r × R r_prev.
     const double invH = 1.0 / h;
-    for (size_t i = 0; i < x_.size(); ++i) {
-        vPrev_[i] = v_[i];
-        v_[i] = (x_[i] - xPrev_[i]) * invH;
+    for (SoftBodyData& body : bodies_) {
+        if (!body.alive) continue;
+        const uint32_t first = body.firstParticle, end = first + body.particleCount;
+        Mat3 correction = Mat3::Zero();
+        Mat3 turnBack = Mat3::Zero();
+        Vec3 centre = Vec3::Zero(), centrePrev = Vec3::Zero();
+        if (!body.turn.vec().isZero(0.0)) {
+            const Vec3 origin = xPrev_[first];
+            Vec3 first1 = Vec3::Zero(), first0 = Vec3::Zero();
+            Mat3 cross = Mat3::Zero();
+            double mass = 0.0, spread = 0.0;
+            for (uint32_t i = first; i < end; ++i) {
+                const Vec3 p = x_[i] - origin, q = xPrev_[i] - origin;
+                first1 += mass_[i] * p;
+                first0 += mass_[i] * q;
+                cross.noalias() += mass_[i] * p * q.transpose();
+                spread += mass_[i] * q.squaredNorm();
+                mass += mass_[i];
+            }
+            const Vec3 d1 = first1 / mass, d0 = first0 / mass;
+            centre = origin + d1;
+            centrePrev = origin + d0;
+            const Mat3 covariance = cross - mass * d1 * d0.transpose();  // Σ m r r_prevᵀ
+            const Mat3 r = extractRotation(covariance, spread - mass * d0.squaredNorm(), body.turn);
+            const Vec3 spin = angularVelocityBetween(Quat::Identity(), body.turn, invH);
+            correction = crossMatrix(spin);
+            turnBack = (r - Mat3::Identity()) * invH;
+        }
+        for (uint32_t i = first; i < end; ++i) {
+            vPrev_[i] = v_[i];
+            v_[i] = (x_[i] - xPrev_[i]) * invH + correction * (x_[i] - centre) -
+                    turnBack * (xPrev_[i] - centrePrev);
+        }
     }
 }
 

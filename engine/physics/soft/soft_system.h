@@ -14,6 +14,7 @@
 #include "physics/correction.h"
 #include "physics/handles.h"
 #include "physics/math.h"
+#include "physics/soft/element_batch.h"
 #include "physics/soft/lattice.h"
 #include "physics/soft/soft_body.h"
 
@@ -89,6 +90,9 @@ private:
         std::vector<std::array<uint32_t, 4>> quads;  ///< boundary faces, body-local indices
         /// Rigid bodies it is attached to: its particles do not collide with them.
         std::vector<uint32_t> attachedBodies;
+        /// The rigid mode's turn in this substep (rigid_mode.h): predicted by integrate, the
+        /// warm start of the best-fit rotation in deriveVelocities.
+        Quat turn = Quat::Identity();
     };
     /// A particle held to a point of a rigid body (principal frame).
     struct Attachment {
@@ -120,6 +124,10 @@ private:
     void solveAttachments(SolverContext& ctx);
     void solveContacts(SolverContext& ctx);
     void solveContactVelocities(Body* bodies, double h, double gravity);
+    /// The element arrays as the batch kernel reads them.
+    ElementArrays elementArrays();
+    /// Rebuilds batches_ from every live body's elements.
+    void rebuildBatches();
     void addAttachments(const SoftBodyDef& def, SoftBodyData& data, const Lattice& lattice,
                         std::span<const Body> bodies);
 
@@ -136,6 +144,9 @@ private:
     std::vector<double> volumeCompliance_;             ///< α_V / V; negative: no volume constraint
     std::vector<double> elementDamping_;               ///< k (1/s): deformation rates decay as exp(−k t)
     std::vector<double> lambda_, volumeLambda_;
+    /// Per element: its wave (element_batch.h); each body's elements are stored wave by wave.
+    std::vector<uint32_t> elementWave_;
+    std::vector<ElementBatch> batches_;  ///< the projection's batches (element_batch.h)
     // Bodies, couplings, contacts.
     std::vector<SoftBodyData> bodies_;
     std::vector<uint32_t> freeBodies_;

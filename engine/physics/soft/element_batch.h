@@ -1,0 +1,68 @@
+#pragma once
+/// Shape-matching projections four elements at a time.
+///
+/// A soft body's elements get a wave at creation (elementWaves): one more than the latest wave
+/// of the elements before them in the lattice's order that share a particle with them. Stored
+/// wave by wave, each element still comes after every earlier element it shares a particle
+/// with and before every later one, so the sweep is the Gauss-Seidel sweep in the lattice's
+/// order (the order decides how fast a stiff lattice converges: a sweep bottom to top carries a
+/// push through a whole column). Elements of one wave share no particle; runs of up to four
+/// consecutive elements of one wave form a batch, projected side by side, one per SIMD lane. The
+/// kernel is the one of shape_matching.h (Eq. 4 on C = sqrt(Σ ⅛ |x_j − c − R q_j|²)) with one
+/// warm-started Newton step of the rotation extraction in the lanes; the rare element that needs
+/// more (a turn over 1e-3 rad, an inverted or collapsed shape) and the optional volume constraint
+/// run through the scalar functions of shape_matching.h.
+
+#include "physics/math.h"
+#include "physics/soft/lattice.h"
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace substep {
+
+/// Elements projected side by side.
+inline constexpr int kBatchLanes = 4;
+
+/// Up to kBatchLanes consecutive elements of one wave, with their rest offsets and corner
+/// inverse masses laid out lane-innermost (lanes past `lanes` repeat lane 0 and are not
+/// written back).
+struct ElementBatch {
+    alignas(32) double rest[3][8][kBatchLanes];  ///< q_j, component by corner by lane
+    alignas(32) double invMass[8][kBatchLanes];  ///< w_j
+    uint32_t firstElement = 0;
+    uint32_t lanes = 0;
+};
+
+/// The state the kernel reads and writes, the SoftSystem's arrays.
+struct ElementArrays {
+    std::span<Vec3> positions;
+    std::span<const HexElement> elements;
+    std::span<const std::array<Vec3, 8>> restOffsets;
+    std::span<const std::array<Vec3, 8>> volumeGradients;
+    std::span<Quat> rotations;
+    std::span<const double> scale2;
+    std::span<const double> compliance;
+    std::span<const double> volumeCompliance;
+    std::span<double> lambda;
+    std::span<double> volumeLambda;
+    std::span<const double> invMass;  ///< per particle
+};
+
+/// Each element's wave (0, 1, ...): one more than the largest wave of the earlier elements it
+/// shares a particle with (0 if none). About nx + 2 ny + 4 nz waves for a box lattice.
+std::vector<uint32_t> elementWaves(std::span<const HexElement> elements, size_t particleCount);
+
+/// The batches of elements [first, first + count), which must be sorted by `wave`
+/// (wave[k] belongs to element first + k).
+void appendBatches(const ElementArrays& arrays, std::span<const uint32_t> wave, uint32_t first,
+                   uint32_t count, std::vector<ElementBatch>& batches);
+
+/// One Gauss-Seidel sweep of the shape-matching (and volume) constraints over the batches, with
+/// α̃ = α_e invH2.
+void solveElementBatches(std::span<const ElementBatch> batches, const ElementArrays& arrays,
+                         double invH2);
+
+}  // namespace substep

@@ -1,0 +1,183 @@
+// Tests engine/physics/soft/element_batch.cpp: elements of one wave share no particle and every
+// element's wave is later than those of the earlier elements it touches, and a sweep of batches
+// gives what projecting the elements one after the other in the lattice's order with the scalar
+// functions of shape_matching.h gives, on deformed, turned and flat elements, rigid and soft,
+// with and without the volume constraint.
+#include "physics/soft/element_batch.h"
+#include "physics/soft/shape_matching.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+namespace substep {
+namespace {
+
+/// Every lattice the builders make, with an odd count around for the tyre.
+std::vector<Lattice> lattices() {
+    return {buildBoxLattice(Vec3(0.3, 0.2, 0.4), {3, 2, 4}),
+            buildBoxLattice(Vec3(1, 1, 1), {5, 5, 5}),
+            buildBoxLattice(Vec3(1, 1, 1), {1, 1, 1}),
+            buildTyreLattice(0.3, 0.2, 0.15, {44, 5, 5}),
+            buildTyreLattice(0.3, 0.2, 0.15, {7, 2, 3}),
+            buildTyreLattice(0.3, 0.1, 0.1, {3, 1, 1})};
+}
+
+TEST(ElementBatch, WavesKeepTheLatticesOrderAndSeparateTheirElements) {
+    for (const Lattice& lattice : lattices()) {
+        const std::vector<uint32_t> wave = elementWaves(lattice.elements, lattice.positions.size());
+        std::vector<std::vector<size_t>> holders(
+            lattice.positions.size());  // elements per particle
+        for (size_t e = 0; e < lattice.elements.size(); ++e)
+            for (uint32_t p : lattice.elements[e])
+                holders[p].push_back(e);
+        for (const std::vector<size_t>& elements : holders)
+            for (size_t a = 0; a < elements.size(); ++a)
+                for (size_t b = a + 1; b < elements.size(); ++b)  // elements[a] < elements[b]
+                    EXPECT_LT(wave[elements[a]], wave[elements[b]])
+                        << elements[a] << " " << elements[b];
+        // Far fewer waves than elements: the lanes have work side by side.
+        const uint32_t waves = *std::max_element(wave.begin(), wave.end()) + 1;
+        if (lattice.elements.size() >= 64) {
+            EXPECT_LT(4 * waves, lattice.elements.size());
+        }
+    }
+}
+
+/// A lattice's elements with their rest data, in the lattice's order or wave by wave as
+/// SoftSystem keeps them.
+struct Elements {
+    std::vector<Vec3> x;
+    std::vector<HexElement> elements;
+    std::vector<uint32_t> wave;
+    std::vector<std::array<Vec3, 8>> rest, volumeGradients;
+    std::vector<Quat> rotations;
+    std::vector<double> scale2, compliance, volumeCompliance, lambda, volumeLambda, invMass;
+
+    Elements(const Lattice& lattice, bool byWave) : x(lattice.positions) {
+        const std::vector<uint32_t> waves = elementWaves(lattice.elements, x.size());
+        std::vector<size_t> order(lattice.elements.size());
+        for (size_t k = 0; k < order.size(); ++k)
+            order[k] = k;
+        if (byWave)
+            std::stable_sort(order.begin(), order.end(),
+                             [&](size_t a, size_t b) { return waves[a] < waves[b]; });
+        for (size_t i = 0; i < x.size(); ++i)
+            invMass.push_back(1.0 + 0.37 * double(i % 5));  // uneven masses
+        for (const size_t k : order) {
+            const HexElement& e = lattice.elements[k];
+            elements.push_back(e);
+            wave.push_back(waves[k]);
+            Vec3 centre = Vec3::Zero();
+            for (uint32_t p : e)
+                centre += 0.125 * x[p];
+            std::array<Vec3, 8> q, b;
+            Mat3 aqq = Mat3::Zero();
+            double l2 = 0.0;
+            for (int j = 0; j < 8; ++j) {
+                q[j] = x[e[j]] - centre;
+                aqq += 0.125 * q[j] * q[j].transpose();
+                l2 += 0.125 * q[j].squaredNorm();
+            }
+            for (int j = 0; j < 8; ++j)
+                b[j] = 0.125 * (aqq.inverse() * q[j]);
+            rest.push_back(q);
+            volumeGradients.push_back(b);
+            rotations.push_back(Quat::Identity());
+            scale2.push_back(l2);
+            compliance.push_back(k % 3 == 0 ? 0.0 : 1e-7 * double(k % 3));  // rigid and soft
+            volumeCompliance.push_back(k % 4 == 1 ? 1e-6 : -1.0);  // some keep their volume
+            lambda.push_back(0.0);
+            volumeLambda.push_back(0.0);
+        }
+    }
+
+    ElementArrays arrays() {
+        return {x,          elements,         rest,   volumeGradients, rotations, scale2,
+                compliance, volumeCompliance, lambda, volumeLambda,    invMass};
+    }
+};
+
+/// The scalar sweep: each element after the other with extractRotation, Eq. 4 on the
+/// shape-matching error, then the volume constraint.
+void scalarSweep(Elements& s, double invH2) {
+    for (size_t e = 0; e < s.elements.size(); ++e) {
+        std::array<Vec3, 8> x, d;
+        for (int j = 0; j < 8; ++j)
+            x[j] = s.x[s.elements[e][j]];
+        const Mat3 r = extractRotation(shapeMatrix(x, s.rest[e]), s.scale2[e], s.rotations[e]);
+        const double c = shapeMatchingError(x, s.rest[e], r, d);
+        double weighted = 0.0;
+        for (int j = 0; j < 8; ++j)
+            weighted += s.invMass[s.elements[e][j]] * d[j].squaredNorm();
+        const double alpha = s.compliance[e] * invH2;
+        if (c > 1e-12 * std::sqrt(s.scale2[e]) && weighted > 0.0) {
+            const double deltaLambda =
+                (-c - alpha * s.lambda[e]) / (weighted / (64 * c * c) + alpha);
+            s.lambda[e] += deltaLambda;
+            for (int j = 0; j < 8; ++j)
+                x[j] += s.invMass[s.elements[e][j]] * deltaLambda / (8 * c) * d[j];
+        }
+        if (s.volumeCompliance[e] >= 0.0) {
+            std::array<Vec3, 8> g;
+            const double cv = volumeError(x, s.volumeGradients[e], g);
+            double w = 0.0;
+            for (int j = 0; j < 8; ++j)
+                w += s.invMass[s.elements[e][j]] * g[j].squaredNorm();
+            const double alphaV = s.volumeCompliance[e] * invH2;
+            const double deltaLambda = (-cv - alphaV * s.volumeLambda[e]) / (w + alphaV);
+            s.volumeLambda[e] += deltaLambda;
+            for (int j = 0; j < 8; ++j)
+                x[j] += s.invMass[s.elements[e][j]] * deltaLambda * g[j];
+        }
+        for (int j = 0; j < 8; ++j)
+            s.x[s.elements[e][j]] = x[j];
+    }
+}
+
+TEST(ElementBatch, BatchesProjectLikeOneElementAfterTheOther) {
+    const double invH2 = 1200.0 * 1200.0;
+    for (const Lattice& lattice : lattices()) {
+        Elements batched(lattice, true);
+        Elements scalar(lattice, false);
+        // Deform: a turn of 0.3 rad (beyond one Newton step) on a sheared, squashed lattice,
+        // a wobble per particle, and one element flattened to a plane.
+        const Mat3 turn =
+            Quat(Eigen::AngleAxisd(0.3, Vec3(1, 2, 3).normalized())).toRotationMatrix();
+        Mat3 stretch;
+        stretch << 1.1, 0.2, 0.0, 0.0, 0.7, 0.1, 0.05, 0.0, 1.0;
+        for (size_t i = 0; i < batched.x.size(); ++i) {
+            const double k = double(i);
+            batched.x[i] = turn * stretch * batched.x[i] +
+                           0.01 * Vec3(std::sin(k), std::cos(3 * k), std::sin(7 * k));
+        }
+        for (uint32_t p : lattice.elements[0])
+            batched.x[p].y() = 0.0;
+        scalar.x = batched.x;
+        std::vector<ElementBatch> batches;
+        appendBatches(batched.arrays(), batched.wave, 0,
+                      static_cast<uint32_t>(batched.elements.size()), batches);
+        const std::vector<Vec3> start = batched.x;
+        double size = 0.0;
+        for (const Vec3& p : batched.x)
+            size = std::max(size, p.norm());
+        for (int sweep = 0; sweep < 5; ++sweep) {  // the first turns far, later ones warm-started
+            solveElementBatches(batches, batched.arrays(), invH2);
+            scalarSweep(scalar, invH2);
+        }
+        double largest = 0.0;
+        for (size_t i = 0; i < batched.x.size(); ++i) {
+            ASSERT_TRUE(batched.x[i].allFinite());
+            largest = std::max(largest, (batched.x[i] - scalar.x[i]).norm());
+        }
+        EXPECT_LT(largest, 1e-9 * size) << lattice.elements.size() << " elements";
+        // The sweeps moved the particles by far more than the tolerance.
+        double moved = 0.0;
+        for (size_t i = 0; i < start.size(); ++i)
+            moved = std::max(moved, (batched.x[i] - start[i]).norm());
+        EXPECT_GT(moved, 1e-3 * size);
+    }
+}
+
+}  // namespace
+}  // namespace substep
