@@ -3,27 +3,31 @@
 // a quarter turn in a single time step. Simulating such fast curved motions requires substepping
 // and the use of current constraint normals for each projection." Table 1: 10 substeps, 15 ms.
 //
-// One closed circuit: a cage of four wires (spline tubes, paper 3.5's curved geometry) around a
-// common centre line. The two lower wires are the track a marble rolls on, the two upper ones the
-// guard wires that keep it in where it flies (the plunge, the spring, the lift); the lift turns
-// the cage over, so two closed wires, each running twice round, make all four (cageWire). From
-// the top of the lift the track curves away, plunges into the spring (a coil of 16 mm radius
-// where a marble at 1.8 m/s turns by about 100° per frame), leaves it into a wide helix, and runs
-// round two curves and a U-turn back to the foot of the lift, where the marbles queue.
+// One circuit: a cage of four wires (spline tubes, paper 3.5's curved geometry) around a common
+// centre line. The two lower wires are the track a marble rolls on, the two upper ones the guard
+// wires that keep it in where it flies (the plunge, the spring, the lift); over the top of the
+// lift the cage comes back turned over, so each wire changes corner there (cageWire). From the
+// top of the lift the track curves away, plunges into the spring (a coil of 16 mm radius where a
+// marble at 1.8 m/s turns by about 100° per frame), leaves it into a wide helix and ends in the
+// drop (rolling_balls_drop.cpp): a pipe turns the marbles down onto a see-saw switch that sends
+// them alternately into a left and a right branch, both of which end over a funnel; its spout
+// pipe leads back into the cage, which runs round two curves and a U-turn back to the foot of
+// the lift, where the marbles queue.
 // The lift is a paddle wheel: eight arms, each on its own motor-driven hinge about the same
 // axle, sweep through the lift's half circle of track and push one marble each up to the top
-// (a collision filter keeps the arms and the wires apart, so the arms pass between the wires). Nothing is moved by
-// the script: the arms are dynamic bodies turned by their hinge motors, the marbles only by
-// contacts and gravity.
+// (a collision filter keeps the arms and the wires apart, so the arms pass between the wires).
+// Nothing is moved by the script: the arms are dynamic bodies turned by their hinge motors, the
+// switch only by the marbles and its hinge's limits, the marbles only by contacts and gravity.
 //
 // The script reads the marbles once per frame (progress along the centre line, searched near
 // the previous frame's place: laps, marbles on the track, speed and turn per frame in the
 // spring) and changes components only where a knob asks (velocity pass, lift speed, marble count).
 
-#include "scenes/scenes.h"
+#include "scenes/rolling_balls_track.h"
 
 #include "ecs/components.h"
 
+#include "physics/collision/mesh_collider.h"
 #include "physics/collision/spline_tube.h"
 
 #include <algorithm>
@@ -41,28 +45,12 @@ namespace substep::scenes {
 
 namespace {
 
-// Marbles: 25 mm glass, the size of Morrell's.
-constexpr double kMarbleRadius = 0.0125;  ///< m
-constexpr double kGlassDensity = 2500;    ///< kg/m³
-constexpr int kMaxMarbles = 24;
-constexpr double kMarbleFriction = 0.05;
-constexpr double kMarbleRestitution = 0.3;
-
-// Wires: each at kCageRadius from the centre line, at ±45° from the track's down direction.
-constexpr double kWireRadius = 0.0015;  ///< m
-/// 1.5 mm of play: a marble touches the two lower wires and clears the guard wires by 3 mm,
-/// while the gap between two neighbouring wires (2 x 11 mm - 3 mm) stays below its diameter.
-constexpr double kCageRadius = kMarbleRadius + kWireRadius + 0.0015;
-constexpr double kSampleSpacing = 0.02;  ///< m of centre line between control points
+using namespace rolling_balls;
 
 // The lift: a half circle of track in the plane z = 0 around the axle, swept by the arms.
 const Vec3 kAxle(0.0, 0.9, 0.0);
 constexpr double kLiftRadius = 0.6;  ///< m: the track's centre line around the axle
 constexpr int kArms = 8;
-/// Collision filter groups: the lift's arms sweep through the wire cage between the wires and
-/// meet only the marbles (the wires and the arms would otherwise jam the wheel).
-constexpr uint32_t kArmGroup = 2;
-constexpr uint32_t kWireGroup = 4;
 constexpr double kArmInner = 0.05;            ///< m from the axle
 constexpr double kArmOuter = kLiftRadius + kCageRadius + 0.01;
 constexpr double kArmThickness = 0.012;       ///< m, along the arm's motion
@@ -80,13 +68,6 @@ constexpr double kSpringEase = 0.04;  ///< m of clothoid into and out of the coi
 constexpr double kSpringTurns = 3.0;
 constexpr double kSpringSlope = 0.4;  ///< drop per horizontal metre: a pitch of 40 mm
 
-/// A point of the centre line with the cage's cross-section frame there.
-struct PathPoint {
-    Vec3 position;
-    Vec3 side;  ///< unit, normal to the line; the wires sit at ±45° between side and up
-    Vec3 up;    ///< unit, normal to the line and to side: away from the lower wires
-};
-
 /// The circuit's centre line, in running order from the top of the lift, with where the spring
 /// is along it (indices into points).
 struct SculpturePath {
@@ -96,71 +77,12 @@ struct SculpturePath {
     size_t springBegin = 0;
     size_t springEnd = 0;
     size_t liftBegin = 0;  ///< the foot of the lift: the lift runs from here to the end
-};
-
-/// Draws the descending part of the track like a turtle: a heading in the horizontal plane,
-/// turning at a curvature, and a slope (drop per horizontal metre) blended between pieces.
-class Turtle {
-  public:
-    Turtle(const Vec3& start, double heading) : position_(start), heading_(heading) {}
-
-    /// `length` horizontal metres turning at `curvature` (1/m, positive to the left seen from
-    /// above), the slope blending smoothly from the current one to `slopeEnd`.
-    void run(double length, double curvature, double slopeEnd, std::vector<PathPoint>& out) {
-        advance(length, curvature, curvature, slopeEnd, out);
-    }
-
-    /// The same with the curvature changing evenly from the current one to `curvatureEnd` (a
-    /// clothoid: a marble entering the spring is pressed outwards gradually, not at once).
-    void ease(double length, double curvatureEnd, double slopeEnd, std::vector<PathPoint>& out) {
-        advance(length, curvature_, curvatureEnd, slopeEnd, out);
-    }
-
-    const Vec3& position() const { return position_; }
-    double heading() const { return heading_; }
-    double slope() const { return slope_; }
-    Vec3 direction() const {
-        return Vec3(std::cos(heading_), -slope_, -std::sin(heading_)).normalized();
-    }
-
-    /// The cage frame of a descending track: side horizontal, up as near the vertical as the
-    /// slope allows.
-    static PathPoint framed(const Vec3& position, const Vec3& tangent) {
-        const Vec3 side = tangent.cross(Vec3::UnitY()).normalized();
-        return {position, side, side.cross(tangent).normalized()};
-    }
-
-  private:
-    void advance(double length, double curvatureStart, double curvatureEnd, double slopeEnd,
-                 std::vector<PathPoint>& out) {
-        // A control point every kSampleSpacing, and at least every 15° of turn (the spring).
-        const double turn = std::max(std::abs(curvatureStart), std::abs(curvatureEnd)) * length;
-        const int steps = std::max(
-            {1, static_cast<int>(std::ceil(length / kSampleSpacing)),
-             static_cast<int>(std::ceil(turn / (M_PI / 12)))});
-        const double slopeStart = slope_;
-        constexpr int kSubsteps = 16;  // integration steps per control point
-        const double dl = length / (steps * kSubsteps);
-        for (int i = 1; i <= steps; ++i) {
-            for (int k = 1; k <= kSubsteps; ++k) {
-                const double u = (static_cast<double>(i - 1) + (k - 0.5) / kSubsteps) / steps;
-                const double blend = u * u * (3.0 - 2.0 * u);
-                slope_ = slopeStart + (slopeEnd - slopeStart) * blend;
-                const double curvature = curvatureStart + (curvatureEnd - curvatureStart) * u;
-                heading_ += 0.5 * curvature * dl;
-                position_ += dl * Vec3(std::cos(heading_), -slope_, -std::sin(heading_));
-                heading_ += 0.5 * curvature * dl;
-            }
-            out.push_back(framed(position_, direction()));
-        }
-        slope_ = slopeEnd;
-        curvature_ = curvatureEnd;
-    }
-
-    Vec3 position_;
-    double heading_;  ///< rad: direction (cos, 0, −sin), so 0 is +x and π/2 is −z
-    double slope_ = 0.0;
-    double curvature_ = 0.0;  ///< 1/m, where the last piece ended
+    /// The drop (dropBegin to dropEnd): the cage ends, a pipe turns the marbles down onto the
+    /// switch, a branch on each side carries them to the funnel, whose spout pipe leads back
+    /// into the cage. The centre line runs through the switch and the funnel.
+    size_t dropBegin = 0;
+    size_t dropEnd = 0;
+    DropLayout drop;
 };
 
 SculpturePath buildPath() {
@@ -185,6 +107,26 @@ SculpturePath buildPath() {
     path.springEnd = points.size() - 1;
     turtle.run(0.15, 0.0, 0.12, points);
     turtle.run(2.0 * M_PI * 0.15 * 1.25, 1.0 / 0.15, 0.12, points);  // the helix, out to −x
+    turtle.run(0.1, 0.0, 0.05, points);
+    // The drop: the centre line goes down the exit pipe to the switch, along to the funnel
+    // (the marbles take a branch on either side of it) and down the spout.
+    path.dropBegin = points.size() - 1;
+    path.drop = layDrop(turtle.position(), turtle.heading());
+    const DropLayout& drop = path.drop;
+    const auto follow = [&](const Vec3& to) {
+        const Vec3 from = points.back().position;
+        const int steps = std::max(1, static_cast<int>(std::ceil((to - from).norm() / kSampleSpacing)));
+        for (int i = 1; i <= steps; ++i) {
+            const Vec3 x = from + (to - from) * (static_cast<double>(i) / steps);
+            points.push_back(framedAcross(x, (to - from).normalized(), -drop.across));
+        }
+    };
+    for (size_t i = 2; i < drop.exitPipe.size(); ++i) follow(drop.exitPipe[i]);
+    follow(drop.pivot);
+    follow(Vec3(drop.hole.x(), drop.pivot.y(), drop.hole.z()));
+    for (const Vec3& x : drop.spoutPipe) follow(x);
+    path.dropEnd = points.size() - 1;
+    turtle = Turtle(drop.spoutPipe.back(), drop.heading, kReturnSlope);
     // Back to the foot of the lift round the front: a left turn to +z, a wide left U-turn to
     // −z and a last right turn onto the line to the foot, heading +x. The drop is shared evenly
     // over this part.
@@ -234,22 +176,30 @@ const SculpturePath& sculpturePath() {
     return path;
 }
 
-/// One of the cage's two wires. Over the top of the lift the cage's frame comes back turned
-/// half a turn about the line (the lift turns the marbles over, the descending track does not),
-/// so a wire that leaves the top as a lower wire returns to it in the opposite corner, as a
-/// guard wire, and closes only after a second lap: each wire runs twice round the circuit,
-/// wire k through corners k and 3 − k. Corners: 0, 1 the lower wires, 2, 3 the guard wires,
-/// seen down the descending track.
-std::shared_ptr<const SplineTube> cageWire(const SculpturePath& path, int k) {
+/// One wire of the cage along `line` (open): in corner `corner` up to `flipAt`, in the opposite
+/// corner 3 − corner from there on (over the top of the lift the cage's frame comes back turned
+/// half a turn about the line: the lift turns the marbles over, the descending track does not),
+/// starting at `from`. Corners: 0, 1 the lower wires, 2, 3 the guard wires, seen down the track.
+std::shared_ptr<const SplineTube> cageWire(const std::vector<PathPoint>& line, int corner,
+                                           size_t flipAt, size_t from = 0) {
     constexpr std::array<double, 4> kSide{-1.0, 1.0, -1.0, 1.0};
     constexpr std::array<double, 4> kUp{-1.0, -1.0, 1.0, 1.0};
     const double offset = kCageRadius / std::sqrt(2.0);
     std::vector<Vec3> points;
-    points.reserve(2 * path.points.size());
-    for (const int corner : {k, 3 - k})
-        for (const PathPoint& p : path.points)
-            points.push_back(p.position + offset * (kSide[corner] * p.side + kUp[corner] * p.up));
-    return makeSplineTube(std::move(points), kWireRadius, true);
+    for (size_t i = from; i < line.size(); ++i) {
+        const int c = i < flipAt ? corner : 3 - corner;
+        points.push_back(line[i].position + offset * (kSide[c] * line[i].side + kUp[c] * line[i].up));
+    }
+    return makeSplineTube(std::move(points), kWireRadius, false);
+}
+
+/// The main cage's line: from the spout's bend round the return, up the lift and down to the
+/// drop; and where on it the lift's top is.
+std::vector<PathPoint> mainCageLine(const SculpturePath& path, size_t& top) {
+    std::vector<PathPoint> line(path.points.begin() + static_cast<long>(path.dropEnd) - 2, path.points.end());
+    top = line.size();
+    line.insert(line.end(), path.points.begin(), path.points.begin() + static_cast<long>(path.dropBegin) + 1);
+    return line;
 }
 
 /// Where a marble rests on the lower wires: below the centre line by this much along `up`.
@@ -311,23 +261,43 @@ SceneDescription buildRollingBalls() {
 
     // The wires after the arms: contact pairs are solved in body order, so a marble an arm
     // presses against a wire is pushed out of the wire last (the sprung arm gives way).
-    static constexpr std::array<const char*, 2> kWireNames{"wire_0", "wire_1"};
-    for (int k = 0; k < 2; ++k)
-        scene.bodies.push_back({kWireNames[k],
-                                BodyDef{.shape = splineShape(cageWire(path, k)),
+    const auto addWire = [&](const std::string& name, std::shared_ptr<const SplineTube> tube) {
+        scene.bodies.push_back({name,
+                                BodyDef{.shape = splineShape(std::move(tube)),
                                         .type = BodyType::Static,
                                         .staticFriction = kMarbleFriction,
                                         .dynamicFriction = kMarbleFriction,
                                         .collisionGroup = kWireGroup,
                                         .collisionMask = ~kArmGroup},
                                 Vec3(0.75, 0.75, 0.78)});
+    };
+    size_t top = 0;
+    const std::vector<PathPoint> cage = mainCageLine(path, top);
+    for (int k = 0; k < 4; ++k) addWire("wire_" + std::to_string(k), cageWire(cage, k, top));
+    // The branches: a wide mouth where the marbles land from the switch.
+    for (int b = 0; b < 2; ++b)
+        for (int k = 0; k < 4; ++k)
+            addWire((b == 0 ? "left_" : "right_") + std::to_string(k),
+                    k < 2 ? cageWire(path.drop.branches[b], k, path.drop.branches[b].size())
+                          : branchGuardWire(path.drop.branches[b], k));
+    addWire("exit_pipe", makeSplineTube(path.drop.exitPipe, kPipeRadius, false, true));
+    addWire("spout_pipe", makeSplineTube(path.drop.spoutPipe, kPipeRadius, false, true));
+    scene.bodies.push_back({"funnel",
+                            BodyDef{.shape = triangleMeshShape(funnelMesh(path.drop)),
+                                    .type = BodyType::Static,
+                                    .staticFriction = kMarbleFriction,
+                                    .dynamicFriction = kMarbleFriction},
+                            Vec3(0.7, 0.5, 0.25)});
+    addSwitch(scene, path.drop);
 
-    // The marbles, spread evenly along the descending track (not on the lift), resting on the
-    // lower wires.
-    const double runLength = path.distance[path.liftBegin];
+    // The marbles, spread evenly along the track from the top of the lift to its foot (not on
+    // the lift, nor in the drop), resting on the lower wires.
+    const double dropLength = path.distance[path.dropEnd] - path.distance[path.dropBegin] + 0.1;
+    const double runLength = path.distance[path.liftBegin] - dropLength;
     size_t at = 0;
     for (int i = 0; i < kMaxMarbles; ++i) {
-        const double s = runLength * (i + 0.5) / kMaxMarbles;
+        double s = runLength * (i + 0.5) / kMaxMarbles;
+        if (s > path.distance[path.dropBegin] - 0.05) s += dropLength;
         while (at + 1 < path.liftBegin && path.distance[at + 1] <= s) ++at;
         const PathPoint& p = path.points[at];
         scene.bodies.push_back(
@@ -437,7 +407,9 @@ class RollingBallsScript : public SceneScript {
         for (const Tracked& marble : tracked_) {
             if (!scene.registry.isValid(marble.id)) continue;
             laps += static_cast<int>(std::floor(marble.progress / path.length));
-            onTrack += marble.offTrack < kCageRadius;
+            // In the drop the marbles leave the centre line for a branch: the whole of it counts.
+            const bool inDrop = marble.segment >= path.dropBegin && marble.segment < path.dropEnd;
+            onTrack += marble.offTrack < (inDrop ? kDropReach : kCageRadius);
         }
         constexpr double kDegree = M_PI / 180.0;
         out.push_back({"laps completed", static_cast<double>(laps), "%.0f"});
@@ -547,7 +519,7 @@ class RollingBallsScript : public SceneScript {
 
 SceneEntry rollingBallsEntry() {
     return {.name = "rolling_balls",
-            .description = "Figs. 1, 14: marbles circulating on a wire sculpture with a spring and a paddle-wheel lift",
+            .description = "Figs. 1, 14: marbles circulating on a wire sculpture: a spring, a see-saw switch, a funnel, a paddle-wheel lift",
             .build = buildRollingBalls,
             .paperMsPerFrame = 15,
             .makeScript = []() -> std::unique_ptr<SceneScript> {

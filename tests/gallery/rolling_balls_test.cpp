@@ -2,8 +2,10 @@
 // every marble goes round the whole circuit within 60 s, lifted by the paddle wheel and not
 // moved by anything else; none leaves the sculpture in 120 s nor sinks into a wire by more than
 // 0.5 mm; and in the spring the fastest marble's path turns by 90° or more within one frame
-// while it stays on the wires (paper section 4). Everything is measured on the marbles' own
-// states against the wires' curves (their closest points), not taken from the script.
+// while it stays on the wires (paper section 4); the see-saw switch of the drop sends the marbles
+// alternately into its left and right branch, which rejoin at the funnel. Everything is
+// measured on the marbles' own states against the wires' curves (their closest points), not
+// taken from the script.
 // The 10-minute run is rolling_balls_soak_test.cpp (label `stability`).
 
 #include "scenes/live_scene.h"
@@ -14,6 +16,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -34,7 +37,8 @@ const SceneEntry& rollingBalls() {
 
 /// The sculpture as the tests see it: its wires, marbles and bounds.
 struct Sculpture {
-    std::vector<const SplineTube*> wires;
+    std::vector<const SplineTube*> wires;  ///< every tube: wires and pipes
+    std::array<std::vector<const SplineTube*>, 2> branches;  ///< the drop's left and right wires
     std::vector<BodyId> marbles;
     double marbleRadius = 0.0;
     Aabb bounds;     ///< of the wires, grown by a marble diameter
@@ -50,34 +54,54 @@ Sculpture findSculpture(const SceneInstance& scene) {
             s.wires.push_back(b.shape.spline.get());
             s.bounds.grow(b.shape.spline->tree.bounds());
         }
-    for (const auto& [name, id] : scene.namedBodyIds())
+    for (const auto& [name, id] : scene.namedBodyIds()) {
         if (name.starts_with("marble_") && scene.world().isValid(id)) s.marbles.push_back(id);
+        for (int b = 0; b < 2; ++b)
+            if (name.starts_with(b == 0 ? "left_" : "right_"))
+                s.branches[b].push_back(scene.world().body(id).shape.spline.get());
+    }
     if (!s.marbles.empty()) s.marbleRadius = scene.world().body(s.marbles[0]).shape.radius;
     s.top = s.bounds.max.y();
     s.bounds = s.bounds.inflated(2.0 * s.marbleRadius);
     return s;
 }
 
-/// The gap between a marble and the nearest wire surface (negative: sunk into it).
-double nearestGap(const Sculpture& s, const Vec3& centre) {
+/// The gap between a marble and the nearest wire or pipe surface (negative: sunk into it).
+double nearestGap(const std::vector<const SplineTube*>& wires, double marbleRadius, const Vec3& centre) {
     double gap = std::numeric_limits<double>::infinity();
-    for (const SplineTube* wire : s.wires) {
+    for (const SplineTube* wire : wires) {
         const SplinePoint p = wire->closestPoint(centre, 0.1);
-        if (p.segment >= 0)
-            gap = std::min(gap, std::sqrt(p.distanceSquared) - wire->radius - s.marbleRadius);
+        if (p.segment < 0) continue;
+        const double d = std::sqrt(p.distanceSquared);
+        if (!wire->hollow) {
+            gap = std::min(gap, d - wire->radius - marbleRadius);
+        } else if (d < wire->radius && p.t > 0.0 && p.t < 1.0) {
+            // Inside a pipe (a centre outside it or past its open ends does not meet it).
+            gap = std::min(gap, wire->radius - marbleRadius - d);
+        }
     }
     return gap;
 }
+
+double nearestGap(const Sculpture& s, const Vec3& centre) { return nearestGap(s.wires, s.marbleRadius, centre); }
+
+/// A marble entering one of the drop's branches: when, and which (0 left, 1 right).
+struct Passage {
+    double time;
+    int branch;
+};
 
 /// What a run did to the marbles.
 struct CircuitRun {
     std::vector<double> circuitTime;  ///< per marble: when it first came back to its start after
                                       ///< passing the top of the lift (s); infinity if never
     double deepestSink = 0.0;         ///< largest overlap of a marble with a wire (m)
+    Vec3 deepestAt = Vec3::Zero();    ///< where that marble was then
     int framesOutside = 0;            ///< marble-frames outside the sculpture's bounds
     double largestTurn = 0.0;         ///< largest turn of a velocity in one frame, on the wires (rad)
     double speedAtLargestTurn = 0.0;  ///< that marble's speed then (m/s)
     double fastestOnTurn = 0.0;       ///< turn of the fastest marble whose path turned > 45° (rad)
+    std::vector<Passage> passages;    ///< through the switch, in time order
     bool finite = true;
 };
 
@@ -90,6 +114,7 @@ CircuitRun runCircuit(LiveScene& scene, double seconds) {
     std::vector<Vec3> start(n), previousVelocity(n);
     std::vector<bool> passedTop(n, false), leftStart(n, false);
     std::vector<double> previousGap(n);
+    std::vector<double> lastInBranch(n, -1e9);
     for (size_t i = 0; i < n; ++i) {
         start[i] = world.body(s.marbles[i]).x;
         previousVelocity[i] = world.body(s.marbles[i]).v;
@@ -108,7 +133,10 @@ CircuitRun runCircuit(LiveScene& scene, double seconds) {
             const Vec3& x = marble.x;
             if (!s.bounds.contains({x, x})) ++run.framesOutside;
             const double gap = nearestGap(s, x);
-            run.deepestSink = std::max(run.deepestSink, -gap);
+            if (-gap > run.deepestSink) {
+                run.deepestSink = -gap;
+                run.deepestAt = x;
+            }
             // A circuit: up the lift to the top, then round to where it started.
             if (x.y() > s.top - 0.05) passedTop[i] = true;
             const double fromStart = (x - start[i]).norm();
@@ -135,6 +163,12 @@ CircuitRun runCircuit(LiveScene& scene, double seconds) {
             }
             previousVelocity[i] = marble.v;
             previousGap[i] = gap;
+            // A passage: touching a branch's wires for the first time in a second.
+            for (int b = 0; b < 2; ++b) {
+                if (s.branches[b].empty() || nearestGap(s.branches[b], s.marbleRadius, x) > 0.001) continue;
+                if (scene.time() - lastInBranch[i] > 1.0) run.passages.push_back({scene.time(), b});
+                lastInBranch[i] = scene.time();
+            }
         }
         run.fastestOnTurn = std::max(run.fastestOnTurn, fastestTurn);
     }
@@ -176,7 +210,8 @@ TEST(RollingBalls, EveryMarbleCompletesACircuitWithinAMinute) {
 TEST(RollingBalls, NoMarbleLeavesTheSculptureOrSinksIntoAWire) {
     const CircuitRun& run = defaultRun();
     ASSERT_TRUE(run.finite);
-    std::printf("deepest sink into a wire over 120 s: %.3f mm\n", 1e3 * run.deepestSink);
+    std::printf("deepest sink into a wire over 120 s: %.3f mm, at (%.3f, %.3f, %.3f)\n", 1e3 * run.deepestSink,
+                run.deepestAt.x(), run.deepestAt.y(), run.deepestAt.z());
     EXPECT_EQ(run.framesOutside, 0);
     EXPECT_LE(run.deepestSink, 0.0005);
 }
@@ -189,6 +224,34 @@ TEST(RollingBalls, TheFastestMarbleTurnsAQuarterTurnPerFrameInTheSpring) {
     std::printf("largest turn per frame on the wires: %.0f deg at %.2f m/s; fastest marble: %.0f deg\n",
                 run.largestTurn / kDegree, run.speedAtLargestTurn, run.fastestOnTurn / kDegree);
     EXPECT_GE(run.fastestOnTurn, 90.0 * kDegree);
+}
+
+TEST(RollingBalls, TheSwitchSendsMarblesAlternatelyLeftAndRight) {
+    // The see-saw switch turns each marble to the side its beam is raised on and is tipped over
+    // by it, so the next marble goes the other way. A marble that lands within 0.2 s of the one
+    // before (two marbles in contact, lifted together by one arm, arrive 35 ms apart) finds the
+    // beam still on its way and follows the first: only marbles that arrive apart are counted.
+    const CircuitRun& run = defaultRun();
+    ASSERT_TRUE(run.finite);
+    int apart = 0, alternated = 0, together = 0;
+    std::array<int, 2> taken{0, 0};
+    for (size_t k = 1; k < run.passages.size(); ++k) {
+        ++taken[run.passages[k].branch];
+        if (run.passages[k].time - run.passages[k - 1].time < 0.2) {
+            ++together;
+            continue;
+        }
+        ++apart;
+        alternated += run.passages[k].branch != run.passages[k - 1].branch;
+    }
+    std::printf("%zu passages in 120 s: %d apart, %d of them alternated; %d close behind the one before; "
+                "left %d, right %d\n",
+                run.passages.size(), apart, alternated, together, taken[0], taken[1]);
+    EXPECT_GE(apart, 20);
+    EXPECT_GE(alternated, 0.9 * apart);
+    // Both branches carry their share (each marble goes round 24 marbles' worth of passages).
+    EXPECT_GE(taken[0], static_cast<int>(0.4 * run.passages.size()));
+    EXPECT_GE(taken[1], static_cast<int>(0.4 * run.passages.size()));
 }
 
 TEST(RollingBalls, TheScriptReportsTheSpringTurnAndLaps) {
