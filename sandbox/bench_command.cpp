@@ -251,10 +251,11 @@ int bench(const BenchOptions& options) {
     }
     std::printf(
         "ms/frame: median of %d repeat%s of %.6g s each after a %.6g s warm-up, world step "
-        "only, one thread\n"
+        "only, %d thread%s\n"
         "bodies: moving ones; paper: Table 1 (3.6 GHz Core i7); paper/ours > 1: faster "
         "here\n",
-        settings.repeats, settings.repeats == 1 ? "" : "s", settings.seconds, kBenchWarmUpSeconds);
+        settings.repeats, settings.repeats == 1 ? "" : "s", settings.seconds, kBenchWarmUpSeconds,
+        settings.threads, settings.threads == 1 ? "" : "s");
 
     if (jsonFile) {
         jsonFile->write(json.dump(2) + "\n");

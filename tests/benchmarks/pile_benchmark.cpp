@@ -1,4 +1,5 @@
-// Benchmarks of contact piles (issue 18): spheres1000 settled, with sleeping off and on; the
+// Benchmarks of contact piles (issue 18): spheres1000 after 6 s and spheres1000's layout with
+// 0.2 m cubes for spheres (a pile that comes to rest), with sleeping off and on; the
 // family of N spheres in a walled box (N = 1000, 4000, 16000, the box's floor growing with N so
 // that the pile's depth stays the same), to see how the cost grows with N; and spheres1000 at 1
 // and 2 threads. Time per frame (dt = 1/60 s, 20 substeps). Results go to docs/PERFORMANCE.md.
@@ -101,7 +102,25 @@ void BM_spheres1000_threads(benchmark::State& state) {
     }
 }
 
+/// spheres1000's layout with a 0.2 m cube in place of every sphere: the columns land flat and
+/// rest within 2 s. After 3 s, sleeping off (0) or on (1).
+void BM_boxes1000_settled(benchmark::State& state) {
+    SceneDescription description = findBuiltinScene("spheres1000")->build();
+    for (SceneBody& body : description.bodies)
+        if (body.def.shape.type == ShapeType::Sphere) body.def.shape = boxShape(Vec3::Constant(0.2));
+    SceneInstance scene = buildScene(description);
+    setThreadsAndSleeping(scene, 1, state.range(0) != 0);
+    const double dt = 1.0 / 60.0;
+    for (int i = 0; i < 180; ++i) scene.physics().step(dt);
+    for (auto _ : state) {
+        scene.physics().step(dt);
+        benchmark::ClobberMemory();
+    }
+    state.counters["sleeping"] = scene.world().sleepingBodyCount();
+}
+
 BENCHMARK(BM_spheres1000_settled)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_boxes1000_settled)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_spheres_in_a_box)
     ->Args({1000, 1})
     ->Args({4000, 1})
