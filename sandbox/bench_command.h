@@ -17,6 +17,7 @@ struct BenchOptions {
     std::string jsonPath;
     std::string seconds;
     std::string repeats;
+    std::string threads;  ///< --threads N (default 1)
 };
 
 /// Defaults and accepted ranges.

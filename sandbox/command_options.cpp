@@ -78,6 +78,10 @@ double parsePositiveReal(const char* option, const std::string& text, double hig
     return value;
 }
 
+int parseThreads(const std::string& text) {
+    return text.empty() ? 1 : static_cast<int>(parseInteger("--threads", text, 1, kMaxThreads));
+}
+
 long long framesForSeconds(double seconds, double dt, long long maxFrames) {
     const double frames = std::round(seconds / dt);
     // Written so that a NaN or infinite quotient fails too.

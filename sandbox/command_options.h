@@ -35,6 +35,13 @@ double parsePositiveReal(const char* option, const std::string& text);
 /// prints it). Throws UsageError naming `option` otherwise.
 double parsePositiveReal(const char* option, const std::string& text, double highest);
 
+/// Most threads `--threads` accepts (a sanity bound).
+inline constexpr long long kMaxThreads = 64;
+
+/// `--threads N` (run, bench, sweep; DESIGN.md): 1 when `text` is empty, else a whole number in
+/// [1, kMaxThreads]. Throws UsageError naming --threads otherwise.
+int parseThreads(const std::string& text);
+
 /// round(seconds / dt) frames, the simulated time T as frames (DESIGN.md). Throws UsageError
 /// naming --seconds when that is more than `maxFrames`.
 long long framesForSeconds(double seconds, double dt, long long maxFrames);

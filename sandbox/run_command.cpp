@@ -110,6 +110,7 @@ void printSummary(const SceneSource& source, const RunSummary& summary, double d
 int run(const RunOptions& options) {
     // Check every input before any output exists: a bad option or scene leaves no file behind.
     const RunSettings settings = checkOptions(options);
+    const int threads = parseThreads(options.threads);
     const std::vector<KnobSetting> knobs = parseKnobSettings(options.knobs);
     SceneSource source = resolveScene(options.scene);
     SceneDescription& description = source.description;
@@ -127,6 +128,7 @@ int run(const RunOptions& options) {
     WorldSettings solver = physics.settings();
     if (settings.substeps) solver.substeps = *settings.substeps;
     if (settings.iterations) solver.iterations = *settings.iterations;
+    solver.threads = threads;
     physics.setSettings(solver);
 
     std::unique_ptr<AtomicFile> csvFile;
@@ -214,6 +216,8 @@ CLI::App* addRunCommand(CLI::App& app, RunOptions& options) {
     command->add_option("--set", options.knobs, "Turn a scene knob, e.g. --set velocity_pass=0 (repeatable)")
         ->type_name("NAME=VALUE");
     command->add_option("--json", options.jsonPath, "Write the summary as JSON")->type_name("F");
+    command->add_option("--threads", options.threads, "Threads the step uses (default 1; 1-64)")
+        ->type_name("N");
     return command;
 }
 

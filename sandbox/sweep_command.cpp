@@ -191,11 +191,17 @@ struct Interrupted {
 };
 
 SplitResult runSplit(const SceneSource& source, const SceneEntry* entry, const Split& split,
-                     long long frames, Progress& progress) {
+                     long long frames, int threads, Progress& progress) {
     SceneDescription description = source.description;
     description.substeps = split.substeps;
     description.iterations = split.iterations;
     LiveScene live = startLabelledScene(source, description);
+    if (threads != 1) {
+        ecs::PhysicsSystem physics = live.physics();
+        WorldSettings threaded = physics.settings();
+        threaded.threads = threads;
+        physics.setSettings(threaded);
+    }
     SceneInstance& scene = live.instance();
     const World& world = live.world();
     ErrorRecorder recorder(scene, errorReference(entry, scene));
@@ -368,6 +374,7 @@ class TemporaryFile {
 int sweep(const SweepOptions& options) {
     // Check every input before any output exists: a bad option or scene leaves no file behind.
     const std::vector<int> budgets = parseBudgets(options);
+    const int threads = parseThreads(options.threads);
     const double seconds =
         options.seconds.empty() ? kDefaultSeconds : parsePositiveReal("--seconds", options.seconds);
     const SceneSource source = resolveScene(options.scene);
@@ -408,7 +415,7 @@ int sweep(const SweepOptions& options) {
         for (std::size_t i = 0; i < splits.size(); ++i) {
             progress.startSplit(i, splits[i]);
             try {
-                results.push_back(runSplit(source, entry, splits[i], frames, progress));
+                results.push_back(runSplit(source, entry, splits[i], frames, threads, progress));
             } catch (const Interrupted& interrupted) {
                 progress.clear();
                 std::fprintf(stderr, "substep sweep: interrupted; no output written\n");
@@ -479,6 +486,8 @@ CLI::App* addSweepCommand(CLI::App& app, SweepOptions& options) {
     command->add_option("--csv", options.csvPath, "Write one row per split")->type_name("F");
     command->add_option("--plot", options.plotPath, "Draw error against ms/frame to a PNG")
         ->type_name("F.png");
+    command->add_option("--threads", options.threads, "Threads the step uses (default 1; 1-64)")
+        ->type_name("N");
     command->footer(
         "Every split substeps x iterations = B runs from a fresh build of the scene. ms/frame is "
         "the median over frames of the time inside world.step. Plots need /usr/bin/python3 "

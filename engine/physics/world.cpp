@@ -6,6 +6,7 @@
 #include "physics/joints/joint_geometry.h"
 #include "physics/joints/joint_solver.h"
 #include "physics/soft/soft_system.h"
+#include "physics/worker_pool.h"
 
 #include <Eigen/LU>
 
@@ -22,6 +23,9 @@ namespace substep {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+/// Pairs per chunk of a parallel narrowphase: enough work to outweigh handing a chunk out.
+constexpr size_t kPairsPerChunk = 64;
 
 /// Whether a body takes part in collision detection.
 bool collides(const Body& b) { return b.alive && b.collide && b.shape.type != ShapeType::None; }
@@ -167,11 +171,18 @@ BodyId World::createBody(const BodyDef& def) {
         bodies_.push_back(body);
     }
     if (collides(body)) ++collidingBodies_;
+    sleep_.resize(bodies_.size());
     return {index, body.generation};
 }
 
 void World::destroyBody(BodyId id) {
     if (!isValid(id)) return;
+    // What it held up or touched wakes (its joints wake their bodies as they go).
+    wakeBody(id);
+    for (const ContactPair& pair : contactPairs_)
+        if (pair.body0 == id.index || pair.body1 == id.index)
+            sleep_.wake(pair.body0 == id.index ? pair.body1 : pair.body0,
+                        bodies_[pair.body0 == id.index ? pair.body1 : pair.body0]);
     for (uint32_t j = 0; j < joints_.size(); ++j) {
         const Joint& joint = joints_[j];
         if (joint.alive && (joint.body0 == id.index || joint.body1 == id.index))
@@ -191,6 +202,8 @@ JointId World::createJoint(const JointDef& def) {
     joint.alive = true;
     joint.generation = nextGeneration_++;
     repairPending_ = true;
+    sleep_.wake(joint.body0, bodies_[joint.body0]);
+    sleep_.wake(joint.body1, bodies_[joint.body1]);
     jointsChanged_ = true;
 
     uint32_t index;
@@ -207,6 +220,8 @@ JointId World::createJoint(const JointDef& def) {
 
 void World::destroyJoint(JointId id) {
     if (!isValid(id)) return;
+    sleep_.wake(joints_[id.index].body0, bodies_[joints_[id.index].body0]);
+    sleep_.wake(joints_[id.index].body1, bodies_[joints_[id.index].body1]);
     joints_[id.index] = Joint{};
     freeJoints_.push_back(id.index);
     jointsChanged_ = true;
@@ -221,6 +236,8 @@ void World::step(double dt) {
 
     if (repairPending_) {
         repairPending_ = false;
+        // The repair moves bodies by hand, sleeping ones included: everything wakes.
+        if (settings_.sleeping) sleep_.wakeAll();
         if (settings_.repairDistance > 0.0 && settings_.repairAngle > 0.0) repairLargeViolations(h);
     }
 
@@ -243,16 +260,23 @@ void World::step(double dt) {
 
     // Algorithm 2: pairs once per frame, their contacts on the current poses every substep.
     collectContactPairs(dt);
+    // Sleeping: islands an awake body may reach this frame wake before any substep, so no
+    // awake body ever meets a sleeping one in the solve (sleep_islands.h).
+    const bool sleeping = sleepingActive();
+    if (sleeping) sleep_.wakeLinked(bodies_, contactPairs_, joints_);
+    sleepFlags_ = sleeping && sleep_.sleepingCount() > 0 ? sleep_.flags() : nullptr;
+    if (sleeping) pairTouched_.assign(contactPairs_.size(), 0);
     const bool soft = hasSoftBodies();
     if (soft) soft_->collectCandidates(bodies_, dt, settings_.contactMargin, settings_.gravity);
     lap(stepTimes_.broadphase);
     for (int s = 0; s < substeps; ++s) {
         // λ is zeroed before each substep's solve (paper 3.3.1); motors advance their target.
-        for (Joint& joint : joints_) beginJointSubstep(joint, h);
+        for (Joint& joint : joints_)
+            if (!sleeps(joint)) beginJointSubstep(joint, h);
         integrate(h);
         if (soft) soft_->integrate(h, settings_.gravity);
         lap(stepTimes_.integrate);
-        if (!contactPairs_.empty()) findContacts();
+        if (!contactPairs_.empty()) findContacts(sleeping);
         if (soft) soft_->findContacts(bodies_, settings_.contactMargin);
         lap(stepTimes_.narrowphase);
         for (int i = 0; i < settings_.iterations; ++i) solvePositions(h);
@@ -266,6 +290,29 @@ void World::step(double dt) {
         lap(stepTimes_.velocities);
     }
     if (soft) soft_->damp(dt);
+    if (sleeping) {
+        touching_.clear();
+        for (size_t i = 0; i < contactPairs_.size(); ++i)
+            if (pairTouched_[i]) touching_.push_back({contactPairs_[i].body0, contactPairs_[i].body1});
+        sleep_.update(bodies_, touching_, joints_, dt, settings_.sleep);
+    }
+    sleepFlags_ = nullptr;
+}
+
+bool World::sleepingActive() const { return settings_.sleeping && !hasSoftBodies(); }
+
+void World::setSettings(const WorldSettings& settings) {
+    // Sleeping bodies rest under the old conditions: a new gravity or sleep rule wakes them.
+    const bool wake = settings.gravity != settings_.gravity || settings.sleeping != settings_.sleeping ||
+                      settings.sleep.speed != settings_.sleep.speed ||
+                      settings.sleep.angularSpeed != settings_.sleep.angularSpeed ||
+                      settings.sleep.time != settings_.sleep.time;
+    settings_ = settings;
+    if (wake) sleep_.wakeAll();
+}
+
+void World::wakeBody(BodyId id) {
+    if (isValid(id)) sleep_.wake(id.index, bodies_[id.index]);
 }
 
 void World::collectContactPairs(double dt) {
@@ -325,13 +372,49 @@ void World::collectContactPairs(double dt) {
     }
 }
 
-void World::findContacts() {
+void World::findContacts(bool sleeping) {
     contacts_.clear();
+    const uint8_t* asleep = sleepFlags_;
     // Each colliding body's shape pose, once per substep rather than once per pair.
     for (size_t i = 0; i < bodies_.size(); ++i)
-        if (reaches_[i] > 0.0) poses_[i] = {bodies_[i].userPosition(), bodies_[i].userOrientation()};
+        if (reaches_[i] > 0.0 && !(asleep && asleep[i]))
+            poses_[i] = {bodies_[i].userPosition(), bodies_[i].userOrientation()};
+    const size_t pairs = contactPairs_.size();
+    const int threads = std::clamp(settings_.threads, 1, 64);
+    if (threads == 1 || pairs < 2 * kPairsPerChunk) {
+        findPairContacts(0, pairs, sleeping, contacts_);
+        return;
+    }
+    // In parallel: each chunk of pairs finds its contacts into its own list, and the lists are
+    // joined in chunk order, so the contacts are the serial ones, in the serial order.
+    if (!pool_ || pool_->threads() != threads) pool_ = std::make_unique<WorkerPool>(threads);
+    const size_t chunks = (pairs + kPairsPerChunk - 1) / kPairsPerChunk;
+    if (chunkContacts_.size() < chunks) chunkContacts_.resize(chunks);
+    pool_->parallelFor(static_cast<int>(chunks), [&](int chunk) {
+        const size_t first = static_cast<size_t>(chunk) * kPairsPerChunk;
+        chunkContacts_[chunk].clear();
+        findPairContacts(first, std::min(pairs, first + kPairsPerChunk), sleeping, chunkContacts_[chunk]);
+    });
+    for (size_t chunk = 0; chunk < chunks; ++chunk) {
+        const auto offset = static_cast<uint32_t>(contacts_.size());
+        const size_t first = chunk * kPairsPerChunk;
+        for (size_t p = first; p < std::min(pairs, first + kPairsPerChunk); ++p) contactPairs_[p].first += offset;
+        contacts_.insert(contacts_.end(), chunkContacts_[chunk].begin(), chunkContacts_[chunk].end());
+    }
+}
+
+void World::findPairContacts(size_t first, size_t last, bool sleeping, std::vector<Contact>& out) {
+    const uint8_t* asleep = sleepFlags_;
     ContactManifold manifold;
-    for (ContactPair& pair : contactPairs_) {
+    for (size_t p = first; p < last; ++p) {
+        ContactPair& pair = contactPairs_[p];
+        if (asleep && (asleep[pair.body0] | asleep[pair.body1])) {
+            // A sleeping island's pair (the other body sleeps or is static): no contacts, and
+            // its static friction anchors are kept for when it wakes.
+            pair.first = static_cast<uint32_t>(out.size());
+            pair.count = 0;
+            continue;
+        }
         const Body& b0 = bodies_[pair.body0];
         const Body& b1 = bodies_[pair.body1];
         const Pose& pose0 = poses_[pair.body0];
@@ -343,9 +426,10 @@ void World::findContacts() {
             manifold.clear();
         else
             collide(b0.shape, pose0, b1.shape, pose1, settings_.contactMargin, manifold);
-        pair.first = static_cast<uint32_t>(contacts_.size());
+        pair.first = static_cast<uint32_t>(out.size());
         pair.count = static_cast<uint32_t>(manifold.count);
         if (manifold.count == 0) pair.anchored = false;  // apart: the next touch anchors anew
+        if (sleeping && manifold.count > 0) pairTouched_[p] = 1;
         pair.lambdaNormal = pair.lambdaTangent1 = pair.lambdaTangent2 = pair.lambdaTwist = 0.0;
         // Paper 3.5: the points are kept in the bodies' frames (r1, r2), so the position solve
         // measures the depth on the poses as other corrections leave them.
@@ -353,10 +437,10 @@ void World::findContacts() {
         const Quat q1Inverse = b1.q.conjugate();
         for (int i = 0; i < manifold.count; ++i) {
             const ContactPoint& point = manifold.points[i];
-            contacts_.push_back({.local0 = q0Inverse * (point.point0 - b0.x),
-                                 .local1 = q1Inverse * (point.point1 - b1.x),
-                                 .normal = point.normal,
-                                 .feature = point.feature});
+            out.push_back({.local0 = q0Inverse * (point.point0 - b0.x),
+                           .local1 = q1Inverse * (point.point1 - b1.x),
+                           .normal = point.normal,
+                           .feature = point.feature});
         }
     }
 }
@@ -387,8 +471,9 @@ void World::repairLargeViolations(double h) {
 
 void World::integrate(double h) {
     const Vec3 gravityStep = h * settings_.gravity;
-    for (Body& b : bodies_) {
-        if (b.invMass == 0.0) continue;
+    for (size_t i = 0; i < bodies_.size(); ++i) {
+        Body& b = bodies_[i];
+        if (b.invMass == 0.0 || (sleepFlags_ && sleepFlags_[i])) continue;
         b.xPrev = b.x;
         b.v += gravityStep;
         b.x += h * b.v;
@@ -413,7 +498,7 @@ void World::solvePositions(double h) {
                       .capPushOut = settings_.velocityPass};
     // Joints first, contacts last: a substep ends with the hard inequalities met.
     for (Joint& joint : joints_)
-        if (joint.alive) solveJointPositions(joint, ctx);
+        if (joint.alive && !sleeps(joint)) solveJointPositions(joint, ctx);
     for (ContactPair& pair : contactPairs_)
         if (pair.count > 0)
             solveContactPositions(pair, std::span(contacts_).subspan(pair.first, pair.count), ctx);
@@ -428,8 +513,9 @@ void World::solvePositions(double h) {
 
 void World::deriveVelocities(double h) {
     const double invH = 1.0 / h;
-    for (Body& b : bodies_) {
-        if (b.invMass == 0.0) continue;
+    for (size_t i = 0; i < bodies_.size(); ++i) {
+        Body& b = bodies_[i];
+        if (b.invMass == 0.0 || (sleepFlags_ && sleepFlags_[i])) continue;
         b.vPrev = b.v;
         b.v = (b.x - b.xPrev) * invH;
         if (!b.rotates()) continue;
@@ -442,7 +528,7 @@ void World::deriveVelocities(double h) {
 void World::solveVelocities(double h) {
     if (anyDamping_)
         for (const Joint& joint : joints_)
-            if (joint.alive) solveJointVelocities(joint, bodies_.data(), h);
+            if (joint.alive && !sleeps(joint)) solveJointVelocities(joint, bodies_.data(), h);
     const double gravity = settings_.gravity.norm();
     for (const ContactPair& pair : contactPairs_)
         if (pair.count > 0)

@@ -10,6 +10,7 @@
 #include "physics/handles.h"
 #include "physics/joints/joint.h"
 #include "physics/math.h"
+#include "physics/sleep_islands.h"
 
 #include <memory>
 #include <span>
@@ -18,6 +19,7 @@
 namespace substep {
 
 class SoftSystem;
+class WorkerPool;
 struct SoftBodyDef;
 struct SoftBodyReadout;
 struct SoftSurface;
@@ -47,6 +49,16 @@ struct WorldSettings {
     /// substep's velocity derivation. Off gives plain PBD velocities v = Δx/h, with overlaps
     /// pushed out whole: the comparison the paper's Figs. 12 and 13 draw.
     bool velocityPass = true;
+    /// Sleeping (sleep_islands.h): islands of touching or jointed bodies that have rested for
+    /// `sleep.time` stop being simulated until a body, an edit or a moved static body wakes
+    /// them. Off by default, so every scene behaves as before; a world with soft bodies never
+    /// sleeps (their coupling to rigid bodies is not part of the islands).
+    bool sleeping = false;
+    SleepSettings sleep;
+    /// Threads the step uses (the caller's among them; 1: no other thread). Only stages whose
+    /// work items are independent run in parallel (the narrowphase's pairs), each item written
+    /// to its own slot and merged in order, so every thread count gives the same bytes.
+    int threads = 1;
 };
 
 /// Where the last step's time went (ms), when WorldSettings::measureTime is on.
@@ -133,7 +145,8 @@ public:
     void requestRepair() { repairPending_ = true; }
 
     const WorldSettings& settings() const { return settings_; }
-    void setSettings(const WorldSettings& settings) { settings_ = settings; }
+    /// Changes the settings; a change of gravity or of the sleep settings wakes every body.
+    void setSettings(const WorldSettings& settings);
     /// Substep length of the last step (0 before the first).
     double lastSubstep() const { return lastSubstep_; }
     /// The last step's time by stage; zeros unless WorldSettings::measureTime is on.
@@ -147,6 +160,13 @@ public:
     double maxPenetration() const;
     /// Contact points that pushed in the last substep (λ_n > 0).
     int activeContactCount() const;
+    /// Whether a body is asleep (WorldSettings::sleeping): its island is not being simulated.
+    bool isAsleep(BodyId id) const { return isValid(id) && sleep_.asleep(id.index); }
+    /// Number of sleeping bodies.
+    int sleepingBodyCount() const { return sleep_.sleepingCount(); }
+    /// Wakes a body's island (a sleeping body), or what touches or is jointed to it (a static
+    /// body), as every edit of a body does; nothing when sleeping is off.
+    void wakeBody(BodyId id);
     /// True while every body's state is finite.
     bool isFinite() const;
 
@@ -172,7 +192,8 @@ private:
     [[noreturn]] void invalidHandle(const char* what, uint32_t index, uint32_t generation) const;
     void repairLargeViolations(double h);
     void collectContactPairs(double dt);
-    void findContacts();
+    /// The contacts of every pair this substep; `sleeping` notes the pairs that touch.
+    void findContacts(bool sleeping);
     void integrate(double h);
     void solvePositions(double h);
     void deriveVelocities(double h);
@@ -200,6 +221,25 @@ private:
     StepTimes stepTimes_;
     bool anyDamping_ = false;
     bool repairPending_ = false;
+    /// The worker threads, made when settings().threads first asks for more than one.
+    std::unique_ptr<WorkerPool> pool_;
+    /// Per chunk of pairs of a parallel narrowphase: its contacts, merged in chunk order.
+    std::vector<std::vector<Contact>> chunkContacts_;
+    /// The contacts of pairs [first, last) into `out` (first-relative offsets in pair.first).
+    void findPairContacts(size_t first, size_t last, bool sleeping, std::vector<Contact>& out);
+    /// Sleep state per body and the islands (WorldSettings::sleeping).
+    SleepIslands sleep_;
+    /// Pairs with a contact point in some substep of the frame (the islands' contact links).
+    std::vector<BodyPair> touching_;
+    std::vector<uint8_t> pairTouched_;  ///< per contact pair: touched in some substep
+    /// This step's sleep flags per body (1: asleep), null while nothing sleeps.
+    const uint8_t* sleepFlags_ = nullptr;
+    /// Whether a joint belongs to a sleeping island (then both its bodies sleep or are static).
+    bool sleeps(const Joint& joint) const {
+        return sleepFlags_ != nullptr && (sleepFlags_[joint.body0] | sleepFlags_[joint.body1]) != 0;
+    }
+    /// Whether sleeping acts in this step (on, and no soft bodies).
+    bool sleepingActive() const;
     /// Soft bodies, created with the first one: a world without them runs none of their stages.
     std::unique_ptr<SoftSystem> soft_;
     /// Whether soft bodies take part in this step.

@@ -22,10 +22,13 @@ void World::updateJoint(JointId id, const JointDef& def) {
     setJointParameters(joint, def);
     if (wasMotor && joint.hinge().drive == JointDrive::Velocity) joint.hinge().target = reached;
     if (joint.collide != collided) jointsChanged_ = true;
+    sleep_.wake(joint.body0, bodies_[joint.body0]);
+    sleep_.wake(joint.body1, bodies_[joint.body1]);
 }
 
 void World::setBodyPose(BodyId id, const Vec3& position, const Quat& orientation) {
     Body& body = this->body(id);
+    wakeBody(id);
     // An orientation within rounding of the current one leaves q alone, so moving a body does
     // not perturb its rotation (the user frame's quaternion is q times a fixed rotation,
     // normalised, so it does not give q back bit for bit).
@@ -41,6 +44,7 @@ void World::setBodyPose(BodyId id, const Vec3& position, const Quat& orientation
 void World::setBodyVelocity(BodyId id, const Vec3& velocity, const Vec3& angularVelocity) {
     Body& body = this->body(id);
     if (!body.isDynamic()) return;  // a static body has no velocity to set
+    wakeBody(id);
     body.v = velocity;
     if (body.rotates()) body.omega = angularVelocity;
 }
@@ -48,6 +52,7 @@ void World::setBodyVelocity(BodyId id, const Vec3& velocity, const Vec3& angular
 void World::setBodySurface(BodyId id, double staticFriction, double dynamicFriction,
                            double restitution, bool collide) {
     Body& body = this->body(id);
+    wakeBody(id);
     body.staticFriction = staticFriction;
     body.dynamicFriction = dynamicFriction;
     body.restitution = restitution;

@@ -54,6 +54,7 @@ struct SceneDescription {
     double dt = 1.0 / 60.0;
     int substeps = 20;
     int iterations = 1;
+    bool sleeping = false;  ///< islands at rest stop being simulated (WorldSettings::sleeping)
     std::vector<SceneBody> bodies;
     std::vector<SceneJoint> joints;
     std::vector<SceneSoftBody> softBodies;

@@ -67,7 +67,7 @@ SceneDescription readScene(const Validator& v, const Json& root) {
                                   : "must be 1, got " + describe(version->value));
     }
     std::vector<std::string> allowed = {
-        "substep_scene", "name", "description", "gravity", "dt", "substeps", "iterations"};
+        "substep_scene", "name", "description", "gravity", "dt", "substeps", "iterations", "sleeping"};
     for (const SceneSection& section : kSceneSections)
         allowed.emplace_back(section.key);
     top.allowOnly(allowed);
@@ -81,6 +81,7 @@ SceneDescription readScene(const Validator& v, const Json& root) {
     if (auto dt = top.get("dt")) scene.dt = v.number(*dt, {.lo = 0, .hi = 1, .loOpen = true});
     if (auto s = top.get("substeps")) scene.substeps = v.integer(*s, 1, kMaxSubsteps);
     if (auto i = top.get("iterations")) scene.iterations = v.integer(*i, 1, kMaxIterations);
+    if (auto s = top.get("sleeping")) scene.sleeping = v.boolean(*s);
 
     SceneReading reading{v, scene, {}, {}};
     for (const SceneSection& section : kSceneSections) {

@@ -188,5 +188,46 @@ TEST(PhysicsSystemChanges, AJointEntityMadeLaterIsCreatedAtTheNextStep) {
     EXPECT_NEAR(scene.registry.get<Transform>(scene.box).position.y(), -0.5 - 0.5 * 0.01 * kMass * kG, 1e-5);
 }
 
+TEST(PhysicsSystemChanges, PatchesAndTheDragWakeASleepingBody) {
+    // Sleeping on: the box on its spring comes to rest and sleeps; each way the sandbox changes
+    // a body (a velocity patch, a pose patch, the window's drag joint) must wake it.
+    SpringScene scene(0.01);
+    WorldSettings settings = scene.world.settings();
+    settings.sleeping = true;
+    scene.world.setSettings(settings);
+    scene.run(2.0);
+    const BodyId id = scene.registry.get<RigidBody>(scene.box).id;  // made by the first step
+    ASSERT_TRUE(scene.world.isAsleep(id));
+
+    // A velocity patch: awake, and moving at it, slowed in one frame by the spring's damping
+    // (10 1/s: a factor e^(−10 dt)) and, by under 1 %, by the spring's pull.
+    scene.registry.patch<RigidBody>(scene.box, [](RigidBody& body) { body.velocity = Vec3(1.0, 0, 0); });
+    scene.physics().step(kDt);
+    EXPECT_FALSE(scene.world.isAsleep(id));
+    EXPECT_NEAR(scene.registry.get<RigidBody>(scene.box).velocity.x(), std::exp(-10.0 * kDt), 0.01);
+    scene.run(3.0);
+    ASSERT_TRUE(scene.world.isAsleep(id));
+
+    // A pose patch.
+    scene.registry.patch<Transform>(scene.box, [](Transform& transform) { transform.position.x() += 0.1; });
+    scene.physics().step(kDt);
+    EXPECT_FALSE(scene.world.isAsleep(id));
+    scene.run(3.0);
+    ASSERT_TRUE(scene.world.isAsleep(id));
+
+    // The drag: a joint entity made on the sleeping body; it ends between the two springs.
+    const Entity pull = scene.registry.create();
+    scene.registry.emplace<Joint>(pull, Joint{.def = {.type = JointType::Distance, .anchor0 = Vec3(0, -1, 0),
+                                                      .compliance = 0.01},
+                                              .body0 = kNullEntity,
+                                              .body1 = scene.box});
+    scene.physics().step(kDt);
+    EXPECT_FALSE(scene.world.isAsleep(id));
+    scene.run(4.0);
+    // Asleep once slower than 0.05 m/s for 0.5 s: near the equilibrium, not exactly on it.
+    EXPECT_TRUE(scene.world.isAsleep(id));
+    EXPECT_NEAR(scene.registry.get<Transform>(scene.box).position.y(), -0.5 - 0.5 * 0.01 * kMass * kG, 1e-3);
+}
+
 }  // namespace
 }  // namespace substep::ecs

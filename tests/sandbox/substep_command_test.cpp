@@ -85,6 +85,23 @@ TEST_F(SubstepCommand, RerunsAreByteIdentical) {
     EXPECT_EQ(a, readFile(work() / "b.csv"));
 }
 
+TEST_F(SubstepCommand, ThreadsGiveTheSameBytes) {
+    // A pile with enough pairs for the narrowphase to split (spheres1000 landing: about 2000).
+    ASSERT_EQ(substep("run spheres1000 --frames 80 --csv one.csv").exitCode, 0);
+    ASSERT_EQ(substep("run spheres1000 --frames 80 --threads 2 --csv two.csv").exitCode, 0);
+    ASSERT_EQ(substep("run spheres1000 --frames 80 --threads 3 --csv three.csv").exitCode, 0);
+    const std::string one = readFile(work() / "one.csv");
+    EXPECT_FALSE(one.empty());
+    EXPECT_EQ(one, readFile(work() / "two.csv"));
+    EXPECT_EQ(one, readFile(work() / "three.csv"));
+    for (const char* bad : {"0", "65", "two"}) {
+        const Result result = substep("run " + kHang + " --frames 1 --threads " + bad + " --csv t.csv");
+        EXPECT_EQ(result.exitCode, 2) << bad;
+        EXPECT_NE(result.err.find("--threads"), std::string::npos) << result.err;
+        EXPECT_FALSE(fs::exists(work() / "t.csv")) << bad;
+    }
+}
+
 TEST_F(SubstepCommand, SecondsBecomeRoundedFrames) {
     ASSERT_EQ(substep("run " + kHang + " --seconds 0.5 --csv out.csv").exitCode, 0);
     EXPECT_EQ(lines(readFile(work() / "out.csv")).size(), 1u + 1u + 30u);

@@ -1,6 +1,7 @@
 // Tests engine/scene/scene_loader.cpp: reading the file, the version, the top-level keys and
 // their section readers in table order, and the error type.
 
+#include "scene/scene.h"
 #include "scene/scene_loader.h"
 
 #include "scene_loader_test_support.h"
@@ -202,7 +203,17 @@ TEST(SceneLoader, TopLevelKeysAreListedInOrder) {
     // The world settings, then the section readers' keys in their table's order.
     EXPECT_TRUE(failsAt(scene(R"("zzz": 1)"), "zzz",
                         "unknown key (expected substep_scene, name, description, gravity, dt, "
-                        "substeps, iterations, bodies, joints, soft_bodies or camera)"));
+                        "substeps, iterations, sleeping, bodies, joints, soft_bodies or camera)"));
+}
+
+TEST(SceneLoader, SleepingIsABooleanOffByDefault) {
+    EXPECT_FALSE(parseSceneText(scene(""), "t.json").sleeping);
+    EXPECT_TRUE(parseSceneText(scene(R"("sleeping": true)"), "t.json").sleeping);
+    EXPECT_FALSE(parseSceneText(scene(R"("sleeping": false)"), "t.json").sleeping);
+    EXPECT_TRUE(failsAt(scene(R"("sleeping": 1)"), "sleeping", "must be"));
+    // The world built from the scene sleeps as asked.
+    EXPECT_TRUE(buildScene(parseSceneText(scene(R"("sleeping": true)"), "t.json")).world().settings().sleeping);
+    EXPECT_FALSE(buildScene(parseSceneText(scene(""), "t.json")).world().settings().sleeping);
 }
 
 TEST(SceneLoader, SectionsAreReadInTheirOrderNotTheFiles) {

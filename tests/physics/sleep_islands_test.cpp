@@ -1,0 +1,297 @@
+// Tests engine/physics/sleep_islands.cpp and its use by the world's step (world.cpp,
+// world_edits.cpp): a stack falls asleep and costs no motion; a body about to hit a sleeping
+// island wakes it before any contact, and the hit follows the closed form of an elastic
+// collision; a pendulum at its turning point never sleeps; edits (a pose, a velocity, a drag
+// joint, a destroyed support, a gravity change) wake what they touch.
+
+#include "physics_test_support.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstring>
+
+namespace substep {
+namespace {
+
+constexpr double kDt = test::kDt;
+const Vec3 kGravity(0.0, -10.0, 0.0);
+
+/// Frames of `seconds` (rounded).
+int framesOf(double seconds) { return static_cast<int>(std::lround(seconds / kDt)); }
+
+/// A world with sleeping on and the ground plane.
+World sleepyWorld(bool sleeping = true) {
+    World world({.gravity = kGravity, .substeps = 20, .sleeping = sleeping});
+    world.createBody({.shape = planeShape(Vec3::UnitY(), 0.0), .type = BodyType::Static});
+    return world;
+}
+
+/// `count` cubes of 0.2 m, 1 kg, stacked on the ground from y = 0.
+std::vector<BodyId> addStack(World& world, int count, double x = 0.0) {
+    std::vector<BodyId> boxes;
+    for (int i = 0; i < count; ++i)
+        boxes.push_back(world.createBody(
+            {.shape = boxShape(Vec3::Constant(0.2)), .mass = 1.0, .position = Vec3(x, 0.1 + 0.2 * i, 0.0)}));
+    return boxes;
+}
+
+/// Whether any of the frame's pairs (those that may touch during it) links a sleeping body to
+/// an awake dynamic one: the wake before the substeps must leave none, or the solve would meet
+/// a sleeping body as a wall.
+bool sleepingMeetsAwake(const World& world) {
+    const std::span<const Body> bodies = world.bodies();
+    const auto asleep = [&](uint32_t i) { return world.isAsleep({i, bodies[i].generation}); };
+    for (const ContactPair& pair : world.contactPairs()) {
+        const bool a = asleep(pair.body0);
+        const bool b = asleep(pair.body1);
+        if ((a && bodies[pair.body1].isDynamic() && !b) || (b && bodies[pair.body0].isDynamic() && !a))
+            return true;
+    }
+    return false;
+}
+
+TEST(SleepIslandsTest, StackFallsAsleepAndStaysPut) {
+    World world = sleepyWorld();
+    const std::vector<BodyId> boxes = addStack(world, 5);
+    int asleepAt = -1;
+    for (int frame = 1; frame <= framesOf(4.0) && asleepAt < 0; ++frame) {
+        world.step(kDt);
+        if (world.sleepingBodyCount() == 5) asleepAt = frame;
+    }
+    ASSERT_GT(asleepAt, 0) << "the stack never fell asleep";
+    // Rest must last sleep.time = 0.5 s first.
+    EXPECT_GE(asleepAt * kDt, 0.5);
+    for (const BodyId id : boxes) EXPECT_TRUE(world.isAsleep(id));
+
+    // Asleep: a second of steps changes no bit of any pose, and no contact is solved.
+    std::vector<Vec3> before;
+    for (const BodyId id : boxes) before.push_back(world.body(id).x);
+    for (int frame = 0; frame < framesOf(1.0); ++frame) world.step(kDt);
+    for (size_t i = 0; i < boxes.size(); ++i) {
+        EXPECT_EQ(std::memcmp(before[i].data(), world.body(boxes[i]).x.data(), sizeof(Vec3)), 0) << i;
+        EXPECT_TRUE(world.body(boxes[i]).v.isZero(0.0));
+    }
+    EXPECT_TRUE(world.contacts().empty());
+    // Where it sleeps is where it stood: box i at 0.1 + 0.2 i within a millimetre.
+    for (size_t i = 0; i < boxes.size(); ++i) EXPECT_NEAR(before[i].y(), 0.1 + 0.2 * i, 1e-3) << i;
+}
+
+TEST(SleepIslandsTest, SleepingOffNothingSleeps) {
+    World world = sleepyWorld(false);
+    const std::vector<BodyId> boxes = addStack(world, 3);
+    for (int frame = 0; frame < framesOf(2.0); ++frame) world.step(kDt);
+    EXPECT_EQ(world.sleepingBodyCount(), 0);
+    for (const BodyId id : boxes) EXPECT_FALSE(world.isAsleep(id));
+}
+
+/// A sphere sliding on frictionless ground at `speed` into a sleeping box of the same mass
+/// (restitution 1): the elastic collision hands the box the whole speed. The island must wake
+/// before the first contact point between them.
+TEST(SleepIslandsTest, IslandWakesBeforeItIsHitAndTakesTheElasticImpulse) {
+    for (const double speed : {0.5, 2.0, 8.0}) {
+        World world({.gravity = kGravity, .substeps = 20, .sleeping = true});
+        world.createBody({.shape = planeShape(Vec3::UnitY(), 0.0),
+                          .type = BodyType::Static,
+                          .staticFriction = 0.0,
+                          .dynamicFriction = 0.0,
+                          .restitution = 1.0});
+        const BodyId box = world.createBody({.shape = boxShape(Vec3::Constant(0.2)),
+                                             .mass = 1.0,
+                                             .position = Vec3(0.0, 0.1, 0.0),
+                                             .staticFriction = 0.0,
+                                             .dynamicFriction = 0.0,
+                                             .restitution = 1.0});
+        for (int frame = 0; frame < framesOf(1.5); ++frame) world.step(kDt);
+        ASSERT_TRUE(world.isAsleep(box)) << speed;
+
+        // Launched from 0.5 m away, at the height of the box's centre.
+        const BodyId ball = world.createBody({.shape = sphereShape(0.1),
+                                              .mass = 1.0,
+                                              .position = Vec3(-0.7, 0.1, 0.0),
+                                              .velocity = Vec3(speed, 0.0, 0.0),
+                                              .staticFriction = 0.0,
+                                              .dynamicFriction = 0.0,
+                                              .restitution = 1.0});
+        // Had the box still slept at the hit, it would have acted as a wall and the ball would
+        // have bounced back at −speed: the velocities below show that it took part awake.
+        for (int frame = 0; frame < framesOf(1.5); ++frame) {
+            world.step(kDt);
+            ASSERT_FALSE(sleepingMeetsAwake(world)) << speed << " frame " << frame;
+            for (const ContactPair& pair : world.contactPairs())
+                if (pair.count > 0 && std::minmax(pair.body0, pair.body1) == std::minmax(box.index, ball.index))
+                    EXPECT_FALSE(world.isAsleep(box)) << "hit while asleep, frame " << frame;
+        }
+        // Equal masses, e = 1: the ball stops and the box leaves at its speed.
+        EXPECT_NEAR(world.body(box).v.x(), speed, 0.02 * speed)
+            << speed << ": box at " << world.body(box).x.transpose() << ", ball at " << world.body(ball).x.transpose();
+        EXPECT_NEAR(world.body(ball).v.x(), 0.0, 0.02 * speed) << speed;
+    }
+}
+
+TEST(SleepIslandsTest, StackWakesWhenHitFromAboveAndSleepsAgain) {
+    World world = sleepyWorld();
+    const std::vector<BodyId> boxes = addStack(world, 4);
+    for (int frame = 0; frame < framesOf(2.0); ++frame) world.step(kDt);
+    ASSERT_EQ(world.sleepingBodyCount(), 4);
+    // A 2 kg ball dropped from 1 m above the top.
+    const BodyId ball = world.createBody(
+        {.shape = sphereShape(0.08), .mass = 2.0, .position = Vec3(0.0, 1.9, 0.0)});
+    bool woke = false;
+    for (int frame = 0; frame < framesOf(1.0); ++frame) {
+        world.step(kDt);
+        ASSERT_FALSE(sleepingMeetsAwake(world)) << frame;
+        woke = woke || world.sleepingBodyCount() == 0;
+    }
+    EXPECT_TRUE(woke);
+    // The ball rests on the stack's top, 0.8 m + its radius up (the stack held).
+    EXPECT_NEAR(world.body(ball).x.y(), 0.88, 5e-3);
+    for (int frame = 0; frame < framesOf(3.0); ++frame) world.step(kDt);
+    for (const BodyId id : boxes) EXPECT_TRUE(world.isAsleep(id));
+    EXPECT_EQ(world.sleepingBodyCount(), 5) << "ball at " << world.body(ball).x.transpose() << ", v "
+                                            << world.body(ball).v.transpose() << ", ω "
+                                            << world.body(ball).omega.transpose();
+    EXPECT_TRUE(world.isFinite());
+}
+
+/// A pendulum (1 m rope on a point joint) released at 30°: at its turning points it is still
+/// for an instant, but never for sleep.time, so it never sleeps, and its motion is that of the
+/// same pendulum with sleeping off, bit for bit.
+TEST(SleepIslandsTest, PendulumAtItsTurningPointDoesNotSleep) {
+    const auto swing = [](bool sleeping) {
+        World world({.gravity = kGravity, .substeps = 20, .sleeping = sleeping});
+        const double angle = 30.0 * test::kPi / 180.0;
+        const BodyId bob = world.createBody({.shape = sphereShape(0.05),
+                                             .mass = 1.0,
+                                             .position = Vec3(std::sin(angle), 2.0 - std::cos(angle), 0.0)});
+        world.createJoint({.type = JointType::Distance,
+                           .body1 = bob,
+                           .anchor0 = Vec3(0.0, 2.0, 0.0),
+                           .maxDistance = 1.0});
+        std::vector<double> xs;
+        for (int frame = 0; frame < framesOf(10.0); ++frame) {
+            world.step(kDt);
+            EXPECT_FALSE(world.isAsleep(bob)) << frame;
+            xs.push_back(world.body(bob).x.x());
+        }
+        return xs;
+    };
+    const std::vector<double> on = swing(true);
+    const std::vector<double> off = swing(false);
+    ASSERT_EQ(on.size(), off.size());
+    EXPECT_EQ(std::memcmp(on.data(), off.data(), on.size() * sizeof(double)), 0);
+}
+
+TEST(SleepIslandsTest, HangingBodySleepsAndItsJointReadsItsWeight) {
+    World world({.gravity = kGravity, .substeps = 20, .sleeping = true});
+    const BodyId box = world.createBody(
+        {.shape = boxShape(Vec3::Constant(0.1)), .mass = 3.0, .position = Vec3(0.0, 1.45, 0.0)});
+    const JointId rope = world.createJoint({.type = JointType::Distance,
+                                            .body1 = box,
+                                            .anchor0 = Vec3(0.0, 1.5, 0.0),
+                                            .anchor1 = Vec3(0.0, 0.05, 0.0)});
+    for (int frame = 0; frame < framesOf(1.0); ++frame) world.step(kDt);
+    ASSERT_TRUE(world.isAsleep(box));
+    // The sleeping joint keeps its last force: m g = 30 N.
+    EXPECT_NEAR(world.jointReadout(rope).force, 30.0, 0.03);
+}
+
+TEST(SleepIslandsTest, EditsWakeTheIsland) {
+    World world = sleepyWorld();
+    const std::vector<BodyId> boxes = addStack(world, 3);
+    const auto settle = [&] {
+        for (int frame = 0; frame < framesOf(2.0); ++frame) world.step(kDt);
+        ASSERT_EQ(world.sleepingBodyCount(), 3);
+    };
+    settle();
+
+    // A velocity set on the top box (a script, the engine layer's RigidBody patch) wakes the
+    // whole stack, and the box flies up at it.
+    world.setBodyVelocity(boxes[2], Vec3(0.0, 1.0, 0.0), Vec3::Zero());
+    EXPECT_EQ(world.sleepingBodyCount(), 0);
+    const double y = world.body(boxes[2]).x.y();
+    world.step(kDt);
+    // Free flight for a frame of n = 20 substeps of symplectic Euler: y + v dt − g dt² (1 + 1/n) / 2.
+    EXPECT_NEAR(world.body(boxes[2]).x.y(), y + kDt - 5.0 * kDt * kDt * (1.0 + 1.0 / 20.0), 1e-9);
+    settle();
+
+    // A pose set on the bottom box wakes the island.
+    world.setBodyPose(boxes[0], world.body(boxes[0]).userPosition() + Vec3(0.01, 0, 0), Quat::Identity());
+    EXPECT_FALSE(world.isAsleep(boxes[2]));
+    settle();
+
+    // A drag (the window's: a compliant joint from a world point to the body) wakes it and pulls.
+    const JointId drag = world.createJoint({.type = JointType::Distance,
+                                            .body1 = boxes[2],
+                                            .anchor0 = world.body(boxes[2]).userPosition() + Vec3(0.0, 0.5, 0.0),
+                                            .compliance = 0.01});
+    EXPECT_EQ(world.sleepingBodyCount(), 0);
+    world.step(kDt);
+    EXPECT_GT(world.body(boxes[2]).v.y(), 0.0);
+    world.destroyJoint(drag);
+    for (int frame = 0; frame < framesOf(4.0); ++frame) world.step(kDt);
+    ASSERT_EQ(world.sleepingBodyCount(), 3);
+
+    // Gravity changed: everything wakes.
+    WorldSettings settings = world.settings();
+    settings.gravity = Vec3(0.0, -5.0, 0.0);
+    world.setSettings(settings);
+    EXPECT_EQ(world.sleepingBodyCount(), 0);
+    settle();
+
+    // The bottom box destroyed: the boxes it held wake and fall.
+    world.destroyBody(boxes[0]);
+    EXPECT_EQ(world.sleepingBodyCount(), 0);
+    const double top = world.body(boxes[2]).x.y();
+    for (int frame = 0; frame < 30; ++frame) world.step(kDt);
+    EXPECT_LT(world.body(boxes[2]).x.y(), top - 0.1);
+}
+
+TEST(SleepIslandsTest, MovedStaticBodyWakesWhatIsJointedToIt) {
+    World world({.gravity = kGravity, .substeps = 20, .sleeping = true});
+    const BodyId mount = world.createBody(
+        {.shape = boxShape(Vec3::Constant(0.1)), .type = BodyType::Static, .position = Vec3(0.0, 2.0, 0.0)});
+    const BodyId bob = world.createBody(
+        {.shape = sphereShape(0.05), .mass = 1.0, .position = Vec3(0.0, 1.0, 0.0)});
+    world.createJoint({.type = JointType::Distance, .body0 = mount, .body1 = bob, .maxDistance = 1.0});
+    for (int frame = 0; frame < framesOf(1.0); ++frame) world.step(kDt);
+    ASSERT_TRUE(world.isAsleep(bob));
+    world.setBodyPose(mount, Vec3(0.3, 2.0, 0.0), Quat::Identity());
+    world.step(kDt);
+    EXPECT_FALSE(world.isAsleep(bob));
+    // The rope pulled the bob toward the mount's new place.
+    EXPECT_GT(world.body(bob).x.x(), 0.0);
+}
+
+TEST(SleepIslandsTest, SeparateIslandsSleepApart) {
+    // A stack at rest, and a box sliding on the ground far away: the stack sleeps, the slider's
+    // island stays awake and moves exactly as it does with sleeping off.
+    const auto run = [](bool sleeping, std::vector<BodyId>& still, BodyId& slider) {
+        World world = sleepyWorld(sleeping);
+        still = addStack(world, 2, 0.0);
+        slider = world.createBody({.shape = boxShape(Vec3::Constant(0.2)),
+                                   .mass = 1.0,
+                                   .position = Vec3(3.0, 0.1, 0.0),
+                                   .velocity = Vec3(0.0, 0.0, 3.0),
+                                   .dynamicFriction = 0.05});
+        for (int frame = 0; frame < framesOf(1.0); ++frame) world.step(kDt);
+        return world;
+    };
+    std::vector<BodyId> still;
+    BodyId slider;
+    const World sleeping = run(true, still, slider);
+    EXPECT_TRUE(sleeping.isAsleep(still[0]));
+    EXPECT_TRUE(sleeping.isAsleep(still[1]));
+    EXPECT_FALSE(sleeping.isAsleep(slider));
+    const World awake = run(false, still, slider);
+    const Body& a = sleeping.body(slider);
+    const Body& b = awake.body(slider);
+    EXPECT_EQ(std::memcmp(a.x.data(), b.x.data(), sizeof(Vec3)), 0);
+    EXPECT_EQ(std::memcmp(a.v.data(), b.v.data(), sizeof(Vec3)), 0);
+    // Still sliding: μ_d averaged with the ground's, (0.05 + 0.3) / 2, slows it by about
+    // 1.75 m/s in the second.
+    EXPECT_NEAR(a.v.z(), 1.25, 0.1);
+}
+
+}  // namespace
+}  // namespace substep
