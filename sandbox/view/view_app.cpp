@@ -5,6 +5,7 @@
 #include "view/scene_file_watch.h"
 #include "view/view_panel.h"
 #include "view/compare_session.h"
+#include "view/key_driver.h"
 
 #include "render/renderer.h"
 
@@ -94,11 +95,11 @@ void steerMouse(OrbitCamera& camera, CompareSession& session) {
 }
 
 /// Space, S and R do what the panel's play, step and restart buttons do, unless a text box
-/// has the keyboard.
-void readShortcuts(Playback& playback, PanelRequests& requests) {
+/// has the keyboard (S not while the scene drives a knob with it).
+void readShortcuts(Playback& playback, PanelRequests& requests, bool stepKey) {
     if (ImGui::GetIO().WantCaptureKeyboard) return;
     if (ImGui::IsKeyPressed(GLFW_KEY_SPACE, false)) playback.playing = !playback.playing;
-    if (ImGui::IsKeyPressed(GLFW_KEY_S)) requests.step = true;
+    if (stepKey && ImGui::IsKeyPressed(GLFW_KEY_S)) requests.step = true;
     if (ImGui::IsKeyPressed(GLFW_KEY_R, false)) requests.restart = true;
 }
 
@@ -138,6 +139,7 @@ ViewAppResult runViewApp(SceneSource source, const ViewAppOptions& options) {
     if (options.compare) session.compare(options.compare);
     OrbitCamera camera(session.startCamera());
     ViewPanel panel;
+    KeyDriver keyDriver;  // the scene's key-bound knobs (the RC car's throttle and steering)
     std::string loadError;
     FrameTimes times;
     ViewAppResult result;
@@ -161,7 +163,8 @@ ViewAppResult runViewApp(SceneSource source, const ViewAppOptions& options) {
         }
 
         PanelRequests requests = panel.draw(session, times, loadError);
-        readShortcuts(session.playback(), requests);
+        readShortcuts(session.playback(), requests, !keyDriver.binds(session, GLFW_KEY_S));
+        keyDriver.update(session);
         if (requests.loadScene) {
             try {
                 session.load(resolveScene(*requests.loadScene));
