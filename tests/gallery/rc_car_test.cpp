@@ -97,20 +97,21 @@ TEST(RcCar, HasThePapersMassRatioSizesAndTyres) {
     }
 }
 
-// Driving straight at 1.9 m/s over flat ground at the 1:760 mass ratio, the linkage stays
-// closed (every tie-rod ball joint within 1 mm) and holds both knuckles within 1° of the
-// servo's 0°.
+// Driving straight ahead, up to 2 m/s over the flat ground before the bumps, at the 1:760 mass
+// ratio: the linkage stays closed (every tie-rod ball joint within 1 mm) and holds both knuckles
+// within 1° of the servo's 0°.
 TEST(RcCar, LinkageHoldsTheWheelsStraightAtSpeed) {
-    LiveScene scene = makeCar({{"throttle", -0.5}});  // in reverse: the ground behind is flat
+    LiveScene scene = makeCar({{"throttle", 0.5}});
     double worstRod = 0.0;
     double worstAngle = 0.0;
-    for (int frame = 0; frame < 150; ++frame) {
+    for (int frame = 0; frame < 80; ++frame) {
         scene.step();
         worstRod = std::max(worstRod, tieRodError(scene));
-        if (frame >= 60)
+        if (frame >= 40)
             for (const char* kingpin : {"kingpin_fl", "kingpin_fr"})
                 worstAngle = std::max(worstAngle, std::abs(joint(scene, kingpin).readout.coordinate));
     }
+    EXPECT_LT(pose(scene, "chassis").position.x(), -1.0) << "left the flat ground";
     EXPECT_GT(body(scene, "chassis").velocity.norm(), 1.5);
     EXPECT_LT(worstRod, 1e-3);
     EXPECT_LT(worstAngle / kDegree, 1.0);
@@ -205,8 +206,9 @@ TEST(RcCar, HoldsOnASlopeBelowTheGripAndSlidesAbove) {
 }
 
 // Motors off on flat ground (reversing away from the bumps): the car rolls on, loses its
-// energy to the tyres' damping and stops. While it rolls the world's energy never rises; at
-// rest the loaded tyres' elastic energy flickers by under 1 % of the kinetic energy it had.
+// energy to the tyres' damping and stops. While it rolls (faster than 0.2 m/s) the world's
+// energy never rises; at rest the loaded tyres' elastic energy flickers by under 1 % of the
+// kinetic energy it had.
 TEST(RcCar, CoastsToAStopWithTheMotorsOff) {
     LiveScene scene = makeCar({{"throttle", -0.4}});
     run(scene, 1.5);
@@ -218,7 +220,7 @@ TEST(RcCar, CoastsToAStopWithTheMotorsOff) {
     double risingWhileRolling = 0.0;
     double risingAtRest = 0.0;
     for (int frame = 0; frame < 120; ++frame) {
-        const bool rolling = body(scene, "chassis").velocity.norm() > 0.05;
+        const bool rolling = body(scene, "chassis").velocity.norm() > 0.2;
         scene.step();
         const double energy = scene.world().energies().total();
         (rolling ? risingWhileRolling : risingAtRest) = std::max(rolling ? risingWhileRolling : risingAtRest,
