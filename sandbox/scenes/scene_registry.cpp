@@ -39,6 +39,7 @@ const auto& sceneTable() {
     scenes::robotArmEntry(),
     scenes::twistedRopeEntry(),
     scenes::rollingBallsEntry(),
+    scenes::rcCarEntry(),
     // PEERS.md measures pendulum3's energy error against m g L with m = 1 kg, L = 1 m, g = 10.
     SceneEntry{.name = "pendulum3",
                .description = "Benchmark: triple pendulum released horizontal (PEERS.md)",

@@ -12,6 +12,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace substep {
@@ -41,6 +42,21 @@ struct SceneReadout {
     const char* format = "%.4g";
 };
 
+/// A knob the window drives from the keyboard (and a gamepad's stick, where GLFW sees one):
+/// while a key of `positiveKeys` is held the knob is `rest + amount`, of `negativeKeys`
+/// `rest - amount`; when they are let go it returns to `rest`. The stick sets it in proportion.
+/// Keys are named by letters ("W") or "Up", "Down", "Left", "Right", separated by spaces.
+/// Headless commands and tests ignore it: they set the knob by name.
+struct SceneKeyAxis {
+    std::string knob;
+    std::string positiveKeys;
+    std::string negativeKeys;
+    double amount = 1.0;
+    double rest = 0.0;
+    int gamepadAxis = -1;        ///< GLFW gamepad axis index (0: left stick x, 1: left stick y); -1 none
+    bool invertGamepad = false;  ///< the stick's positive direction lowers the knob
+};
+
 class SceneScript {
   public:
     virtual ~SceneScript() = default;
@@ -61,6 +77,9 @@ class SceneScript {
         return std::nullopt;
     }
 
+    /// The knobs the window drives from the keyboard or a gamepad.
+    std::span<const SceneKeyAxis> keyAxes() const { return keyAxes_; }
+
     std::span<SceneKnob> knobs() { return knobs_; }
     std::span<const SceneKnob> knobs() const { return knobs_; }
     /// The knob called `name`, or nullptr.
@@ -71,11 +90,14 @@ class SceneScript {
   protected:
     /// Declares a knob (in the constructor); returns its index.
     std::size_t addKnob(SceneKnob knob);
+    /// Declares a knob the window drives from keys (in the constructor).
+    void addKeyAxis(SceneKeyAxis axis) { keyAxes_.push_back(std::move(axis)); }
     double knob(std::size_t index) const { return knobs_[index].value; }
     bool toggled(std::size_t index) const { return knobs_[index].value != 0.0; }
 
   private:
     std::vector<SceneKnob> knobs_;
+    std::vector<SceneKeyAxis> keyAxes_;
 };
 
 /// Makes a scene's script; a SceneEntry holds one for scenes that have a script.

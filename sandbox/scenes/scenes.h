@@ -30,6 +30,7 @@ SceneEntry coinEntry();           ///< Fig. 15 (coin.cpp)
 SceneEntry robotArmEntry();       ///< Fig. 17 (robot_arm.cpp)
 SceneEntry twistedRopeEntry();    ///< Fig. 18 (twisted_rope.cpp)
 SceneEntry rollingBallsEntry();   ///< Figs. 1, 14 (rolling_balls.cpp)
+SceneEntry rcCarEntry();          ///< Figs. 1, 16 (rc_car.cpp, rc_car_script.cpp)
 
 /// The paper's gravity (its demos use 10 m/s²).
 inline const Vec3 kPaperGravity(0.0, -10.0, 0.0);

@@ -4,6 +4,7 @@
 #include "view/frame_stats.h"
 #include "view/glfw_context.h"
 #include "view/input_queue.h"
+#include "view/key_driver.h"
 #include "view/orbit_camera.h"
 #include "view/scene_file_watch.h"
 #include "view/screenshot.h"
@@ -221,6 +222,7 @@ ViewAppResult runViewApp(SceneSource source, const ViewAppOptions& options) {
     if (options.compare) session.compare(options.compare);
     OrbitCamera camera(session.startCamera());
     ViewPanel panel;
+    KeyDriver keyDriver;  // the scene's key-bound knobs (the RC car's throttle and steering)
     std::string loadError;
     FrameStats stats;
     std::vector<FrameSample> scriptedSamples;
@@ -285,7 +287,10 @@ ViewAppResult runViewApp(SceneSource source, const ViewAppOptions& options) {
         if (helpShown) drawHelpOverlay(area);
         if (keys.togglePlay % 2 != 0) session.playback().playing = !session.playback().playing;
         requests.restart |= keys.restart;
-        for (int step = 0; step < keys.steps; ++step) session.stepOnce();
+        // S steps a frame unless the scene drives a knob with it (the RC car's WASD).
+        if (!keyDriver.binds(session, GLFW_KEY_S))
+            for (int step = 0; step < keys.steps; ++step) session.stepOnce();
+        keyDriver.update(session);
         if (keys.resetCamera || keys.restart) camera = OrbitCamera(session.startCamera());
 
         if (requests.loadScene) {

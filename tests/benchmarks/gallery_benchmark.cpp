@@ -44,7 +44,7 @@ void stepGalleryScene(benchmark::State& state, const SceneEntry* entry) {
 /// One benchmark per gallery scene, registered at start-up from the scene table.
 const bool kRegistered = [] {
     for (const char* name : {"joint_types", "bunny_chain", "cradle", "marbles_on_wire", "coin", "robot_arm",
-                             "twisted_rope", "rolling_balls"}) {
+                             "twisted_rope", "rolling_balls", "rc_car"}) {
         const SceneEntry* entry = findBuiltinScene(name);
         if (entry == nullptr) continue;
         benchmark::RegisterBenchmark((std::string("BM_gallery/") + name).c_str(), stepGalleryScene, entry)

@@ -40,7 +40,8 @@ TEST(SceneDrawing, EveryBuiltinSceneShowsEachBodyAboveTheGround) {
         SceneInstance scene = buildScene(description);
         SceneDrawing drawing(description, scene, 4.0f / 3.0f);
         const render::RenderScene drawn = drawing.draw(scene);
-        EXPECT_EQ(drawn.instances.size(), drawableBodies(scene.world()));
+        // Each soft body (the RC car's tyres) is drawn as one instance of its surface.
+        EXPECT_EQ(drawn.instances.size(), drawableBodies(scene.world()) + scene.softBodyEntities.size());
         ASSERT_TRUE(drawn.ground.has_value());
         for (const render::RenderInstance& instance : drawn.instances) {
             EXPECT_GE(drawn.ground->normal.dot(instance.position), drawn.ground->offset);
