@@ -4,6 +4,8 @@
 /// option, and the Ctrl-C/SIGTERM guard that lets a long loop stop cleanly so its temporary
 /// outputs (AtomicFile) are removed.
 
+#include "physics/correction.h"
+
 #include <functional>
 #include <stdexcept>
 #include <string>
@@ -34,6 +36,10 @@ double parsePositiveReal(const char* option, const std::string& text);
 /// `text` as a positive finite number no larger than `highest` (a whole number, as the message
 /// prints it). Throws UsageError naming `option` otherwise.
 double parsePositiveReal(const char* option, const std::string& text, double highest);
+
+/// `text` as a joint projection ("paper" or "start", WorldSettings::jointProjection). Throws
+/// UsageError naming `option` otherwise.
+JointProjection parseJointProjection(const char* option, const std::string& text);
 
 /// round(seconds / dt) frames, the simulated time T as frames (DESIGN.md). Throws UsageError
 /// naming --seconds when that is more than `maxFrames`.

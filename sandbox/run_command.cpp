@@ -28,6 +28,7 @@ struct RunSettings {
     std::optional<int> substeps;
     std::optional<int> iterations;
     std::optional<double> dt;
+    std::optional<JointProjection> jointProjection;
 };
 
 RunSettings checkOptions(const RunOptions& options) {
@@ -49,6 +50,8 @@ RunSettings checkOptions(const RunOptions& options) {
             static_cast<int>(parseInteger("--iterations", options.iterations, 1, kMaxIterations));
     }
     if (!options.dt.empty()) settings.dt = parsePositiveReal("--dt", options.dt);
+    if (!options.jointProjection.empty())
+        settings.jointProjection = parseJointProjection("--joint-projection", options.jointProjection);
     return settings;
 }
 
@@ -116,6 +119,7 @@ int run(const RunOptions& options) {
     if (settings.substeps) description.substeps = *settings.substeps;
     if (settings.iterations) description.iterations = *settings.iterations;
     if (settings.dt) description.dt = *settings.dt;
+    if (settings.jointProjection) description.jointProjection = *settings.jointProjection;
     const double dt = description.dt;
     const long long frames = frameCount(settings, dt);
     LiveScene live = startLabelledScene(source, description);
@@ -127,6 +131,7 @@ int run(const RunOptions& options) {
     WorldSettings solver = physics.settings();
     if (settings.substeps) solver.substeps = *settings.substeps;
     if (settings.iterations) solver.iterations = *settings.iterations;
+    if (settings.jointProjection) solver.jointProjection = *settings.jointProjection;
     physics.setSettings(solver);
 
     std::unique_ptr<AtomicFile> csvFile;
@@ -214,6 +219,9 @@ CLI::App* addRunCommand(CLI::App& app, RunOptions& options) {
     command->add_option("--set", options.knobs, "Turn a scene knob, e.g. --set velocity_pass=0 (repeatable)")
         ->type_name("NAME=VALUE");
     command->add_option("--json", options.jsonPath, "Write the summary as JSON")->type_name("F");
+    command->add_option("--joint-projection", options.jointProjection,
+                        "Joint directions: paper (current state) or start (substep start)")
+        ->type_name("paper|start");
     return command;
 }
 

@@ -22,6 +22,7 @@ struct RunOptions {
     std::string csvPath;
     std::string jsonPath;
     std::vector<std::string> knobs;  ///< --set NAME=VALUE, in order
+    std::string jointProjection;     ///< "paper" or "start"; empty: the scene's
 };
 
 /// Accepted ranges (DESIGN.md for substeps and iterations; frames is a sanity bound).

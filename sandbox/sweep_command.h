@@ -18,6 +18,7 @@ struct SweepOptions {
     std::string seconds;  ///< simulated time per split (default 5 s)
     std::string csvPath;
     std::string plotPath;
+    std::string jointProjection;  ///< "paper" or "start"; empty: the scene's
 };
 
 /// Accepted budgets (a sanity bound: budget 10000 has 25 splits of 10000 passes per frame).

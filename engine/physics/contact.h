@@ -45,6 +45,9 @@ struct Contact {
     Vec3 normal = Vec3::UnitY(); ///< world, from body 1 towards body 0
     double lambdaNormal = 0.0;   ///< this substep's normal multiplier
     uint32_t feature = 0;        ///< the narrowphase's feature id
+    /// The collision impulse (N s, along the normal, on body 0) this point takes in the
+    /// substep's restitution sweeps (contact_restitution.h); 0 where the paper's rule applies.
+    double restitutionImpulse = 0.0;
 };
 
 /// A pair of bodies that may touch this frame (from the broadphase), with its averaged surface

@@ -41,7 +41,8 @@ const Vec3 kSoftBodyColour(0.30, 0.32, 0.36);
 SceneInstance buildScene(const SceneDescription& description) {
     SceneInstance instance(World(WorldSettings{.gravity = description.gravity,
                                                .substeps = description.substeps,
-                                               .iterations = description.iterations}));
+                                               .iterations = description.iterations,
+                                               .jointProjection = description.jointProjection}));
     ecs::Registry& registry = instance.registry;
 
     // One entity per body, in order; named ones are remembered for joints.

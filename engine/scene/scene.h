@@ -54,6 +54,8 @@ struct SceneDescription {
     double dt = 1.0 / 60.0;
     int substeps = 20;
     int iterations = 1;
+    /// WorldSettings::jointProjection (the file's `joint_projection`).
+    JointProjection jointProjection = WorldSettings{}.jointProjection;
     std::vector<SceneBody> bodies;
     std::vector<SceneJoint> joints;
     std::vector<SceneSoftBody> softBodies;
