@@ -51,7 +51,8 @@ RunSettings checkOptions(const RunOptions& options) {
     }
     if (!options.dt.empty()) settings.dt = parsePositiveReal("--dt", options.dt);
     if (!options.jointProjection.empty())
-        settings.jointProjection = parseJointProjection("--joint-projection", options.jointProjection);
+        settings.jointProjection =
+            parseJointProjection("--joint-projection", options.jointProjection);
     return settings;
 }
 

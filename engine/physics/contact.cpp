@@ -337,7 +337,7 @@ void solveSinglePointVelocities(const ContactPair& pair, const Contact& c, Body&
     const Vec3 v = pointVelocity(b0.v, b0.omega, r0) - pointVelocity(b1.v, b1.omega, r1);  // Eq. 29
     const double vn = v.dot(n);                                                               // Eq. 29
     double change = 0.0;
-    if (c.restitutionImpulse > 0.0) {
+    if (pair.restitution > 0.0) {
         // A collision (contact_restitution.h): the push's impulse λ_n / h is replaced by the
         // collision's, which passes an impact on through touching bodies in any order.
         change = (c.restitutionImpulse - c.lambdaNormal / h) *

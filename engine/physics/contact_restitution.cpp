@@ -26,21 +26,12 @@ double approach(const BodyVelocity& u0, const BodyVelocity& u1, const Vec3& r0, 
     return -((u0.v + u0.omega.cross(r0)) - (u1.v + u1.omega.cross(r1))).dot(n);
 }
 
-/// Whether any contact that pushed in a pair with restitution approaches faster than resting.
-bool anyCollision(std::span<const ContactPair> pairs, std::span<const Contact> contacts,
-                  const Body* bodies, double resting) {
+/// Whether any contact pushed in a pair with restitution this substep.
+bool anyPush(std::span<const ContactPair> pairs, std::span<const Contact> contacts) {
     for (const ContactPair& pair : pairs) {
         if (pair.count == 0 || !(pair.restitution > 0.0)) continue;
-        const Body& b0 = bodies[pair.body0];
-        const Body& b1 = bodies[pair.body1];
-        const BodyVelocity u0 = velocityBefore(b0);
-        const BodyVelocity u1 = velocityBefore(b1);
-        for (uint32_t i = pair.first; i < pair.first + pair.count; ++i) {
-            const Contact& c = contacts[i];
-            if (c.lambdaNormal > 0.0 &&
-                approach(u0, u1, b0.q * c.local0, b1.q * c.local1, c.normal) > resting)
-                return true;
-        }
+        for (uint32_t i = pair.first; i < pair.first + pair.count; ++i)
+            if (contacts[i].lambdaNormal > 0.0) return true;
     }
     return false;
 }
@@ -52,7 +43,7 @@ void findRestitutionImpulses(std::span<const ContactPair> pairs, std::span<Conta
                              std::vector<BodyVelocity>& scratch) {
     // The paper's jitter guard (Eq. 34's e = 0 below 2 |g| h), and a floor without gravity.
     const double resting = std::max(2.0 * gravity * h, kRestingApproach);
-    if (!anyCollision(pairs, contacts, bodies, resting)) return;
+    if (!anyPush(pairs, contacts)) return;
     scratch.resize(bodyCount);
     for (const ContactPair& pair : pairs) {
         if (pair.count == 0) continue;
@@ -73,13 +64,15 @@ void findRestitutionImpulses(std::span<const ContactPair> pairs, std::span<Conta
                 const Vec3 r0 = b0.q * c.local0;
                 const Vec3 r1 = b1.q * c.local1;
                 const double speed = approach(u0, u1, r0, r1, c.normal);
-                if (!(speed > resting)) continue;
+                if (!(speed > kRestingApproach)) continue;
+                // Resting contacts (at most 2 |g| h, the paper's jitter guard) stop, not bounce.
+                const double e = speed > resting ? pair.restitution : 0.0;
                 // Eq. 2 and Eq. 3: w = w0 + w1 along the normal; the two-body collision
                 // impulse (1 + e) a / w, applied as Eq. 33 applies a velocity change.
-                const double w = b0.positionalInverseMass(r0, c.normal) +
-                                 b1.positionalInverseMass(r1, c.normal);
+                const double w =
+                    b0.positionalInverseMass(r0, c.normal) + b1.positionalInverseMass(r1, c.normal);
                 if (!(w > 0.0)) continue;
-                const double impulse = (1.0 + pair.restitution) * speed / w;
+                const double impulse = (1.0 + e) * speed / w;
                 const Vec3 p = impulse * c.normal;
                 if (b0.invMass > 0.0) {
                     u0.v += p * b0.invMass;

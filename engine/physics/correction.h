@@ -114,8 +114,8 @@ Vec3 applyAttachmentCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1,
 /// with uneven inertia by I⁻¹ n θ / (nᵀ I⁻¹ n), which is not θ n: the error along n goes, one
 /// across it appears, and the next correction swings back (a bar held by a prismatic lock read
 /// 1.9 times its static torque and never came to rest). With `freeAxis` only the two directions
-/// normal to it are constrained (a hinge's axis alignment). Returns the angular impulse given
-/// to body 0.
+/// normal to it are constrained (a hinge's axis alignment). K is taken on the orientations
+/// directionOrientation names. Returns the angular impulse given to body 0.
 Vec3 applyRotationCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, const Vec3& rotation,
                              double compliance, Vec3& lambda, const Vec3* freeAxis = nullptr);
 

@@ -202,7 +202,19 @@ TEST(SceneLoader, TopLevelKeysAreListedInOrder) {
     // The world settings, then the section readers' keys in their table's order.
     EXPECT_TRUE(failsAt(scene(R"("zzz": 1)"), "zzz",
                         "unknown key (expected substep_scene, name, description, gravity, dt, "
-                        "substeps, iterations, bodies, joints, soft_bodies or camera)"));
+                        "substeps, iterations, joint_projection, bodies, joints, soft_bodies or "
+                        "camera)"));
+}
+
+TEST(SceneLoader, JointProjectionIsPaperOrStart) {
+    EXPECT_EQ(parseSceneText(scene(""), "s.json").jointProjection, JointProjection::Paper);
+    EXPECT_EQ(parseSceneText(scene(R"("joint_projection": "start")"), "s.json").jointProjection,
+              JointProjection::Start);
+    EXPECT_EQ(parseSceneText(scene(R"("joint_projection": "paper")"), "s.json").jointProjection,
+              JointProjection::Paper);
+    EXPECT_TRUE(failsAt(scene(R"("joint_projection": "Start")"), "joint_projection",
+                        "expected \"paper\" or \"start\", got \"Start\""));
+    EXPECT_TRUE(failsAt(scene(R"("joint_projection": 1)"), "joint_projection", "must be a string, got 1"));
 }
 
 TEST(SceneLoader, SectionsAreReadInTheirOrderNotTheFiles) {
