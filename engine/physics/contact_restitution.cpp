@@ -2,13 +2,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 namespace substep {
 namespace {
 
 /// Sweeps at most: a row of n touching bodies needs about n (one per collision down the row,
 /// fewer when listed in the row's order); a heavy striker's follow-up collisions a few more.
-constexpr int kMaxSweeps = 64;
+/// Sweeps go on only while some contact collides; resting contacts (a pile under gravity) take
+/// part in the first sweep only, so a pile at rest costs one sweep.
+constexpr int kMaxSweeps = 8;
 /// Approach speeds at or below this count as resting when there is no gravity (m/s).
 constexpr double kRestingApproach = 1e-9;
 
@@ -45,15 +48,35 @@ void findRestitutionImpulses(std::span<const ContactPair> pairs, std::span<Conta
     const double resting = std::max(2.0 * gravity * h, kRestingApproach);
     if (!anyPush(pairs, contacts)) return;
     scratch.resize(bodyCount);
+    // The sweep in which each body's velocity last changed: after the first sweep, a pair whose
+    // bodies both kept their velocities through the last sweep has nothing new to resolve, so a
+    // collision's later sweeps visit only the bodies it reached. Kept across calls (no
+    // allocation once grown), per thread so that worlds on different threads do not share it.
+    static thread_local std::vector<int> changedIn;
+    changedIn.assign(bodyCount, -2);
     for (const ContactPair& pair : pairs) {
         if (pair.count == 0) continue;
         scratch[pair.body0] = velocityBefore(bodies[pair.body0]);
         scratch[pair.body1] = velocityBefore(bodies[pair.body1]);
     }
+    // The pairs the sweeps visit: those with restitution whose contacts pushed.
+    static thread_local std::vector<uint32_t> pushing;
+    pushing.clear();
+    for (uint32_t k = 0; k < pairs.size(); ++k) {
+        const ContactPair& pair = pairs[k];
+        if (pair.count == 0 || !(pair.restitution > 0.0)) continue;
+        for (uint32_t i = pair.first; i < pair.first + pair.count; ++i)
+            if (contacts[i].lambdaNormal > 0.0) {
+                pushing.push_back(k);
+                break;
+            }
+    }
     for (int sweep = 0; sweep < kMaxSweeps; ++sweep) {
         bool collided = false;
-        for (const ContactPair& pair : pairs) {
-            if (pair.count == 0 || !(pair.restitution > 0.0)) continue;
+        for (const uint32_t k : pushing) {
+            const ContactPair& pair = pairs[k];
+            if (sweep > 0 && changedIn[pair.body0] < sweep - 1 && changedIn[pair.body1] < sweep - 1)
+                continue;
             const Body& b0 = bodies[pair.body0];
             const Body& b1 = bodies[pair.body1];
             BodyVelocity& u0 = scratch[pair.body0];
@@ -65,8 +88,12 @@ void findRestitutionImpulses(std::span<const ContactPair> pairs, std::span<Conta
                 const Vec3 r1 = b1.q * c.local1;
                 const double speed = approach(u0, u1, r0, r1, c.normal);
                 if (!(speed > kRestingApproach)) continue;
-                // Resting contacts (at most 2 |g| h, the paper's jitter guard) stop, not bounce.
-                const double e = speed > resting ? pair.restitution : 0.0;
+                // Resting contacts (at most 2 |g| h, the paper's jitter guard) stop, not bounce,
+                // and only in the first sweep, as Eq. 34's one pass stops them: a pile at rest
+                // never settles to the last digit, and would keep every sweep busy.
+                const bool colliding = speed > resting;
+                if (!colliding && sweep > 0) continue;
+                const double e = colliding ? pair.restitution : 0.0;
                 // Eq. 2 and Eq. 3: w = w0 + w1 along the normal; the two-body collision
                 // impulse (1 + e) a / w, applied as Eq. 33 applies a velocity change.
                 const double w =
@@ -83,7 +110,8 @@ void findRestitutionImpulses(std::span<const ContactPair> pairs, std::span<Conta
                     if (b1.rotates()) u1.omega -= b1.applyInverseInertia(r1.cross(p));
                 }
                 c.restitutionImpulse += impulse;
-                collided = true;
+                if (colliding) changedIn[pair.body0] = changedIn[pair.body1] = sweep;
+                collided = collided || colliding;
             }
         }
         if (!collided) break;
