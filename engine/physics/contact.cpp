@@ -336,16 +336,18 @@ void solveSinglePointVelocities(const ContactPair& pair, const Contact& c, Body&
     const Vec3 r1 = b1.q * c.local1;
     const Vec3 v = pointVelocity(b0.v, b0.omega, r0) - pointVelocity(b1.v, b1.omega, r1);  // Eq. 29
     const double vn = v.dot(n);                                                               // Eq. 29
+    // v̄_n: Eq. 29 on the velocities before this substep's derivation (paper before Eq. 34).
+    const double vnBefore =
+        (pointVelocity(b0.vPrev, b0.omegaPrev, r0) - pointVelocity(b1.vPrev, b1.omegaPrev, r1)).dot(n);
     double change = 0.0;
-    if (pair.restitution > 0.0) {
-        // A collision (contact_restitution.h): the push's impulse λ_n / h is replaced by the
-        // collision's, which passes an impact on through touching bodies in any order.
+    if (c.restitutionImpulse > 0.0 || (pair.restitution > 0.0 && !(-vnBefore > kRestingSpeed))) {
+        // A collision (contact_restitution.h), or a push without approach (another contact's
+        // push carried through, or the overlap it left): the push's impulse λ_n / h is
+        // replaced by the collision's (none), so an impact passes through touching bodies in
+        // any order.
         change = (c.restitutionImpulse - c.lambdaNormal / h) *
                  (b0.positionalInverseMass(r0, n) + b1.positionalInverseMass(r1, n));
     } else {
-        // v̄_n: Eq. 29 on the velocities before this substep's derivation (paper before Eq. 34).
-        const double vnBefore =
-            (pointVelocity(b0.vPrev, b0.omegaPrev, r0) - pointVelocity(b1.vPrev, b1.omegaPrev, r1)).dot(n);
         const double e = std::abs(vnBefore) <= 2.0 * gravity * h ? 0.0 : pair.restitution;
         change = std::max(-e * vnBefore, 0.0) - vn;  // Eq. 34
     }

@@ -9,8 +9,7 @@ namespace {
 
 /// Sweeps at most: a row of n touching bodies needs about n (one per collision down the row,
 /// fewer when listed in the row's order); a heavy striker's follow-up collisions a few more.
-/// Sweeps go on only while some contact collides; resting contacts (a pile under gravity) take
-/// part in the first sweep only, so a pile at rest costs one sweep.
+/// Only colliding contacts take part: a pile at rest costs one look at its contacts.
 constexpr int kMaxSweeps = 8;
 /// Approach speeds at or below this count as resting when there is no gravity (m/s).
 constexpr double kRestingApproach = 1e-9;
@@ -87,13 +86,9 @@ void findRestitutionImpulses(std::span<const ContactPair> pairs, std::span<Conta
                 const Vec3 r0 = b0.q * c.local0;
                 const Vec3 r1 = b1.q * c.local1;
                 const double speed = approach(u0, u1, r0, r1, c.normal);
-                if (!(speed > kRestingApproach)) continue;
-                // Resting contacts (at most 2 |g| h, the paper's jitter guard) stop, not bounce,
-                // and only in the first sweep, as Eq. 34's one pass stops them: a pile at rest
-                // never settles to the last digit, and would keep every sweep busy.
-                const bool colliding = speed > resting;
-                if (!colliding && sweep > 0) continue;
-                const double e = colliding ? pair.restitution : 0.0;
+                // Resting contacts (at most 2 |g| h, the paper's jitter guard) keep Eq. 34.
+                if (!(speed > resting)) continue;
+                const double e = pair.restitution;
                 // Eq. 2 and Eq. 3: w = w0 + w1 along the normal; the two-body collision
                 // impulse (1 + e) a / w, applied as Eq. 33 applies a velocity change.
                 const double w =
@@ -110,8 +105,8 @@ void findRestitutionImpulses(std::span<const ContactPair> pairs, std::span<Conta
                     if (b1.rotates()) u1.omega -= b1.applyInverseInertia(r1.cross(p));
                 }
                 c.restitutionImpulse += impulse;
-                if (colliding) changedIn[pair.body0] = changedIn[pair.body1] = sweep;
-                collided = collided || colliding;
+                changedIn[pair.body0] = changedIn[pair.body1] = sweep;
+                collided = true;
             }
         }
         if (!collided) break;

@@ -12,13 +12,14 @@
 ///
 /// Here the collisions themselves are resolved before the velocity pass, on the velocities the
 /// bodies had before the substep's derivation (Body::vPrev, omegaPrev): sweeps over the
-/// contacts that pushed, each approaching contact taking the two-body impulse (1 + e) a / w
-/// (a its approach, w = w0 + w1, Eq. 2 and Eq. 3; e = 0 for a resting approach of at most
-/// 2 |g| h, the paper's jitter guard), until none approaches. That is the sequential model of
-/// colliding bodies, a chain of two-body collisions, the same for any order of the list. The
-/// velocity pass then replaces the impulse a one-point contact's push gave (λ_n / h) by this
-/// collision impulse: for a contact alone that is exactly Eq. 34's −e v̄_n; a resting contact's
-/// push-out speed is removed as Eq. 34 removes it. Patches of several points keep Eq. 34.
+/// contacts that pushed, each contact approaching faster than resting (2 |g| h, the paper's
+/// jitter guard) taking the two-body impulse (1 + e) a / w (a its approach, w = w0 + w1, Eq. 2
+/// and Eq. 3), until none approaches. That is the sequential model of colliding bodies, a chain
+/// of two-body collisions, the same for any order of the list. In the velocity pass a one-point
+/// contact that collided, or that pushed without approaching (a push carried through from
+/// another contact, or the overlap it left), has its push's impulse λ_n / h replaced by its
+/// collision impulse (none for the latter): for a contact alone that is exactly Eq. 34's
+/// −e v̄_n. Resting contacts and patches of several points keep Eq. 34.
 ///
 /// Collisions closer in time than a substep are taken in the order the sweeps meet them, not in
 /// time order (a striker into spheres 1 mm apart at 1 m/s and 20 substeps: the closed form
@@ -40,8 +41,8 @@ struct BodyVelocity {
 };
 
 /// Sets Contact::restitutionImpulse of every contact that pushed this substep (λ_n > 0) in a
-/// pair with restitution: the sum of the impulses it took in the sweeps (0 if it took none).
-/// Does nothing (and touches no memory) when no such contact pushed. `scratch` is reused.
+/// pair with restitution: the sum of the collision impulses it took in the sweeps (0 if none).
+/// Does nothing when no such contact pushed. `scratch` is reused across calls.
 void findRestitutionImpulses(std::span<const ContactPair> pairs, std::span<Contact> contacts,
                              const Body* bodies, size_t bodyCount, double h, double gravity,
                              std::vector<BodyVelocity>& scratch);
