@@ -1,5 +1,7 @@
 #include "command_options.h"
 
+#include "physics/joint_projection.h"
+
 #include <charconv>
 #include <cmath>
 #include <csignal>
@@ -104,6 +106,11 @@ InterruptGuard::InterruptGuard() {
 InterruptGuard::~InterruptGuard() {
     std::signal(SIGINT, previousInt_);
     std::signal(SIGTERM, previousTerm_);
+}
+
+JointProjection parseJointProjection(const char* option, const std::string& text) {
+    if (const auto projection = jointProjectionFromName(text)) return *projection;
+    throw UsageError(std::string(option) + ": expected paper or start, got '" + text + "'");
 }
 
 }  // namespace substep

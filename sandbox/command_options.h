@@ -4,6 +4,8 @@
 /// option, and the Ctrl-C/SIGTERM guard that lets a long loop stop cleanly so its temporary
 /// outputs (AtomicFile) are removed.
 
+#include "physics/correction.h"
+
 #include <functional>
 #include <stdexcept>
 #include <string>
@@ -41,6 +43,9 @@ inline constexpr long long kMaxThreads = 64;
 /// `--threads N` (run, bench, sweep; DESIGN.md): 1 when `text` is empty, else a whole number in
 /// [1, kMaxThreads]. Throws UsageError naming --threads otherwise.
 int parseThreads(const std::string& text);
+/// `text` as a joint projection ("paper" or "start", WorldSettings::jointProjection). Throws
+/// UsageError naming `option` otherwise.
+JointProjection parseJointProjection(const char* option, const std::string& text);
 
 /// round(seconds / dt) frames, the simulated time T as frames (DESIGN.md). Throws UsageError
 /// naming --seconds when that is more than `maxFrames`.

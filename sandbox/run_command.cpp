@@ -28,6 +28,7 @@ struct RunSettings {
     std::optional<int> substeps;
     std::optional<int> iterations;
     std::optional<double> dt;
+    std::optional<JointProjection> jointProjection;
 };
 
 RunSettings checkOptions(const RunOptions& options) {
@@ -49,6 +50,9 @@ RunSettings checkOptions(const RunOptions& options) {
             static_cast<int>(parseInteger("--iterations", options.iterations, 1, kMaxIterations));
     }
     if (!options.dt.empty()) settings.dt = parsePositiveReal("--dt", options.dt);
+    if (!options.jointProjection.empty())
+        settings.jointProjection =
+            parseJointProjection("--joint-projection", options.jointProjection);
     return settings;
 }
 
@@ -117,6 +121,7 @@ int run(const RunOptions& options) {
     if (settings.substeps) description.substeps = *settings.substeps;
     if (settings.iterations) description.iterations = *settings.iterations;
     if (settings.dt) description.dt = *settings.dt;
+    if (settings.jointProjection) description.jointProjection = *settings.jointProjection;
     const double dt = description.dt;
     const long long frames = frameCount(settings, dt);
     LiveScene live = startLabelledScene(source, description);
@@ -129,6 +134,7 @@ int run(const RunOptions& options) {
     if (settings.substeps) solver.substeps = *settings.substeps;
     if (settings.iterations) solver.iterations = *settings.iterations;
     solver.threads = threads;
+    if (settings.jointProjection) solver.jointProjection = *settings.jointProjection;
     physics.setSettings(solver);
 
     std::unique_ptr<AtomicFile> csvFile;
@@ -218,6 +224,9 @@ CLI::App* addRunCommand(CLI::App& app, RunOptions& options) {
     command->add_option("--json", options.jsonPath, "Write the summary as JSON")->type_name("F");
     command->add_option("--threads", options.threads, "Threads the step uses (default 1; 1-64)")
         ->type_name("N");
+    command->add_option("--joint-projection", options.jointProjection,
+                        "Joint directions: paper (current state) or start (substep start)")
+        ->type_name("paper|start");
     return command;
 }
 

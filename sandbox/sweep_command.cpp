@@ -192,7 +192,7 @@ struct Interrupted {
 
 SplitResult runSplit(const SceneSource& source, const SceneEntry* entry, const Split& split,
                      long long frames, int threads, Progress& progress) {
-    SceneDescription description = source.description;
+    SceneDescription description = source.description;  // --joint-projection already applied
     description.substeps = split.substeps;
     description.iterations = split.iterations;
     LiveScene live = startLabelledScene(source, description);
@@ -377,7 +377,12 @@ int sweep(const SweepOptions& options) {
     const int threads = parseThreads(options.threads);
     const double seconds =
         options.seconds.empty() ? kDefaultSeconds : parsePositiveReal("--seconds", options.seconds);
-    const SceneSource source = resolveScene(options.scene);
+    const std::optional<JointProjection> projection =
+        options.jointProjection.empty()
+            ? std::nullopt
+            : std::optional(parseJointProjection("--joint-projection", options.jointProjection));
+    SceneSource source = resolveScene(options.scene);
+    if (projection) source.description.jointProjection = *projection;
     const SceneEntry* entry = source.builtin ? findBuiltinScene(source.label) : nullptr;
     const double dt = source.description.dt;
     const long long frames = framesForSeconds(seconds, dt, kMaxFrames);
@@ -488,6 +493,9 @@ CLI::App* addSweepCommand(CLI::App& app, SweepOptions& options) {
         ->type_name("F.png");
     command->add_option("--threads", options.threads, "Threads the step uses (default 1; 1-64)")
         ->type_name("N");
+    command->add_option("--joint-projection", options.jointProjection,
+                        "Joint directions: paper (current state) or start (substep start)")
+        ->type_name("paper|start");
     command->footer(
         "Every split substeps x iterations = B runs from a fresh build of the scene. ms/frame is "
         "the median over frames of the time inside world.step. Plots need /usr/bin/python3 "

@@ -339,8 +339,18 @@ void solveSinglePointVelocities(const ContactPair& pair, const Contact& c, Body&
     // v̄_n: Eq. 29 on the velocities before this substep's derivation (paper before Eq. 34).
     const double vnBefore =
         (pointVelocity(b0.vPrev, b0.omegaPrev, r0) - pointVelocity(b1.vPrev, b1.omegaPrev, r1)).dot(n);
-    const double e = std::abs(vnBefore) <= 2.0 * gravity * h ? 0.0 : pair.restitution;
-    const double change = std::max(-e * vnBefore, 0.0) - vn;  // Eq. 34
+    double change = 0.0;
+    if (c.restitutionImpulse > 0.0 || (pair.restitution > 0.0 && !(-vnBefore > kRestingSpeed))) {
+        // A collision (contact_restitution.h), or a push without approach (another contact's
+        // push carried through, or the overlap it left): the push's impulse λ_n / h is
+        // replaced by the collision's (none), so an impact passes through touching bodies in
+        // any order.
+        change = (c.restitutionImpulse - c.lambdaNormal / h) *
+                 (b0.positionalInverseMass(r0, n) + b1.positionalInverseMass(r1, n));
+    } else {
+        const double e = std::abs(vnBefore) <= 2.0 * gravity * h ? 0.0 : pair.restitution;
+        change = std::max(-e * vnBefore, 0.0) - vn;  // Eq. 34
+    }
     if (std::abs(change) > kRestingSpeed) applyVelocityCorrection(b0, b1, change * n, r0, r1);  // Eq. 33
     if (!(pair.dynamicFriction > 0.0)) return;
     const Vec3 vAfter = pointVelocity(b0.v, b0.omega, r0) - pointVelocity(b1.v, b1.omega, r1);

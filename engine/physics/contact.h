@@ -45,6 +45,10 @@ struct Contact {
     Vec3 normal = Vec3::UnitY(); ///< world, from body 1 towards body 0
     double lambdaNormal = 0.0;   ///< this substep's normal multiplier
     uint32_t feature = 0;        ///< the narrowphase's feature id
+    /// The collision impulse (N s, along the normal, on body 0) this point took in the
+    /// substep's restitution sweeps (contact_restitution.h); a one-point pair's velocity pass
+    /// gives it in place of its push's λ_n / h.
+    double restitutionImpulse = 0.0;
 };
 
 /// A pair of bodies that may touch this frame (from the broadphase), with its averaged surface
@@ -83,7 +87,9 @@ double contactDepth(const Contact& contact, const Body& b0, const Body& b1);
 void solveContactPositions(ContactPair& pair, std::span<Contact> contacts, SolverContext& ctx);
 
 /// Velocity pass of one pair (paper 3.6, Eqs. 29-34): restitution e v̄_n (e = 0 below
-/// 2|g|h, the jitter guard) replaces the normal velocity PBD derived, and dynamic friction
+/// 2|g|h, the jitter guard) replaces the normal velocity PBD derived (a one-point pair that
+/// collided or pushed without approaching: contact_restitution.h's impulse replaces the
+/// push's), and dynamic friction
 /// removes slip with an impulse of at most h μ_d |f_n| (Eq. 30 with ERRATA item 2's units).
 /// Only points that pushed this substep (λ_n > 0) take part.
 void solveContactVelocities(const ContactPair& pair, std::span<const Contact> contacts,

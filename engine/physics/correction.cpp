@@ -63,10 +63,10 @@ inline void moveBody(SolverContext& ctx, uint32_t index, const Vec3& dx, const V
     if (body.rotates()) integrateRotation(body.q, dtheta);
 }
 
-/// World inverse inertia R diag(I⁻¹) Rᵀ (zero for bodies that do not rotate).
-inline Mat3 worldInverseInertia(const Body& body) {
+/// World inverse inertia R diag(I⁻¹) Rᵀ at `orientation` (zero for bodies that do not rotate).
+inline Mat3 worldInverseInertia(const Body& body, const Quat& orientation) {
     if (!body.rotates() || body.invMass == 0.0) return Mat3::Zero();
-    const Mat3 r = body.q.toRotationMatrix();
+    const Mat3 r = orientation.toRotationMatrix();
     return r * body.invInertia.asDiagonal() * r.transpose();
 }
 
@@ -106,8 +106,8 @@ void applyWeldCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, const Vec
         return;
     const Body& b0 = ctx.bodies[i0];
     const Body& b1 = ctx.bodies[i1];
-    const Mat3 invInertia0 = worldInverseInertia(b0);
-    const Mat3 invInertia1 = worldInverseInertia(b1);
+    const Mat3 invInertia0 = worldInverseInertia(b0, directionOrientation(ctx, b0));
+    const Mat3 invInertia1 = worldInverseInertia(b1, directionOrientation(ctx, b1));
     const Mat3 cross0 = crossMatrix(r0);
     const Mat3 cross1 = crossMatrix(r1);
     // K for an impulse P at the anchors and an angular impulse L: the gap closes by
@@ -268,14 +268,24 @@ Vec3 applyPointCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, const Ve
 Vec3 applyAttachmentCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1,
                                const Vec3& anchor0, const Vec3& anchor1, double compliance,
                                Vec3& lambda) {
-    // One rotation matrix per body serves both the anchors and the inverse mass.
     const Body& b0 = ctx.bodies[i0];
     const Body& b1 = ctx.bodies[i1];
+    if (ctx.projection == JointProjection::Start) {
+        // The violation on the current poses, the Jacobian (lever arms, inverse inertias) on the
+        // substep's start: the SHAKE form, which keeps a pendulum's energy.
+        const Vec3 delta = (b1.x + b1.q * anchor1) - (b0.x + b0.q * anchor0);
+        const Mat3 start0 = directionOrientation(ctx, b0).toRotationMatrix();
+        const Mat3 start1 = directionOrientation(ctx, b1).toRotationMatrix();
+        return solvePoint(ctx, i0, i1, delta, PointResponse(b0, start0, start0 * anchor0),
+                          PointResponse(b1, start1, start1 * anchor1), compliance, lambda);
+    }
+    // One rotation matrix per body serves both the anchors and the inverse mass.
     const Mat3 rotation0 = b0.q.toRotationMatrix();
     const Mat3 rotation1 = b1.q.toRotationMatrix();
     const Vec3 r0 = rotation0 * anchor0;
     const Vec3 r1 = rotation1 * anchor1;
-    return solvePoint(ctx, i0, i1, (b1.x + r1) - (b0.x + r0), PointResponse(b0, rotation0, r0),
+    const Vec3 delta = (b1.x + r1) - (b0.x + r0);
+    return solvePoint(ctx, i0, i1, delta, PointResponse(b0, rotation0, r0),
                       PointResponse(b1, rotation1, r1), compliance, lambda);
 }
 
@@ -287,8 +297,10 @@ Vec3 applyRotationCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, const
     const Body& b1 = ctx.bodies[i1];
     // K = I0⁻¹ + I1⁻¹ in world coordinates, each Σ d_k e_k e_kᵀ over the principal axes
     // (nᵀ K n is Eq. 11 plus Eq. 12).
-    const PointResponse s0(b0, Vec3::Zero(), /*angular=*/true);
-    const PointResponse s1(b1, Vec3::Zero(), /*angular=*/true);
+    const PointResponse s0(b0, directionOrientation(ctx, b0).toRotationMatrix(), Vec3::Zero(),
+                           /*angular=*/true);
+    const PointResponse s1(b1, directionOrientation(ctx, b1).toRotationMatrix(), Vec3::Zero(),
+                           /*angular=*/true);
     const double alphaTilde = compliance * ctx.invH2;
     Symmetric3 k{.xx = alphaTilde, .yy = alphaTilde, .zz = alphaTilde};
     s0.addTo(k);

@@ -18,6 +18,19 @@ enum class SolverType : uint8_t {
     Jacobi,       ///< corrections of one iteration are gathered and applied together, summed
 };
 
+/// Where a joint correction takes its directions (the Jacobian: lever arms, axes, the inverse
+/// inertia in world coordinates) from. The violation is always measured on the current state.
+enum class JointProjection : uint8_t {
+    /// The paper's form (3.3): directions on the current, predicted state. Like implicit Euler
+    /// it removes energy in proportion to the substep (pendulum3 at 40 substeps: 0.68 m g L in
+    /// 10 s).
+    Paper,
+    /// Directions on the substep's start poses (Body::xPrev, qPrev), the SHAKE/RATTLE form,
+    /// which is symplectic for holonomic constraints: pendulum3 at 40 substeps keeps its energy
+    /// to 1e-4 m g L (docs/fidelity/README.md). Contacts keep the current normals.
+    Start,
+};
+
 /// Corrections gathered for one body during a Jacobi iteration.
 struct JacobiDelta {
     Vec3 position = Vec3::Zero();
@@ -43,7 +56,18 @@ struct SolverContext {
     /// Contacts push out overlaps their bodies' approach does not explain at a capped speed
     /// (contact.cpp, pushOut); false pushes them out whole, as plain PBD does.
     bool capPushOut = true;
+    /// Directions of the block joint corrections (attachments, orientation locks and axis
+    /// alignments, welds); the scalar ones (limits, drives, distances) keep the paper's.
+    JointProjection projection = JointProjection::Paper;
 };
+
+/// The orientation a joint correction takes its directions from: the substep's start (qPrev) for
+/// a dynamic body under JointProjection::Start, the current one otherwise (static bodies do not
+/// keep a start pose).
+inline const Quat& directionOrientation(const SolverContext& ctx, const Body& body) {
+    return ctx.projection == JointProjection::Start && body.rotates() && body.invMass > 0.0 ? body.qPrev
+                                                                                             : body.q;
+}
 
 /// Eqs. 2-9: moves the point at world offset r0 of body i0 by `delta` relative to the point at
 /// offset r1 of body i1 (|delta| is the constraint value c, its direction n), sharing the
@@ -71,13 +95,16 @@ Vec3 applyPointCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, const Ve
 /// inverse mass. Solved one after the other, the two parts fight over the body's rotation (the
 /// attachment turns the body about its centre, the lock turns it back and reopens the gap), and
 /// a cantilever with one iteration sags four times more and reports twice its torque.
-/// Adds the impulses given to body 0 to `impulse` and `angularImpulse`.
+/// r0 and r1 are the lever arms the correction acts through (on the poses directionOrientation
+/// names); `delta` is measured on the current state. Adds the impulses given to body 0 to
+/// `impulse` and `angularImpulse`.
 void applyWeldCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, const Vec3& delta,
                          const Vec3& r0, const Vec3& r1, const Vec3& rotation, double compliance,
                          Vec3& lambdaPoint, Vec3& lambdaAngle, Vec3& impulse, Vec3& angularImpulse);
 
 /// applyPointCorrection for a joint's attachment: anchors in the bodies' principal frames,
-/// delta = p1 − p0 computed here.
+/// delta = p1 − p0 computed here on the current state, the lever arms and inverse inertias on
+/// the poses directionOrientation names.
 Vec3 applyAttachmentCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1,
                                const Vec3& anchor0, const Vec3& anchor1, double compliance,
                                Vec3& lambda);
@@ -87,8 +114,8 @@ Vec3 applyAttachmentCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1,
 /// with uneven inertia by I⁻¹ n θ / (nᵀ I⁻¹ n), which is not θ n: the error along n goes, one
 /// across it appears, and the next correction swings back (a bar held by a prismatic lock read
 /// 1.9 times its static torque and never came to rest). With `freeAxis` only the two directions
-/// normal to it are constrained (a hinge's axis alignment). Returns the angular impulse given
-/// to body 0.
+/// normal to it are constrained (a hinge's axis alignment). K is taken on the orientations
+/// directionOrientation names. Returns the angular impulse given to body 0.
 Vec3 applyRotationCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, const Vec3& rotation,
                              double compliance, Vec3& lambda, const Vec3* freeAxis = nullptr);
 

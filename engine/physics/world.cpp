@@ -495,7 +495,8 @@ void World::solvePositions(double h) {
                       .invH2 = 1.0 / (h * h),
                       .solver = settings_.solver,
                       .deltas = jacobiDeltas_.data(),
-                      .capPushOut = settings_.velocityPass};
+                      .capPushOut = settings_.velocityPass,
+                      .projection = settings_.jointProjection};
     // Joints first, contacts last: a substep ends with the hard inequalities met.
     for (Joint& joint : joints_)
         if (joint.alive && !sleeps(joint)) solveJointPositions(joint, ctx);
@@ -530,6 +531,10 @@ void World::solveVelocities(double h) {
         for (const Joint& joint : joints_)
             if (joint.alive && !sleeps(joint)) solveJointVelocities(joint, bodies_.data(), h);
     const double gravity = settings_.gravity.norm();
+    // Collisions first, on the velocities before the derivation, so that an impact passes
+    // through touching bodies whatever their order (contact_restitution.h).
+    findRestitutionImpulses(contactPairs_, contacts_, bodies_.data(), bodies_.size(), h, gravity,
+                            restitutionVelocities_);
     for (const ContactPair& pair : contactPairs_)
         if (pair.count > 0)
             solveContactVelocities(pair, std::span(contacts_).subspan(pair.first, pair.count),

@@ -6,6 +6,7 @@
 #include "physics/body.h"
 #include "physics/collision/broadphase.h"
 #include "physics/contact.h"
+#include "physics/contact_restitution.h"
 #include "physics/correction.h"
 #include "physics/handles.h"
 #include "physics/joints/joint.h"
@@ -59,6 +60,9 @@ struct WorldSettings {
     /// work items are independent run in parallel (the narrowphase's pairs), each item written
     /// to its own slot and merged in order, so every thread count gives the same bytes.
     int threads = 1;
+    /// Where joint corrections take their directions from (correction.h): the paper's current
+    /// state, or the substep's start, which keeps the energy of jointed bodies.
+    JointProjection jointProjection = JointProjection::Paper;
 };
 
 /// Where the last step's time went (ms), when WorldSettings::measureTime is on.
@@ -211,6 +215,7 @@ private:
     std::vector<double> reaches_;  ///< per body: its shape's reach (0: in no pair this frame)
     std::vector<Pose> poses_;      ///< per body: its shape's pose this substep
     std::vector<Contact> contacts_;
+    std::vector<BodyVelocity> restitutionVelocities_;  ///< scratch of the restitution sweeps
     /// Body pairs joined by a joint that does not let them collide, sorted; rebuilt when the
     /// joints change.
     std::vector<BodyPair> jointExclusions_;

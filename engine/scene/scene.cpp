@@ -42,7 +42,8 @@ SceneInstance buildScene(const SceneDescription& description) {
     SceneInstance instance(World(WorldSettings{.gravity = description.gravity,
                                                .substeps = description.substeps,
                                                .iterations = description.iterations,
-                                               .sleeping = description.sleeping}));
+                                               .sleeping = description.sleeping,
+                                               .jointProjection = description.jointProjection}));
     ecs::Registry& registry = instance.registry;
 
     // One entity per body, in order; named ones are remembered for joints.

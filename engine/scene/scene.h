@@ -55,6 +55,8 @@ struct SceneDescription {
     int substeps = 20;
     int iterations = 1;
     bool sleeping = false;  ///< islands at rest stop being simulated (WorldSettings::sleeping)
+    /// WorldSettings::jointProjection (the file's `joint_projection`).
+    JointProjection jointProjection = WorldSettings{}.jointProjection;
     std::vector<SceneBody> bodies;
     std::vector<SceneJoint> joints;
     std::vector<SceneSoftBody> softBodies;

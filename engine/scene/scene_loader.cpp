@@ -14,6 +14,8 @@
 
 #include "scene/scene_loader.h"
 
+#include "physics/joint_projection.h"
+
 #include "scene/scene_loader_json.h"
 #include "scene/scene_loader_sections.h"
 #include "scene/scene_loader_validator.h"
@@ -25,6 +27,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -67,7 +70,8 @@ SceneDescription readScene(const Validator& v, const Json& root) {
                                   : "must be 1, got " + describe(version->value));
     }
     std::vector<std::string> allowed = {
-        "substep_scene", "name", "description", "gravity", "dt", "substeps", "iterations", "sleeping"};
+        "substep_scene", "name", "description", "gravity", "dt", "substeps", "iterations", "sleeping",
+        "joint_projection"};
     for (const SceneSection& section : kSceneSections)
         allowed.emplace_back(section.key);
     top.allowOnly(allowed);
@@ -82,6 +86,13 @@ SceneDescription readScene(const Validator& v, const Json& root) {
     if (auto s = top.get("substeps")) scene.substeps = v.integer(*s, 1, kMaxSubsteps);
     if (auto i = top.get("iterations")) scene.iterations = v.integer(*i, 1, kMaxIterations);
     if (auto s = top.get("sleeping")) scene.sleeping = v.boolean(*s);
+    // Extension: where joint corrections take their directions from (WorldSettings).
+    if (auto p = top.get("joint_projection")) {
+        const std::string name = v.string(*p);
+        const std::optional<JointProjection> projection = jointProjectionFromName(name);
+        if (!projection) v.fail(p->path, "expected \"paper\" or \"start\", got \"" + name + "\"");
+        scene.jointProjection = *projection;
+    }
 
     SceneReading reading{v, scene, {}, {}};
     for (const SceneSection& section : kSceneSections) {

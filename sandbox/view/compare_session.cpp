@@ -1,5 +1,7 @@
 #include "view/compare_session.h"
 
+#include "physics/joint_projection.h"
+
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -24,14 +26,20 @@ std::optional<int> parseCount(std::string_view text) {
     return value;
 }
 
-/// "SUBSTEPSxITERATIONS".
+/// "SUBSTEPSxITERATIONS" with an optional ":paper" or ":start".
 std::optional<SolverSplit> parseSplit(std::string_view text) {
+    std::optional<JointProjection> projection;
+    if (const std::size_t colon = text.find(':'); colon != std::string_view::npos) {
+        projection = jointProjectionFromName(text.substr(colon + 1));
+        if (!projection) return std::nullopt;
+        text = text.substr(0, colon);
+    }
     const std::size_t times = text.find('x');
     if (times == std::string_view::npos) return std::nullopt;
     const std::optional<int> substeps = parseCount(text.substr(0, times));
     const std::optional<int> iterations = parseCount(text.substr(times + 1));
     if (!substeps || !iterations) return std::nullopt;
-    return SolverSplit{*substeps, *iterations};
+    return SolverSplit{*substeps, *iterations, projection};
 }
 
 }  // namespace
@@ -74,6 +82,8 @@ void CompareSession::applySplits() {
     for (std::size_t index = 0; index < runs_.size(); ++index) {
         run(index).controls().substeps = splits_[index].substeps;
         run(index).controls().iterations = splits_[index].iterations;
+        if (splits_[index].jointProjection)
+            run(index).controls().jointProjection = *splits_[index].jointProjection;
     }
 }
 
@@ -122,7 +132,12 @@ void CompareSession::applyControls() {
     for (std::size_t index = 0; index < runs_.size(); ++index) {
         run(index).controls().gravityY = gravityY;
         run(index).applyControls();
-        if (comparing()) splits_[index] = {run(index).controls().substeps, run(index).controls().iterations};
+        if (!comparing()) continue;
+        // A split names its projection once one was asked for (--compare S×I:start, the panel).
+        const JointProjection projection = run(index).controls().jointProjection;
+        const bool named = splits_[index].jointProjection || projection != JointProjection::Paper;
+        splits_[index] = {run(index).controls().substeps, run(index).controls().iterations,
+                          named ? std::optional(projection) : std::nullopt};
     }
 }
 

@@ -21,10 +21,12 @@
 
 namespace substep::view {
 
-/// One run's solver settings: substeps per frame and iterations per substep.
+/// One run's solver settings: substeps per frame, iterations per substep and, when given, the
+/// joint projection (WorldSettings::jointProjection; none: the scene's).
 struct SolverSplit {
     int substeps = 20;
     int iterations = 1;
+    std::optional<JointProjection> jointProjection;
     friend bool operator==(const SolverSplit&, const SolverSplit&) = default;
 };
 
@@ -36,7 +38,8 @@ using CompareSplits = std::array<SolverSplit, 2>;
 inline constexpr CompareSplits kPaperCompareSplits{{{20, 1}, {1, 20}}};
 
 /// Reads "SUBSTEPSxITERATIONS,SUBSTEPSxITERATIONS" (e.g. "20x1,1x20"), each count a whole number
-/// in [1, 1000]; nullopt when the text is not that.
+/// in [1, 1000], each split optionally followed by ":paper" or ":start" (the joint projection,
+/// e.g. "20x1:paper,20x1:start"); nullopt when the text is not that.
 std::optional<CompareSplits> parseCompareSplits(const std::string& text);
 
 /// Shared by the runs: whether they play, and how fast against the wall clock.

@@ -35,7 +35,8 @@ int runView(const ViewOptions& options) {
         compare = options.compare->empty() ? kPaperCompareSplits : parseCompareSplits(*options.compare);
         if (!compare) {
             throw UsageError("--compare: expected SUBSTEPSxITERATIONS,SUBSTEPSxITERATIONS with counts from 1 to 1000, "
-                             "e.g. 20x1,1x20; got '" + *options.compare + "'");
+                             "each optionally :paper or :start, e.g. 20x1,1x20 or "
+                             "20x1:paper,20x1:start; got '" + *options.compare + "'");
         }
     }
     std::optional<render::QualityLevel> quality;
@@ -110,7 +111,7 @@ CLI::App* addViewCommand(CLI::App& app, ViewOptions& options) {
     command
         ->add_option("--compare", options.compare,
                      "Run the scene twice side by side with these solver settings (default 20x1,1x20, the "
-                     "paper's Fig. 10)")
+                     "paper's Fig. 10; SxI:start uses the start-direction joint projection)")
         ->expected(0, 1)
         ->type_name("SxI,SxI");
     command->add_option("--size", options.size, "Window size in pixels (default 1280x720)")->type_name("WxH");

@@ -86,9 +86,10 @@ void drawSceneReadouts(ViewSession& run) {
     }
 }
 
-/// "20 x 1": a run's substeps x iterations.
+/// "20 x 1": a run's substeps x iterations, and ", start joints" under the start projection.
 std::string splitLabel(const SessionControls& controls) {
-    return std::to_string(controls.substeps) + " x " + std::to_string(controls.iterations);
+    return std::to_string(controls.substeps) + " x " + std::to_string(controls.iterations) +
+           (controls.jointProjection == JointProjection::Start ? ", start joints" : "");
 }
 
 /// One run's measures: its error plots (paper Fig. 10 and 11), its script's readouts and its
@@ -288,6 +289,17 @@ PanelRequests ViewPanel::draw(CompareSession& session, const ViewStatus& status,
             requests.controlsChanged |= ImGui::SliderInt(comparing ? "##iterations" : "iterations", &controls.iterations,
                                                          1, 50, comparing ? "%d iterations" : "%d",
                                                          ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
+            // Joint directions: the paper's (current state) or the substep's start (energy kept).
+            int projection = controls.jointProjection == JointProjection::Start ? 1 : 0;
+            if (ImGui::Combo(comparing ? "##joints" : "joints", &projection, "paper\0start\0")) {
+                controls.jointProjection =
+                    projection == 1 ? JointProjection::Start : JointProjection::Paper;
+                requests.controlsChanged = true;
+            }
+            if (ImGui::IsItemHovered())
+                ImGui::SetTooltip("Joint projection: paper = directions on the current state;\n"
+                                  "start = on the substep's start poses (keeps a pendulum's "
+                                  "energy)");
             ImGui::PopItemWidth();
             ImGui::PopID();
         }

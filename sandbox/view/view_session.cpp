@@ -13,6 +13,7 @@ SessionControls controlsOf(const SceneDescription& description, const SessionCon
     SessionControls controls = kept;
     controls.substeps = description.substeps;
     controls.iterations = description.iterations;
+    controls.jointProjection = description.jointProjection;
     controls.gravityY = static_cast<float>(description.gravity.y());
     return controls;
 }
@@ -114,6 +115,7 @@ void ViewSession::applyControls() {
     WorldSettings settings = physics.settings();
     settings.substeps = controls_.substeps;
     settings.iterations = controls_.iterations;
+    settings.jointProjection = controls_.jointProjection;
     settings.gravity.y() = controls_.gravityY;
     settings.measureTime = true;  // the panel's stage breakdown
     physics.setSettings(settings);

@@ -26,6 +26,7 @@ namespace substep::view {
 struct SessionControls {
     int substeps = 20;
     int iterations = 1;
+    JointProjection jointProjection = JointProjection::Paper;  ///< WorldSettings::jointProjection
     float gravityY = -10.0f;  ///< m/s²; x and z stay the scene's
     DrawingOptions drawing;
 };

@@ -108,6 +108,27 @@ TEST_F(SweepCommand, MoreSubstepsDriftLessThanMoreIterations) {
     EXPECT_LT(table.number(0, "energy_drift"), table.number(1, "energy_drift"));
 }
 
+// --joint-projection start (issue 17): the start-direction projection keeps the pendulum's
+// energy, so over 2 s at 20 substeps it drifts far less than the paper's form; a bad value
+// exits 2 naming the option, and nothing is written.
+TEST_F(SweepCommand, JointProjectionOptionChoosesTheProjection) {
+    ASSERT_EQ(substep("sweep pendulum3 --budget 20 --seconds 2 --csv paper.csv").exitCode, 0);
+    const Result start =
+        substep("sweep pendulum3 --budget 20 --seconds 2 --csv start.csv --joint-projection start");
+    ASSERT_EQ(start.exitCode, 0) << start.err;
+    const SweepTable paper = readSweep(work() / "paper.csv");
+    const SweepTable kept = readSweep(work() / "start.csv");
+    ASSERT_EQ(paper.splitName(0), "20x1");
+    ASSERT_EQ(kept.splitName(0), "20x1");
+    EXPECT_LT(10.0 * kept.number(0, "energy_error_final"), paper.number(0, "energy_error_final"));
+    const Result bad = substep("sweep pendulum3 --budget 2 --csv bad.csv --joint-projection shake");
+    EXPECT_EQ(bad.exitCode, 2);
+    EXPECT_NE(bad.err.find("--joint-projection: expected paper or start, got 'shake'"),
+              std::string::npos)
+        << bad.err;
+    EXPECT_FALSE(std::filesystem::exists(work() / "bad.csv"));
+}
+
 TEST_F(SweepCommand, ChainSceneReportsItsElongation) {
     const Result result = substep("sweep chain100 --budget 2 --seconds 0.2 --csv out.csv");
     ASSERT_EQ(result.exitCode, 0) << result.err;

@@ -270,9 +270,23 @@ TEST(CompareSessionTest, ReadsSplits) {
     EXPECT_EQ((*other)[0], (view::SolverSplit{5, 4}));
     EXPECT_EQ((*other)[1], (view::SolverSplit{2, 10}));
     for (const char* bad : {"", "20x1", "20x1,", "0x1,1x1", "1x0,1x1", "ax1,1x1", "20x1,1x20,3x3", "20x1,1x",
-                            "1001x1,1x1", " 20x1,1x20", "20X1,1x20", "-1x1,1x1", "20x1;1x20"}) {
+                            "1001x1,1x1", " 20x1,1x20", "20X1,1x20", "-1x1,1x1", "20x1;1x20",
+                            "20x1:,1x20", "20x1:Start,1x20", "20x1:start:paper,1x20", ":start,1x20"}) {
         EXPECT_FALSE(view::parseCompareSplits(bad).has_value()) << bad;
     }
+}
+
+// "20x1:paper,20x1:start": the paper's joint projection against the start-direction one, side by
+// side (issue 17); the projection reaches each run's world.
+TEST(CompareSessionTest, ComparesJointProjections) {
+    const std::optional<view::CompareSplits> splits = view::parseCompareSplits("20x1:paper,20x1:start");
+    ASSERT_TRUE(splits.has_value());
+    EXPECT_EQ((*splits)[0], (view::SolverSplit{20, 1, JointProjection::Paper}));
+    EXPECT_EQ((*splits)[1], (view::SolverSplit{20, 1, JointProjection::Start}));
+    view::CompareSession session(resolveScene("pendulum3"), 16.0f / 9.0f);
+    session.compare(*splits);
+    EXPECT_EQ(session.run(0).world().settings().jointProjection, JointProjection::Paper);
+    EXPECT_EQ(session.run(1).world().settings().jointProjection, JointProjection::Start);
 }
 
 // The paper's Fig. 10 comparison on its chain (Fig. 11, PEERS chain100): both runs step in

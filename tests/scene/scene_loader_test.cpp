@@ -203,7 +203,8 @@ TEST(SceneLoader, TopLevelKeysAreListedInOrder) {
     // The world settings, then the section readers' keys in their table's order.
     EXPECT_TRUE(failsAt(scene(R"("zzz": 1)"), "zzz",
                         "unknown key (expected substep_scene, name, description, gravity, dt, "
-                        "substeps, iterations, sleeping, bodies, joints, soft_bodies or camera)"));
+                        "substeps, iterations, sleeping, joint_projection, bodies, joints, soft_bodies or "
+                        "camera)"));
 }
 
 TEST(SceneLoader, SleepingIsABooleanOffByDefault) {
@@ -214,6 +215,17 @@ TEST(SceneLoader, SleepingIsABooleanOffByDefault) {
     // The world built from the scene sleeps as asked.
     EXPECT_TRUE(buildScene(parseSceneText(scene(R"("sleeping": true)"), "t.json")).world().settings().sleeping);
     EXPECT_FALSE(buildScene(parseSceneText(scene(""), "t.json")).world().settings().sleeping);
+}
+
+TEST(SceneLoader, JointProjectionIsPaperOrStart) {
+    EXPECT_EQ(parseSceneText(scene(""), "s.json").jointProjection, JointProjection::Paper);
+    EXPECT_EQ(parseSceneText(scene(R"("joint_projection": "start")"), "s.json").jointProjection,
+              JointProjection::Start);
+    EXPECT_EQ(parseSceneText(scene(R"("joint_projection": "paper")"), "s.json").jointProjection,
+              JointProjection::Paper);
+    EXPECT_TRUE(failsAt(scene(R"("joint_projection": "Start")"), "joint_projection",
+                        "expected \"paper\" or \"start\", got \"Start\""));
+    EXPECT_TRUE(failsAt(scene(R"("joint_projection": 1)"), "joint_projection", "must be a string, got 1"));
 }
 
 TEST(SceneLoader, SectionsAreReadInTheirOrderNotTheFiles) {

@@ -16,9 +16,16 @@ void solveFixedJoint(const Joint& joint, FixedJoint& fixed, SolverContext& ctx) 
     const JointAnchors anchors = jointAnchors(joint, ctx.bodies);
     const Quat difference =  // Eq. 18
         worldFrame1(joint, ctx.bodies) * worldFrame0(joint, ctx.bodies).conjugate();
+    // The lever arms the block acts through: the current ones, or the substep's start
+    // (JointProjection::Start; the gap and the rotation are measured on the current poses).
+    const bool start = ctx.projection == JointProjection::Start;
+    const Body& b0 = ctx.bodies[joint.body0];
+    const Body& b1 = ctx.bodies[joint.body1];
+    const Vec3 arm0 = start ? Vec3(directionOrientation(ctx, b0) * joint.anchor0) : anchors.r0;
+    const Vec3 arm1 = start ? Vec3(directionOrientation(ctx, b1) * joint.anchor1) : anchors.r1;
     // Eq. 19 (rotationVector) and the attachment, as one block.
-    applyWeldCorrection(ctx, joint.body0, joint.body1, anchors.p1 - anchors.p0, anchors.r0,
-                        anchors.r1, rotationVector(difference), joint.compliance,
+    applyWeldCorrection(ctx, joint.body0, joint.body1, anchors.p1 - anchors.p0, arm0, arm1,
+                        rotationVector(difference), joint.compliance,
                         fixed.attachment.lambda, fixed.orientation.lambda, fixed.attachment.impulse,
                         fixed.orientation.impulse);
 }

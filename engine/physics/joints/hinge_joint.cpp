@@ -48,7 +48,15 @@ void solveHingeJoint(const Joint& joint, HingeJoint& hinge, SolverContext& ctx) 
         const Vec3 rotation = rotationBetween(a0, a1);  // Eq. 20, with the exact angle
         // Block form over the two directions normal to the hinge axis, so the alignment never
         // turns the hinge itself (applyRotationCorrection).
-        const Vec3 free = (a0 + a1).norm() > 1e-9 ? Vec3((a0 + a1).normalized()) : a0;
+        Vec3 free = (a0 + a1).norm() > 1e-9 ? Vec3((a0 + a1).normalized()) : a0;
+        if (ctx.projection == JointProjection::Start) {
+            // The constrained directions of the substep's start, as the inverse inertias are.
+            const Quat start0 = directionOrientation(ctx, ctx.bodies[joint.body0]) * joint.frame0;
+            const Quat start1 = directionOrientation(ctx, ctx.bodies[joint.body1]) * joint.frame1;
+            const Vec3 s0 = start0 * Vec3::UnitX();
+            const Vec3 s1 = start1 * Vec3::UnitX();
+            if ((s0 + s1).norm() > 1e-9) free = (s0 + s1).normalized();
+        }
         hinge.alignment.solve(ctx, joint.body0, joint.body1, rotation, 0.0, &free);
     }
     Vec3 b1;
