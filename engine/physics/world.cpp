@@ -1,5 +1,7 @@
 #include "physics/world.h"
 
+#include "physics/step_cancellation.h"
+
 #include "physics/collision/narrowphase.h"
 #include "physics/collision/shape_bounds.h"
 #include "physics/joints/joint_frame.h"
@@ -247,6 +249,7 @@ void World::step(double dt) {
     if (soft) soft_->collectCandidates(bodies_, dt, settings_.contactMargin, settings_.gravity);
     lap(stepTimes_.broadphase);
     for (int s = 0; s < substeps; ++s) {
+        if (stepCancellationRequested()) break;  // SIGINT/SIGTERM: the caller discards the world
         // λ is zeroed before each substep's solve (paper 3.3.1); motors advance their target.
         for (Joint& joint : joints_) beginJointSubstep(joint, h);
         integrate(h);
@@ -291,7 +294,14 @@ void World::collectContactPairs(double dt) {
     reaches_.assign(bodies_.size(), 0.0);
     poses_.resize(bodies_.size());
     size_t previous = 0;
+    droppedContactPairs_ = 0;
     for (const BodyPair& candidate : broadphase_.pairs()) {
+        // Bounded work per frame: beyond the cap, pairs are dropped (deterministically, the
+        // last in sorted order) and counted for a warning.
+        if (contactPairs_.size() >= kMaxContactPairs) {
+            ++droppedContactPairs_;
+            continue;
+        }
         const bool joined = std::binary_search(
             jointExclusions_.begin(), jointExclusions_.end(), candidate,
             [](const BodyPair& a, const BodyPair& b) {
@@ -332,6 +342,7 @@ void World::findContacts() {
         if (reaches_[i] > 0.0) poses_[i] = {bodies_[i].userPosition(), bodies_[i].userOrientation()};
     ContactManifold manifold;
     for (ContactPair& pair : contactPairs_) {
+        if (stepCancellationRequested()) break;  // the step ends at the substep loop's check
         const Body& b0 = bodies_[pair.body0];
         const Body& b1 = bodies_[pair.body1];
         const Pose& pose0 = poses_[pair.body0];
