@@ -34,21 +34,6 @@ int listScenes() {
     return 0;
 }
 
-/// One line for a message that may hold newlines (CLI11 joins some with them, and a file name
-/// may contain one): each line break becomes "; ".
-std::string oneLine(std::string text) {
-    std::string line;
-    for (const char c : text) {
-        if (c == '\n' || c == '\r') {
-            if (!line.empty() && line.back() != ' ') line += "; ";
-        } else {
-            line += c;
-        }
-    }
-    while (!line.empty() && (line.back() == ' ' || line.back() == ';')) line.pop_back();
-    return line;
-}
-
 /// The first option of the given command that was given an empty value (`--csv ''`), or null.
 /// An empty value is never meaningful: it would read as "not given" and be silently ignored.
 const CLI::Option* emptyValuedOption(const CLI::App& command) {
@@ -93,16 +78,11 @@ int main(int argc, char** argv) {
     // line naming the command (CLI11's own printout takes two).
     try {
         app.parse(argc, argv);
-    } catch (const CLI::CallForHelp& help) {
-        return app.exit(help);
-    } catch (const CLI::CallForAllHelp& help) {
-        return app.exit(help);
-    } catch (const CLI::CallForVersion& version) {
-        return app.exit(version);
     } catch (const CLI::ParseError& error) {
-        if (error.get_exit_code() == 0) return app.exit(error);
+        if (error.get_exit_code() == 0) return app.exit(error);  // --help, --version
+        // Control characters (a newline in a typed name) are shown escaped.
         std::fprintf(stderr, "substep: %s (substep --help for usage)\n",
-                     oneLine(substep::printableName(error.what())).c_str());
+                     substep::printableName(error.what()).c_str());
         return 2;
     }
     for (const CLI::App* command : app.get_subcommands()) {
