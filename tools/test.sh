@@ -32,11 +32,13 @@ if [[ $stages == *" asan "* ]]; then
     scene_loader_test scene_loader_json_test scene_loader_validator_test scene_loader_shapes_test
     scene_loader_bodies_test scene_loader_joints_test scene_loader_camera_test
     scene_loader_soft_bodies_test scene_test mesh_import_test shape_keys_test
+    scene_loader_fuzz_replay
     # engine/ecs: the layer the sandbox goes through
     registry_test view_test body_components_test physics_system_test physics_system_changes_test
     scene_entities_test
     # engine/physics: the world, contacts and corrections
-    world_test contact_test correction_test mass_properties_test
+    world_test contact_test correction_test mass_properties_test heightfield_test
+    distance_joint_test hinge_joint_test spherical_joint_test prismatic_joint_test fixed_joint_test
     # sandbox: whole-or-nothing outputs
     atomic_file_test output_transaction_test csv_writer_test
   )
@@ -44,7 +46,11 @@ if [[ $stages == *" asan "* ]]; then
   cmake --build --preset asan -j "$jobs" --target "${asan_tests[@]}"
   for test in "${asan_tests[@]}"; do
     echo "-- $test"
-    "build-asan/tests/$test" --gtest_brief=1
+    if [ "$test" = scene_loader_fuzz_replay ]; then
+      (cd tests/data/scenes && "../../../build-asan/tests/$test" ../../../build-asan/tests/fuzz/seeds ../../fuzz/findings)
+    else
+      "build-asan/tests/$test" --gtest_brief=1
+    fi
   done
 fi
 
