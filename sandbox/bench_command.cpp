@@ -2,6 +2,7 @@
 
 #include "atomic_file.h"
 #include "command_options.h"
+#include "output_transaction.h"
 #include "scene_source.h"
 #include "scenes/scene_registry.h"
 
@@ -228,8 +229,11 @@ int bench(const BenchOptions& options) {
     // --json path leave no file behind and cost no benchmark time.
     const BenchSettings settings = checkOptions(options);
     const std::vector<BenchScene> scenes = resolveScenes(options, settings);
-    std::unique_ptr<AtomicFile> jsonFile;
-    if (!options.jsonPath.empty()) jsonFile = std::make_unique<AtomicFile>(options.jsonPath);
+    std::vector<std::string> inputs;
+    for (const BenchScene& scene : scenes)
+        if (!scene.source.builtin) inputs.push_back(scene.source.label);
+    OutputTransaction outputs(inputs);
+    AtomicFile* jsonFile = options.jsonPath.empty() ? nullptr : &outputs.add("--json", options.jsonPath);
 
     const BenchTable table(scenes);
     table.printHeader();
@@ -259,7 +263,7 @@ int bench(const BenchOptions& options) {
 
     if (jsonFile) {
         jsonFile->write(json.dump(2) + "\n");
-        jsonFile->commit();
+        outputs.commit();
     }
     if (!nonFinite.empty()) {
         std::string names;

@@ -1,6 +1,10 @@
 #include "command_options.h"
 
+#include "atomic_file.h"
+
 #include "physics/joint_projection.h"
+#include "physics/step_cancellation.h"
+#include "physics/world.h"
 
 #include <charconv>
 #include <cmath>
@@ -31,6 +35,8 @@ volatile std::sig_atomic_t gInterrupted = 0;
 
 extern "C" void onInterrupt(int signal) {
     gInterrupted = signal;
+    // A frame may take minutes: the world's step returns at its next substep.
+    requestStepCancellation();
 }
 
 }  // namespace
@@ -39,7 +45,8 @@ int runReportingErrors(const char* command, const std::function<int()>& body) {
     try {
         return body();
     } catch (const std::exception& error) {
-        std::fprintf(stderr, "substep %s: %s\n", command, error.what());
+        // One line whatever it names: a file name's newline or escape is shown escaped.
+        std::fprintf(stderr, "substep %s: %s\n", command, printableName(error.what()).c_str());
         return 2;
     }
 }
@@ -84,6 +91,16 @@ int parseThreads(const std::string& text) {
     return text.empty() ? 1 : static_cast<int>(parseInteger("--threads", text, 1, kMaxThreads));
 }
 
+double parseRealWithin(const char* option, const std::string& text, double lowest, double highest) {
+    const double value = parseReal(option, text);
+    if (!(value >= lowest && value <= highest)) {
+        char bounds[96];
+        std::snprintf(bounds, sizeof bounds, " must be between %g and %g, got ", lowest, highest);
+        throw UsageError(std::string(option) + bounds + text);
+    }
+    return value;
+}
+
 long long framesForSeconds(double seconds, double dt, long long maxFrames) {
     const double frames = std::round(seconds / dt);
     // Written so that a NaN or infinite quotient fails too.
@@ -93,12 +110,23 @@ long long framesForSeconds(double seconds, double dt, long long maxFrames) {
     return static_cast<long long>(frames);
 }
 
+void warnAboutDroppedContacts(const char* command, const World& world, long long frame) {
+    static bool warned = false;
+    if (warned || world.droppedContactPairs() == 0) return;
+    warned = true;
+    std::fprintf(stderr,
+                 "substep %s: warning: frame %lld found more than %zu contact pairs; %zu dropped "
+                 "(bodies piled at one point?)\n",
+                 command, frame, kMaxContactPairs, world.droppedContactPairs());
+}
+
 int interruptSignal() {
     return gInterrupted;
 }
 
 InterruptGuard::InterruptGuard() {
     gInterrupted = 0;
+    clearStepCancellation();
     previousInt_ = std::signal(SIGINT, onInterrupt);
     previousTerm_ = std::signal(SIGTERM, onInterrupt);
 }
@@ -106,6 +134,7 @@ InterruptGuard::InterruptGuard() {
 InterruptGuard::~InterruptGuard() {
     std::signal(SIGINT, previousInt_);
     std::signal(SIGTERM, previousTerm_);
+    clearStepCancellation();  // steps made after the guard run to their end again
 }
 
 JointProjection parseJointProjection(const char* option, const std::string& text) {

@@ -13,6 +13,8 @@
 
 namespace substep {
 
+class World;
+
 /// A bad option value; what() names the option. The commands report it and exit 2.
 class UsageError : public std::runtime_error {
   public:
@@ -46,10 +48,16 @@ int parseThreads(const std::string& text);
 /// `text` as a joint projection ("paper" or "start", WorldSettings::jointProjection). Throws
 /// UsageError naming `option` otherwise.
 JointProjection parseJointProjection(const char* option, const std::string& text);
+/// `text` as a finite number in [lowest, highest]. Throws UsageError naming `option` otherwise.
+double parseRealWithin(const char* option, const std::string& text, double lowest, double highest);
 
 /// round(seconds / dt) frames, the simulated time T as frames (DESIGN.md). Throws UsageError
 /// naming --seconds when that is more than `maxFrames`.
 long long framesForSeconds(double seconds, double dt, long long maxFrames);
+
+/// Prints one warning per process the first time a step dropped contact pairs over the per-frame
+/// cap (World::droppedContactPairs): the run goes on, with less contact than the scene asks for.
+void warnAboutDroppedContacts(const char* command, const World& world, long long frame);
 
 /// The signal (SIGINT or SIGTERM) received since the current InterruptGuard was made; 0 if none.
 /// Frame loops poll it and stop, so the outputs' destructors remove the temporary files.

@@ -2,6 +2,7 @@
 // to bottom: declare the commands, parse, dispatch. Each command lives in its own file pair
 // (run_command.h, ...).
 
+#include "atomic_file.h"
 #include "bench_command.h"
 #include "capture/capture_command.h"
 #include "render_command.h"
@@ -33,6 +34,17 @@ int listScenes() {
     return 0;
 }
 
+/// The first option of the given command that was given an empty value (`--csv ''`), or null.
+/// An empty value is never meaningful: it would read as "not given" and be silently ignored.
+const CLI::Option* emptyValuedOption(const CLI::App& command) {
+    for (const CLI::Option* option : command.get_options()) {
+        if (option->count() == 0 || option->get_expected_min() == 0) continue;  // flags take none
+        for (const std::string& value : option->results())
+            if (value.empty()) return option;
+    }
+    return nullptr;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -62,11 +74,23 @@ int main(int argc, char** argv) {
     substep::CaptureOptions captureOptions;
     CLI::App* captureCommand = substep::addCaptureCommand(app, captureOptions);
 
-    // 2. Parse. CLI11 exits usage errors with codes from 100 up; the contract says 2.
+    // 2. Parse. CLI11 exits usage errors with codes from 100 up; the contract says 2, and one
+    // line naming the command (CLI11's own printout takes two).
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& error) {
-        return app.exit(error) == 0 ? 0 : 2;
+        if (error.get_exit_code() == 0) return app.exit(error);  // --help, --version
+        // Control characters (a newline in a typed name) are shown escaped.
+        std::fprintf(stderr, "substep: %s (substep --help for usage)\n",
+                     substep::printableName(error.what()).c_str());
+        return 2;
+    }
+    for (const CLI::App* command : app.get_subcommands()) {
+        if (const CLI::Option* option = emptyValuedOption(*command)) {
+            std::fprintf(stderr, "substep %s: %s: empty value\n", command->get_name().c_str(),
+                         option->get_name().c_str());
+            return 2;
+        }
     }
 
     // 3. Dispatch to the one command given; none at all means the viewer.

@@ -3,6 +3,7 @@
 #include "atomic_file.h"
 #include "command_options.h"
 #include "knob_settings.h"
+#include "output_transaction.h"
 #include "scene_drawing.h"
 #include "scene_source.h"
 
@@ -67,19 +68,25 @@ int renderFrames(const RenderOptions& options) {
     SceneDrawing drawing(description, live.instance(), static_cast<float>(width) / static_cast<float>(height));
     const std::filesystem::path directory = prepareOutputDirectory(options.outDirectory);
 
-    // Frame 0 is the initial state; each step advances one frame of the scene's dt.
+    // Frame 0 is the initial state; each step advances one frame of the scene's dt. The PNGs
+    // stay temporary until the last one is written: an interrupted, failed or non-finite render
+    // leaves none behind.
+    OutputTransaction outputs(source.builtin ? std::vector<std::string>{}
+                                             : std::vector<std::string>{options.scene});
     const InterruptGuard interruptGuard;
     std::size_t next = 0;
     for (long long frame = 0; next < frames.size(); ++frame) {
         if (const int signal = interruptSignal(); signal != 0) {
-            std::fprintf(stderr, "substep render: interrupted after %zu of %zu images\n", next, frames.size());
+            std::fprintf(stderr, "substep render: interrupted after %zu of %zu images; none written\n", next,
+                         frames.size());
             return 128 + signal;
         }
         if (frame > 0) live.step();
+        warnAboutDroppedContacts("render", live.world(), frame);
         if (!live.world().isFinite()) {
             std::fprintf(stderr,
-                         "substep render: the state turned non-finite at frame %lld; %zu of %zu images "
-                         "written\n",
+                         "substep render: the state turned non-finite at frame %lld, after %zu of %zu "
+                         "images; none written\n",
                          frame, next, frames.size());
             return 1;
         }
@@ -90,11 +97,11 @@ int renderFrames(const RenderOptions& options) {
             if (const std::optional<SceneCamera> camera = live.script()->camera(live.instance()))
                 picture.camera = renderCamera(*camera);
         renderer.render(picture, target->target());
-        AtomicFile file((directory / frameFileName(frame)).string());
+        AtomicFile& file = outputs.add("--out", (directory / frameFileName(frame)).string());
         file.write(render::encodePng(target->readPixels()));
-        file.commit();
         ++next;
     }
+    outputs.commit();
 
     std::printf("rendered %zu image%s of %s (%dx%d, %s) to %s\n", frames.size(), frames.size() == 1 ? "" : "s",
                 source.label.c_str(), width, height, context->backendName().c_str(), directory.c_str());

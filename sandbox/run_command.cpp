@@ -4,8 +4,11 @@
 #include "command_options.h"
 #include "csv_writer.h"
 #include "knob_settings.h"
+#include "output_transaction.h"
 #include "scene_source.h"
 #include "state_columns.h"
+
+#include "scene/scene_loader.h"
 
 #include <nlohmann/json.hpp>
 
@@ -49,7 +52,9 @@ RunSettings checkOptions(const RunOptions& options) {
         settings.iterations =
             static_cast<int>(parseInteger("--iterations", options.iterations, 1, kMaxIterations));
     }
-    if (!options.dt.empty()) settings.dt = parsePositiveReal("--dt", options.dt);
+    // The bounds of a scene file's dt: 1e-320 or 1e300 went NaN at frame 1.
+    if (!options.dt.empty())
+        settings.dt = parseRealWithin("--dt", options.dt, kMinTimeStep, kMaxTimeStep);
     if (!options.jointProjection.empty())
         settings.jointProjection =
             parseJointProjection("--joint-projection", options.jointProjection);
@@ -137,10 +142,12 @@ int run(const RunOptions& options) {
     if (settings.jointProjection) solver.jointProjection = *settings.jointProjection;
     physics.setSettings(solver);
 
-    std::unique_ptr<AtomicFile> csvFile;
-    std::unique_ptr<AtomicFile> jsonFile;
-    if (!options.csvPath.empty()) csvFile = std::make_unique<AtomicFile>(options.csvPath);
-    if (!options.jsonPath.empty()) jsonFile = std::make_unique<AtomicFile>(options.jsonPath);
+    // The outputs are checked (not the scene file, not each other, regular files) before the
+    // first frame, and appear together at the end.
+    OutputTransaction outputs(source.builtin ? std::vector<std::string>{}
+                                             : std::vector<std::string>{options.scene});
+    AtomicFile* csvFile = !options.csvPath.empty() ? &outputs.add("--csv", options.csvPath) : nullptr;
+    AtomicFile* jsonFile = !options.jsonPath.empty() ? &outputs.add("--json", options.jsonPath) : nullptr;
     std::optional<CsvWriter> csv;
     if (csvFile) {
         csv.emplace(*csvFile);
@@ -167,6 +174,7 @@ int run(const RunOptions& options) {
             return 128 + signal;
         }
         stepTime += live.step();
+        warnAboutDroppedContacts("run", world, frame);
 
         // t is frame * dt, not a running sum, so it carries no accumulated rounding.
         sampleState(scene, static_cast<double>(frame) * dt, row);
@@ -181,13 +189,9 @@ int run(const RunOptions& options) {
                                  static_cast<double>(summary.frames);
     }
 
-    // Outputs appear only now, whole. The CSV goes first: if it cannot be written, the summary
-    // is discarded with it rather than left describing a file that is not there.
-    if (csvFile) csvFile->commit();
-    if (jsonFile) {
-        jsonFile->write(summaryJson(source.label, summary));
-        jsonFile->commit();
-    }
+    // Outputs appear only now, whole, and together: if one cannot be written, none is.
+    if (jsonFile) jsonFile->write(summaryJson(source.label, summary));
+    outputs.commit();
 
     printSummary(source, summary, dt);
     if (!summary.finite) {

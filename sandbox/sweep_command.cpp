@@ -4,6 +4,7 @@
 #include "command_options.h"
 #include "csv_writer.h"
 #include "error_measures.h"
+#include "output_transaction.h"
 #include "scene_source.h"
 
 #include <algorithm>
@@ -395,10 +396,10 @@ int sweep(const SweepOptions& options) {
 
     // Outputs are opened now (a missing folder fails before the sweep, not after it) and appear
     // only once everything is measured.
-    std::unique_ptr<AtomicFile> csvFile;
-    std::unique_ptr<AtomicFile> plotFile;
-    if (!options.csvPath.empty()) csvFile = std::make_unique<AtomicFile>(options.csvPath);
-    if (!options.plotPath.empty()) plotFile = std::make_unique<AtomicFile>(options.plotPath);
+    OutputTransaction outputs(source.builtin ? std::vector<std::string>{}
+                                             : std::vector<std::string>{options.scene});
+    AtomicFile* csvFile = options.csvPath.empty() ? nullptr : &outputs.add("--csv", options.csvPath);
+    AtomicFile* plotFile = options.plotPath.empty() ? nullptr : &outputs.add("--plot", options.plotPath);
     const std::string python = pythonPath();
     const std::string script = plotFile ? findPlotScript() : std::string();
     std::optional<std::string> plotProblem;
@@ -430,11 +431,12 @@ int sweep(const SweepOptions& options) {
         }
     }
 
-    // Outputs: the CSV whole, then the plot drawn from it.
+    // Outputs: the CSV whole, then the plot drawn from its temporary file; both appear together
+    // at the end (the CSV alone when there is no plotter, as documented).
     const std::string csv = sweepCsv(results);
     if (csvFile) {
         csvFile->write(csv);
-        csvFile->commit();
+        csvFile->finish();
     }
     printTable(source, results, frames, dt);
 
@@ -448,21 +450,20 @@ int sweep(const SweepOptions& options) {
         // into place: the target is whole or untouched.
         std::optional<TemporaryFile> input;
         if (!csvFile) input.emplace(csv);
-        const std::string csvPath = csvFile ? csvFile->path() : input->path();
+        const std::string csvPath = csvFile ? csvFile->temporaryPath() : input->path();
         char title[256];
         std::snprintf(title, sizeof(title), "substep sweep %s, %.6g s per split",
                       source.label.c_str(), static_cast<double>(frames) * dt);
         const int status =
             runPython(python, {script, csvPath, plotFile->temporaryPath(), "--title", title});
-        if (status == 0) {
-            plotFile->commit();
-        } else {
+        if (status != 0) {
             plotFile->discard();
             std::fprintf(stderr, "substep sweep: %s failed (exit %d); no plot written\n",
                          script.c_str(), status);
             exitCode = 2;
         }
     }
+    outputs.commit();
 
     std::size_t nonFinite = 0;
     for (const SplitResult& r : results) {

@@ -1,5 +1,7 @@
 #include "physics/world.h"
 
+#include "physics/step_cancellation.h"
+
 #include "physics/collision/narrowphase.h"
 #include "physics/collision/shape_bounds.h"
 #include "physics/joints/joint_frame.h"
@@ -270,6 +272,7 @@ void World::step(double dt) {
     if (soft) soft_->collectCandidates(bodies_, dt, settings_.contactMargin, settings_.gravity);
     lap(stepTimes_.broadphase);
     for (int s = 0; s < substeps; ++s) {
+        if (stepCancellationRequested()) break;  // SIGINT/SIGTERM: the caller discards the world
         // λ is zeroed before each substep's solve (paper 3.3.1); motors advance their target.
         for (Joint& joint : joints_)
             if (!sleeps(joint)) beginJointSubstep(joint, h);
@@ -338,7 +341,14 @@ void World::collectContactPairs(double dt) {
     reaches_.assign(bodies_.size(), 0.0);
     poses_.resize(bodies_.size());
     size_t previous = 0;
+    droppedContactPairs_ = 0;
     for (const BodyPair& candidate : broadphase_.pairs()) {
+        // Bounded work per frame: beyond the cap, pairs are dropped (deterministically, the
+        // last in sorted order) and counted for a warning.
+        if (contactPairs_.size() >= kMaxContactPairs) {
+            ++droppedContactPairs_;
+            continue;
+        }
         const bool joined = std::binary_search(
             jointExclusions_.begin(), jointExclusions_.end(), candidate,
             [](const BodyPair& a, const BodyPair& b) {
@@ -408,6 +418,7 @@ void World::findPairContacts(size_t first, size_t last, bool sleeping, std::vect
     ContactManifold manifold;
     for (size_t p = first; p < last; ++p) {
         ContactPair& pair = contactPairs_[p];
+        if (stepCancellationRequested()) break;  // the step ends at the substep loop's check
         if (asleep && (asleep[pair.body0] | asleep[pair.body1])) {
             // A sleeping island's pair (the other body sleeps or is static): no contacts, and
             // its static friction anchors are kept for when it wakes.

@@ -25,6 +25,10 @@ struct SoftBodyDef;
 struct SoftBodyReadout;
 struct SoftSurface;
 
+/// At most this many candidate contact pairs per frame (each holds at most kMaxContactPoints
+/// points): the bound on one frame's narrowphase work and memory for pathological scenes.
+inline constexpr std::size_t kMaxContactPairs = std::size_t{1} << 17;
+
 struct WorldSettings {
     Vec3 gravity = Vec3(0.0, -9.81, 0.0);
     int substeps = 20;
@@ -181,6 +185,9 @@ public:
     /// (a pair's points are contacts()[pair.first, pair.first + pair.count)).
     std::span<const ContactPair> contactPairs() const { return contactPairs_; }
     std::span<const Contact> contacts() const { return contacts_; }
+    /// Candidate pairs beyond kMaxContactPairs that the last step dropped (0 in any sane
+    /// scene; thousands of bodies piled at one point reach it). Callers warn about it.
+    std::size_t droppedContactPairs() const { return droppedContactPairs_; }
 
 private:
     /// Copies a definition's parameters into a joint whose bodies are set.
@@ -216,6 +223,7 @@ private:
     std::vector<Pose> poses_;      ///< per body: its shape's pose this substep
     std::vector<Contact> contacts_;
     std::vector<BodyVelocity> restitutionVelocities_;  ///< scratch of the restitution sweeps
+    std::size_t droppedContactPairs_ = 0;
     /// Body pairs joined by a joint that does not let them collide, sorted; rebuilt when the
     /// joints change.
     std::vector<BodyPair> jointExclusions_;

@@ -28,6 +28,9 @@ PositionKey keyOf(const Vec3& p) {
     return key;
 }
 
+/// The scene file's own cap (scene_loader.cpp), for the files it names.
+constexpr std::uintmax_t kMaxMeshFileBytes = std::uintmax_t{256} << 20;
+
 struct PositionHash {
     std::size_t operator()(const PositionKey& k) const {
         uint64_t h = 1469598103934665603ull;
@@ -48,6 +51,16 @@ MeshImport importTriangleMesh(const std::filesystem::path& file, const Vec3& sca
     }
     if (std::filesystem::is_directory(file, error)) {
         result.error = "cannot read mesh file " + file.string() + ": is a directory";
+        return result;
+    }
+    // assimp opens the file itself and would block on a FIFO or read a device without end.
+    if (!std::filesystem::is_regular_file(file, error)) {
+        result.error = "cannot read mesh file " + file.string() +
+                       ": not a regular file (a device, FIFO or socket)";
+        return result;
+    }
+    if (std::filesystem::file_size(file, error) > kMaxMeshFileBytes) {
+        result.error = "cannot read mesh file " + file.string() + ": larger than 256 MiB";
         return result;
     }
 

@@ -32,6 +32,10 @@
 #include <string>
 #include <vector>
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 namespace substep {
 
 namespace {
@@ -53,6 +57,12 @@ namespace scene_loader {
 namespace {
 
 constexpr std::uintmax_t kMaxFileBytes = 256u << 20;  // 256 MiB
+
+/// Closes a descriptor on every way out of loadSceneFile.
+struct FileCloser {
+    int descriptor;
+    ~FileCloser() { ::close(descriptor); }
+};
 
 /// The top level: version, world settings, then each section present, in kSceneSections order.
 SceneDescription readScene(const Validator& v, const Json& root) {
@@ -82,7 +92,9 @@ SceneDescription readScene(const Validator& v, const Json& root) {
     if (auto d = top.get("description")) v.string(*d);
 
     if (auto g = top.get("gravity")) scene.gravity = v.vec3(*g, within(kMaxGravity));
-    if (auto dt = top.get("dt")) scene.dt = v.number(*dt, {.lo = 0, .hi = 1, .loOpen = true});
+    if (auto dt = top.get("dt")) {
+        scene.dt = v.number(*dt, {.lo = 0, .hi = kMaxTimeStep, .loOpen = true, .least = kMinTimeStep});
+    }
     if (auto s = top.get("substeps")) scene.substeps = v.integer(*s, 1, kMaxSubsteps);
     if (auto i = top.get("iterations")) scene.iterations = v.integer(*i, 1, kMaxIterations);
     if (auto s = top.get("sleeping")) scene.sleeping = v.boolean(*s);
@@ -117,26 +129,54 @@ SceneDescription parseSceneText(std::string_view text, const std::string& fileLa
 }
 
 SceneDescription loadSceneFile(const std::string& path) {
-    std::error_code error;
-    if (std::filesystem::is_directory(path, error)) {
+    // O_NONBLOCK: opening a FIFO for reading must not wait for a writer; fstat then refuses it.
+    // Only regular files are read, and never more than the cap: /dev/zero would read forever.
+    const int descriptor = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    if (descriptor < 0) {
+        const int code = errno;
+        throw SceneError(path, "", std::string("cannot read: ") + std::strerror(code));
+    }
+    const scene_loader::FileCloser closer{descriptor};
+    struct stat info {};
+    if (::fstat(descriptor, &info) != 0) {
+        const int code = errno;
+        throw SceneError(path, "", std::string("cannot read: ") + std::strerror(code));
+    }
+    if (S_ISDIR(info.st_mode)) {
         throw SceneError(path, "", "cannot read: is a directory, not a scene file");
     }
-    const auto size = std::filesystem::file_size(path, error);
-    if (!error && size > scene_loader::kMaxFileBytes) {
+    if (!S_ISREG(info.st_mode)) {
+        throw SceneError(path, "",
+                         "cannot read: not a regular file (a device, FIFO or socket); a scene "
+                         "is a .json file");
+    }
+    if (static_cast<std::uintmax_t>(info.st_size) > scene_loader::kMaxFileBytes) {
         throw SceneError(path, "", "cannot read: larger than 256 MiB, too large for a scene file");
     }
-    errno = 0;
-    std::ifstream in(path, std::ios::binary);
-    if (!in) {
-        const int code = errno;
-        throw SceneError(
-            path, "",
-            std::string("cannot read: ") + (code != 0 ? std::strerror(code) : "failed to open"));
+    std::string text;
+    text.resize(static_cast<std::size_t>(info.st_size));
+    std::size_t filled = 0;
+    // The file may grow while it is read: the cap holds whatever fstat said.
+    while (true) {
+        if (filled == text.size()) {
+            if (text.size() >= scene_loader::kMaxFileBytes + 1) break;
+            text.resize(std::min<std::size_t>(std::max<std::size_t>(2 * text.size(), 4096),
+                                              scene_loader::kMaxFileBytes + 1));
+        }
+        const ssize_t got = ::read(descriptor, text.data() + filled, text.size() - filled);
+        if (got < 0 && errno == EINTR) continue;
+        if (got < 0) {
+            const int code = errno;
+            throw SceneError(path, "", std::string("cannot read: ") + std::strerror(code));
+        }
+        if (got == 0) break;
+        filled += static_cast<std::size_t>(got);
     }
-    std::ostringstream text;
-    text << in.rdbuf();
-    if (in.bad()) throw SceneError(path, "", "cannot read: I/O error while reading");
-    return parseSceneText(text.str(), path);
+    if (filled > scene_loader::kMaxFileBytes) {
+        throw SceneError(path, "", "cannot read: larger than 256 MiB, too large for a scene file");
+    }
+    text.resize(filled);
+    return parseSceneText(text, path);
 }
 
 }  // namespace substep

@@ -13,6 +13,12 @@
 
 namespace substep {
 
+/// The accepted frame length, a file's `dt` and the command line's `--dt` alike (s): below
+/// 1 µs the substep length loses its precision (1e-320 went NaN at frame 1), above 1 s a frame
+/// is no longer a frame.
+inline constexpr double kMinTimeStep = 1e-6;
+inline constexpr double kMaxTimeStep = 1.0;
+
 /// A scene file that cannot be read or is not a valid scene. what() is the complete one-line
 /// message, `FILE: JSON.PATH: what is wrong` (e.g.
 /// `scenes/a.json: bodies[3].shape.radius: must be > 0, got -1`), or `FILE: what is wrong` for

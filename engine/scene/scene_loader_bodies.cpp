@@ -4,6 +4,8 @@
 #include "scene/scene_loader_sections.h"
 #include "scene/scene_loader_shapes.h"
 
+#include "physics/mass_properties.h"
+
 #include <string>
 #include <vector>
 
@@ -48,7 +50,10 @@ SceneBody parseBody(const Validator& v, const Node& node, const std::vector<Name
                    "a static body has no density (remove it, or make the body dynamic)");
     }
     if (mass && density) v.fail(density->path, "give mass or density, not both");
-    if (mass) def.mass = v.number(*mass, positiveUpTo(kMaxMass));
+    if (mass) {
+        def.mass = v.number(*mass, {.lo = 0, .hi = kMaxMass, .loOpen = true, .hiSanity = true,
+                                    .least = kMinMass});
+    }
     if (density) def.density = v.number(*density, positiveUpTo(kMaxDensity));
     if (!isStatic && !mass) {
         const double derived = def.density * shapeVolume(def.shape);
@@ -56,6 +61,24 @@ SceneBody parseBody(const Validator& v, const Node& node, const std::vector<Name
             v.fail(density ? density->path : obj.pathOf("shape"),
                    "density " + formatNumber(def.density) + " kg/m³ gives this shape a mass of " +
                        formatNumber(derived) + " kg, above the 1e+09 kg sanity bound");
+        }
+        if (derived < kMinMass && shapeVolume(def.shape) > 0.0) {
+            v.fail(density ? density->path : obj.pathOf("shape"),
+                   "density " + formatNumber(def.density) + " kg/m³ gives this shape a mass of " +
+                       formatNumber(derived) + " kg, below the 1e-06 kg lower bound (give a mass)");
+        }
+    }
+    if (!isStatic && shapeVolume(def.shape) > 0.0) {
+        // The moments follow from the mass and the shape; each must stay far from underflow
+        // (a 1 mg needle of 0.1 mm is 5e-15 kg m² about its axis).
+        const MassProperties properties =
+            mass ? withMass(shapeMassProperties(def.shape, 1.0), def.mass)
+                 : shapeMassProperties(def.shape, def.density);
+        const double smallest = principalFrame(properties.inertia).moments.minCoeff();
+        if (!(smallest >= kMinInertia)) {
+            v.fail(mass ? mass->path : obj.pathOf("shape"),
+                   "gives a principal moment of inertia of " + formatNumber(smallest) +
+                       " kg m², below the 1e-15 kg m² lower bound (a larger shape or mass)");
         }
     }
 

@@ -105,7 +105,9 @@ SceneJoint parseJoint(const Validator& v, const Node& node,
     for (const auto& k : kJointKeys) {
         if (k.types & bit(type)) allowed.push_back(k.key);
     }
-    for (const auto& [key, value] : obj.value().items()) {
+    for (const auto& item : obj.value().items()) {
+        // A plain variable, not a structured binding: clang 14 cannot capture those in a lambda.
+        const std::string& key = item.key();
         const auto known = std::find_if(std::begin(kJointKeys), std::end(kJointKeys),
                                         [&](const JointKey& k) { return key == k.key; });
         if (known == std::end(kJointKeys)) obj.failUnknown(key, allowed);

@@ -30,8 +30,8 @@ Shape parseMeshShape(const Validator& v, const ObjectReader& obj, const Node& ty
     if (file.empty()) v.fail(fileNode.path, "must name a mesh file, got an empty string");
     Vec3 scale = Vec3::Ones();
     if (auto s = obj.get("scale")) {
-        scale = s->value.is_array() ? v.vec3(*s, positiveUpTo(kMaxSize))
-                                    : Vec3::Constant(v.number(*s, positiveUpTo(kMaxSize)));
+        scale = s->value.is_array() ? v.vec3(*s, sizeUpTo(kMaxSize))
+                                    : Vec3::Constant(v.number(*s, sizeUpTo(kMaxSize)));
     }
     bool convex = false;
     const auto convexNode = obj.get("convex");
@@ -80,7 +80,7 @@ Shape parseSplineShape(const Validator& v, const ObjectReader& obj, const Node& 
             v.vec3({pointsNode.value[i], elementPath(pointsNode.path, i)}, within(kMaxCoordinate)));
     }
     const double radius =
-        v.number(obj.require("radius", " (the tube's radius)"), positiveUpTo(kMaxSize));
+        v.number(obj.require("radius", " (the tube's radius)"), sizeUpTo(kMaxSize));
     bool closed = false, hollow = false;
     const auto closedNode = obj.get("closed");
     if (closedNode) closed = v.boolean(*closedNode);
@@ -139,7 +139,7 @@ Shape parseHeightfieldShape(const Validator& v, const ObjectReader& obj, const N
         }
     }
     const auto size = v.numbers(obj.require("size", " (extents [x, z])"), 2,
-                                positiveUpTo(kMaxCoordinate), "an array [x, z] of 2 numbers");
+                                sizeUpTo(kMaxCoordinate), "an array [x, z] of 2 numbers");
     return heightfieldShape(makeHeightfield(static_cast<int>(columns),
                                             static_cast<int>(rows.size()), std::move(heights),
                                             size[0], size[1]));
@@ -175,25 +175,25 @@ Shape readShape(const Validator& v, const Node& node, bool isStatic) {
     if (type == "heightfield") return parseHeightfieldShape(v, obj, typeNode, isStatic);
     if (type == "sphere") {
         obj.allowOnly({"type", "radius"});
-        return sphereShape(v.number(obj.require("radius"), positiveUpTo(kMaxSize)));
+        return sphereShape(v.number(obj.require("radius"), sizeUpTo(kMaxSize)));
     }
     if (type == "box") {
         obj.allowOnly({"type", "size"});
         return boxShape(
-            v.vec3(obj.require("size", " (full extents [x, y, z])"), positiveUpTo(kMaxSize)));
+            v.vec3(obj.require("size", " (full extents [x, y, z])"), sizeUpTo(kMaxSize)));
     }
     if (type == "capsule") {
         obj.allowOnly({"type", "radius", "length"});
-        const double radius = v.number(obj.require("radius"), positiveUpTo(kMaxSize));
+        const double radius = v.number(obj.require("radius"), sizeUpTo(kMaxSize));
         const double length = v.number(obj.require("length", " (segment between the cap centres)"),
                                        nonNegativeUpTo(kMaxSize));
         return capsuleShape(radius, length);
     }
     if (type == "cylinder") {
         obj.allowOnly({"type", "radius", "length"});
-        const double radius = v.number(obj.require("radius"), positiveUpTo(kMaxSize));
+        const double radius = v.number(obj.require("radius"), sizeUpTo(kMaxSize));
         const double length =
-            v.number(obj.require("length", " (between the flat faces)"), positiveUpTo(kMaxSize));
+            v.number(obj.require("length", " (between the flat faces)"), sizeUpTo(kMaxSize));
         return cylinderShape(radius, length);
     }
     if (type == "plane") {

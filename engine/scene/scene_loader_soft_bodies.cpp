@@ -35,21 +35,21 @@ double readLattice(const Validator& v, const ObjectReader& obj, SoftBodyDef& def
     const std::string type = v.string(typeNode);
     if (type == "box") {
         def.type = SoftBodyType::Box;
-        def.size = v.vec3(obj.require("size", " (full extents [x, y, z] in m)"), positiveUpTo(kMaxSize));
+        def.size = v.vec3(obj.require("size", " (full extents [x, y, z] in m)"), sizeUpTo(kMaxSize));
         def.cells = readCells(v, obj.require("cells", " ([nx, ny, nz], each 1-64)"), {1, 1, 1},
                               "an array [nx, ny, nz] of cell counts");
         return def.size.prod();
     }
     if (type == "tyre") {
         def.type = SoftBodyType::Tyre;
-        def.outerRadius = v.number(obj.require("outer_radius", " (m)"), positiveUpTo(kMaxSize));
+        def.outerRadius = v.number(obj.require("outer_radius", " (m)"), sizeUpTo(kMaxSize));
         const Node inner = obj.require("inner_radius", " (m, below outer_radius)");
-        def.innerRadius = v.number(inner, positiveUpTo(kMaxSize));
+        def.innerRadius = v.number(inner, sizeUpTo(kMaxSize));
         if (def.innerRadius >= def.outerRadius) {
             v.fail(inner.path, "must be < outer_radius (" + formatNumber(def.outerRadius) + "), got " +
                                    formatNumber(def.innerRadius));
         }
-        def.width = v.number(obj.require("width", " (m, along the tyre's local y axis)"), positiveUpTo(kMaxSize));
+        def.width = v.number(obj.require("width", " (m, along the tyre's local y axis)"), sizeUpTo(kMaxSize));
         def.cells = readCells(v, obj.require("cells", " ([around, radial, across]; around 3-64, the others 1-64)"),
                               {kMinTyreCellsAround, 1, 1}, "an array [around, radial, across] of cell counts");
         return kPi * (def.outerRadius * def.outerRadius - def.innerRadius * def.innerRadius) * def.width;
@@ -148,7 +148,7 @@ SceneSoftBody parseSoftBody(const Validator& v, const Node& node, const SceneRea
         if (auto d = friction.get("dynamic")) def.dynamicFriction = v.number(*d, nonNegativeUpTo(kMaxFriction));
     }
     if (auto e = obj.get("restitution")) def.restitution = v.number(*e, closed(0.0, 1.0));
-    if (auto r = obj.get("particle_radius")) def.particleRadius = v.number(*r, positiveUpTo(kMaxSize));
+    if (auto r = obj.get("particle_radius")) def.particleRadius = v.number(*r, sizeUpTo(kMaxSize));
     if (auto c = obj.get("collide")) def.collide = v.boolean(*c);
 
     if (auto a = obj.get("attach")) {

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <cstdio>
 
 namespace substep::scene_loader {
 
@@ -20,6 +21,9 @@ std::string boundText(double value, const char* text) {
 
 Interval positiveUpTo(double max) {
     return {.lo = 0, .hi = max, .loOpen = true, .hiSanity = true};
+}
+Interval sizeUpTo(double max) {
+    return {.lo = 0, .hi = max, .loOpen = true, .hiSanity = true, .least = kMinSize};
 }
 Interval nonNegativeUpTo(double max) {
     return {.lo = 0, .hi = max, .hiSanity = true};
@@ -38,6 +42,12 @@ Interval angles(double lo, double hi, const char* loText, const char* hiText) {
 std::string checkInterval(double value, const Interval& interval) {
     const bool below = value < interval.lo || (interval.loOpen && value == interval.lo);
     const bool above = value > interval.hi || (interval.hiOpen && value == interval.hi);
+    if (!below && !above && value < interval.least) {
+        char least[32];  // %g: 0.0001 and 1e-06, as people write them
+        std::snprintf(least, sizeof least, "%g", interval.least);
+        return std::string("must be >= ") + least +
+               " (smaller values lose precision or underflow), got " + formatNumber(value);
+    }
     if (!below && !above) return "";
     const std::string lo = boundText(interval.lo, interval.loText);
     const std::string hi = boundText(interval.hi, interval.hiText);

@@ -36,6 +36,13 @@ inline constexpr double kMaxDamping = 1e6;     // 1/s
 inline constexpr double kMaxFriction = 1e3;
 inline constexpr double kAngleTolerance = 1e-4;  // rad beyond ±pi accepted as rounding, clamped
 inline constexpr double kParallelSine = 1e-6;
+/// Lower bounds with a physical reason: below them a body's mass, inertia or the time step
+/// underflow or lose their precision (a 1e-320 m box went NaN at frame 1; a 1e-110 m sphere
+/// weighed exactly 0 and froze). 0.1 mm, 1 mg and 1 µs are far below anything the engine is
+/// meant to simulate.
+inline constexpr double kMinSize = 1e-4;      // m: radii, extents, lengths, scales
+inline constexpr double kMinMass = 1e-6;      // kg, given or derived from the density
+inline constexpr double kMinInertia = 1e-15;  // kg m², each principal moment
 inline constexpr int kMaxSubsteps = 10000;
 inline constexpr int kMaxIterations = 1000;
 
@@ -50,10 +57,15 @@ struct Interval {
     bool hiSanity = false;
     const char* loText = nullptr;
     const char* hiText = nullptr;
+    /// Within (lo, hi] but below this, a value underflows what it feeds (a mass, an inertia):
+    /// reported after the rule above, with its own message.
+    double least = -kInf;
 };
 
 /// (0, max], the upper bound a sanity bound.
 Interval positiveUpTo(double max);
+/// (0, max] and at least kMinSize: a size (radius, extent, length, scale).
+Interval sizeUpTo(double max);
 /// [0, max], the upper bound a sanity bound.
 Interval nonNegativeUpTo(double max);
 /// [-max, max], both sanity bounds.

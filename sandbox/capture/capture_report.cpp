@@ -1,6 +1,7 @@
 #include "capture/capture_report.h"
 
 #include "atomic_file.h"
+#include "output_transaction.h"
 #include "csv_writer.h"
 #include "render/png_codec.h"
 
@@ -42,10 +43,9 @@ std::string number(double value) {
     return text;
 }
 
-void writeFile(const fs::path& path, const std::string& bytes) {
-    AtomicFile file(path.string());
-    file.write(bytes);
-    file.commit();
+/// The report's files go into one transaction: the page and its images appear together.
+void writeFile(OutputTransaction& outputs, const fs::path& path, const std::string& bytes) {
+    outputs.add("--report", path.string()).write(bytes);
 }
 
 std::string frameStem(const std::string& capture, long long frame) {
@@ -54,13 +54,13 @@ std::string frameStem(const std::string& capture, long long frame) {
     return capture + "/" + stem;
 }
 
-void appendImages(std::string& html, const fs::path& directory, const std::string& capture,
+void appendImages(OutputTransaction& outputs, std::string& html, const fs::path& directory, const std::string& capture,
                   const FrameMismatch& mismatch) {
     const std::string stem = frameStem(capture, mismatch.frame);
     fs::create_directories(directory / capture);
-    writeFile(directory / (stem + "_golden.png"), render::encodePng(mismatch.golden));
-    writeFile(directory / (stem + "_new.png"), render::encodePng(mismatch.fresh));
-    writeFile(directory / (stem + "_diff.png"),
+    writeFile(outputs, directory / (stem + "_golden.png"), render::encodePng(mismatch.golden));
+    writeFile(outputs, directory / (stem + "_new.png"), render::encodePng(mismatch.fresh));
+    writeFile(outputs, directory / (stem + "_diff.png"),
               render::encodePng(
                   differenceHeatMap(mismatch.golden, mismatch.fresh, mismatch.pixelTolerance)));
     html += "<table class=images><tr><th>golden</th><th>new</th><th>difference (over " +
@@ -110,6 +110,7 @@ void writeCaptureReport(const std::string& directory, const std::string& scriptF
                         const std::vector<CaptureResult>& results) {
     const fs::path folder(directory);
     prepareReportFolder(directory);
+    OutputTransaction outputs;
 
     std::size_t checked = 0;
     std::size_t differing = 0;
@@ -148,12 +149,13 @@ void writeCaptureReport(const std::string& directory, const std::string& scriptF
         for (const FrameMismatch& mismatch : result.frames) {
             html += "<h3>" + escapeHtml(result.name) + ", frame " + std::to_string(mismatch.frame) +
                     "</h3>\n";
-            if (mismatch.image) appendImages(html, folder, result.name, mismatch);
+            if (mismatch.image) appendImages(outputs, html, folder, result.name, mismatch);
             if (mismatch.state) appendStateTable(html, *mismatch.state);
         }
     }
     html += "</body></html>\n";
-    writeFile(folder / "index.html", html);
+    writeFile(outputs, folder / "index.html", html);
+    outputs.commit();
 }
 
 }  // namespace substep::capture

@@ -2,9 +2,11 @@
 
 #include "capture/json_input.h"
 #include "run_command.h"
+#include "scene/scene_loader.h"
 #include "scenes/scene_registry.h"
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <set>
 
@@ -139,8 +141,14 @@ CaptureSpec readCapture(const JsonAt& at, const std::string& scriptFile) {
         spec.iterations = static_cast<int>(at.member("iterations").integer(1, kMaxIterations));
     if (at.has("dt")) {
         const JsonAt dt = at.member("dt");
-        spec.dt = dt.number(0.0, 1.0);
+        spec.dt = dt.number(0.0, kMaxTimeStep);
         if (*spec.dt <= 0.0) dt.fail("must be > 0 s");
+        // A scene file's lower bound (scene_loader.h): below it the substep loses precision.
+        if (*spec.dt < kMinTimeStep) {
+            char got[32];
+            std::snprintf(got, sizeof got, "%g", *spec.dt);
+            dt.fail(std::string("must be at least 1e-06 s, got ") + got);
+        }
     }
     const JsonAt frames = at.member("frames");
     frames.requireArray();

@@ -88,6 +88,11 @@ TEST(MeshImport, MissingOrEmptyFilesAreErrorsNamingTheFile) {
     EXPECT_TRUE(empty.mesh.vertices.empty());
     const MeshImport folder = importTriangleMesh(kDataDir);
     EXPECT_FALSE(folder.ok());
+    // A device is not read (before: assimp read /dev/zero until memory ran out).
+    const MeshImport device = importTriangleMesh("/dev/zero");
+    EXPECT_FALSE(device.ok());
+    EXPECT_EQ(device.error,
+              "cannot read mesh file /dev/zero: not a regular file (a device, FIFO or socket)");
     // Not a mesh at all.
     const MeshImport json = importTriangleMesh(kDataDir + "/truncated.json");
     EXPECT_FALSE(json.ok());

@@ -97,6 +97,30 @@ TEST(SceneLoader, MassAndDensity) {
         withShape(R"("type": "box", "size": [1000, 1, 1000])", R"("static": true)"), "t.json"));
 }
 
+TEST(SceneLoader, MassesAndMomentsHaveLowerBounds) {
+    // Before: a 1e-110 m sphere at the default density weighed exactly 0 and froze; a mass far
+    // below a milligram or a moment below 1e-15 kg m² now fails at the value that causes it.
+    EXPECT_TRUE(failsAt(withShape(R"("type": "sphere", "radius": 1e-110)"), "bodies[0].shape.radius",
+                        "must be >= 0.0001 (smaller values lose precision or underflow), got 1e-110"));
+    EXPECT_TRUE(failsAt(withBody(kSphere + R"(, "mass": 1e-9)"), "bodies[0].mass",
+                        "must be >= 1e-06 (smaller values lose precision or underflow), got 1e-09"));
+    EXPECT_NO_THROW(parseSceneText(withBody(kSphere + R"(, "mass": 1e-6)"), "t.json"));
+    // 1 mm cube of 1e-6 kg/m³: 1e-15 kg.
+    EXPECT_TRUE(failsAt(withShape(R"("type": "box", "size": [0.001, 0.001, 0.001])", R"("density": 1e-6)"),
+                        "bodies[0].density", "below the 1e-06 kg lower bound"));
+    // Defaulted density: the shape is named. A 0.2 mm sphere of water weighs 3.4e-8 kg.
+    EXPECT_TRUE(failsAt(withShape(R"("type": "sphere", "radius": 0.0002)"), "bodies[0].shape",
+                        "below the 1e-06 kg lower bound"));
+    // 1 mg on a 0.1 mm sphere: I = 2/5 m r² = 4e-15 kg m², just above the bound; 1 mg on a
+    // 0.1 mm x 0.1 mm x 0.1 mm box: m (a² + b²) / 12 = 1.7e-15; a 1 mg needle (0.1 mm capsule
+    // radius, no length): 4e-15. A mass of 1e-6 kg on a smaller moment fails at the mass.
+    EXPECT_NO_THROW(parseSceneText(withShape(R"("type": "sphere", "radius": 0.0001)", R"("mass": 1e-6)"), "t.json"));
+    EXPECT_NO_THROW(parseSceneText(withShape(R"("type": "box", "size": [0.0001, 0.0001, 0.0001])",
+                                             R"("mass": 1e-6)"), "t.json"));
+    EXPECT_TRUE(failsAt(withShape(R"("type": "box", "size": [0.0001, 0.0001, 0.0001])", R"("mass": 5e-7)"),
+                        "bodies[0].mass", "must be >= 1e-06"));
+}
+
 TEST(SceneLoader, PoseAndVelocities) {
     EXPECT_TRUE(
         failsAt(withBody(kSphere + R"(, "position": [0, 1])"), "bodies[0].position", "3 numbers"));

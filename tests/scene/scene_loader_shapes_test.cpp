@@ -24,6 +24,13 @@ TEST(SceneLoader, Shapes) {
     // mesh, heightfield and spline keys are tested in mesh_import_test.cpp and shape_keys_test.cpp.
     // sphere
     EXPECT_TRUE(failsAt(withShape(R"("type": "sphere")"), "bodies[0].shape.radius", "missing"));
+    // Sizes below 0.1 mm (issue 19: denormal sizes passed and went NaN in the first frames).
+    EXPECT_TRUE(failsAt(withShape(R"("type": "box", "size": [1e-320, 1, 1])"), "bodies[0].shape.size[0]",
+                        "must be >= 0.0001 (smaller values lose precision or underflow), got 1e-320"));
+    EXPECT_TRUE(failsAt(withShape(R"("type": "cylinder", "radius": 0.1, "length": 3.1e-321)"),
+                        "bodies[0].shape.length", "must be >= 0.0001"));
+    EXPECT_TRUE(failsAt(withShape(R"("type": "capsule", "radius": 5e-5, "length": 1)"),
+                        "bodies[0].shape.radius", "must be >= 0.0001"));
     EXPECT_TRUE(failsAt(withShape(R"("type": "sphere", "radius": -1)"), "bodies[0].shape.radius",
                         "must be > 0, got -1"));
     EXPECT_TRUE(failsAt(withShape(R"("type": "sphere", "radius": 0)"), "bodies[0].shape.radius",

@@ -12,6 +12,9 @@
 #include <fstream>
 #include <string>
 
+#include <sys/stat.h>
+#include <unistd.h>
+
 namespace substep {
 namespace {
 
@@ -170,6 +173,53 @@ TEST(SceneLoader, UnreadableFileNamesTheFile) {
     } catch (const SceneError& e) {
         EXPECT_EQ(std::string(e.what()).rfind(kDataDir + ": cannot read: ", 0), 0u) << e.what();
     }
+}
+
+/// A temporary folder for files made at run time (a FIFO, a symlink), removed at the end.
+struct ScratchFolder {
+    std::filesystem::path path;
+    ScratchFolder() {
+        path = std::filesystem::temp_directory_path() /
+               ("substep_loader_" + std::to_string(::getpid()));
+        std::filesystem::create_directories(path);
+    }
+    ~ScratchFolder() { std::filesystem::remove_all(path); }
+};
+
+TEST(SceneLoader, NonRegularFilesAreRefusedWithoutReadingOrBlocking) {
+    // Before: /dev/zero was read without end and a FIFO blocked forever; the alarm turns
+    // either into a failure instead of a hang.
+    ::alarm(20);
+    const ScratchFolder scratch;
+    const std::string fifo = (scratch.path / "scene.json").string();
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    for (const std::string& path : {std::string("/dev/zero"), std::string("/dev/null"), fifo}) {
+        try {
+            loadSceneFile(path);
+            ADD_FAILURE() << path << ": no error";
+        } catch (const SceneError& e) {
+            EXPECT_EQ(std::string(e.what()),
+                      path + ": cannot read: not a regular file (a device, FIFO or socket); a "
+                             "scene is a .json file");
+        }
+    }
+    ::alarm(0);
+}
+
+TEST(SceneLoader, SymlinkToASceneIsFollowed) {
+    const ScratchFolder scratch;
+    const std::filesystem::path link = scratch.path / "link.json";
+    std::filesystem::create_symlink(std::filesystem::absolute(kDataDir + "/full.json"), link);
+    EXPECT_EQ(loadSceneFile(link.string()).substeps, 40);
+}
+
+TEST(SceneLoader, TimeStepIsBetweenAMicrosecondAndASecond) {
+    EXPECT_TRUE(failsAt(scene(R"("dt": 1e-320)"), "dt", "must be >= 1e-06"));
+    EXPECT_TRUE(failsAt(scene(R"("dt": 1e-7)"), "dt", "must be >= 1e-06"));
+    EXPECT_TRUE(failsAt(scene(R"("dt": 0)"), "dt", "must be in (0, 1]"));
+    EXPECT_TRUE(failsAt(scene(R"("dt": 1.5)"), "dt", "must be in (0, 1]"));
+    EXPECT_EQ(parseSceneText(scene(R"("dt": 1e-6)"), "t.json").dt, 1e-6);
+    EXPECT_EQ(parseSceneText(scene(R"("dt": 1)"), "t.json").dt, 1.0);
 }
 
 TEST(SceneLoader, TopLevel) {

@@ -28,6 +28,15 @@ struct EdgeUse {
 
 }  // namespace
 
+bool isActiveCrease(const Vec3& n, const Vec3& n2, const Vec3& start, const Vec3& opposite) {
+    const Vec3 toOpposite = opposite - start;
+    const double height = n.dot(toOpposite);
+    const double tolerance = 1e-9 * toOpposite.norm();
+    if (height > tolerance) return false;              // concave: faces hold it from inside
+    if (height >= -tolerance) return n.dot(n2) < 0.0;  // coplanar: flat unless folded over
+    return n.dot(n2) < 0.0 || n.cross(n2).norm() > kFlatCreaseSine;
+}
+
 std::vector<uint8_t> activeFeatureFlags(const TriangleMesh& mesh,
                                         const std::vector<Vec3>& normals) {
     const int triangleCount = static_cast<int>(mesh.triangles.size());
@@ -59,12 +68,7 @@ std::vector<uint8_t> activeFeatureFlags(const TriangleMesh& mesh,
         for (int k = 0; k < 3; ++k) {
             if (o[k] != ea && o[k] != eb) opposite = mesh.vertices[o[k]];
         }
-        const Vec3 toOpposite = opposite - start;
-        const double height = n.dot(toOpposite);
-        const double tolerance = 1e-9 * toOpposite.norm();
-        if (height > tolerance) return false;              // concave: faces hold it from inside
-        if (height >= -tolerance) return n.dot(n2) < 0.0;  // coplanar: flat unless folded over
-        return n.dot(n2) < 0.0 || n.cross(n2).norm() > kFlatCreaseSine;
+        return isActiveCrease(n, n2, start, opposite);
     };
     for (std::size_t begin = 0; begin < uses.size();) {
         std::size_t end = begin + 1;

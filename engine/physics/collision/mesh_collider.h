@@ -44,6 +44,10 @@ struct MeshCollider {
 /// Creases sharper than this (the sine of the angle between neighbouring normals) are active.
 inline constexpr double kFlatCreaseSine = 0.02;
 
+/// Whether the edge from `start` shared by a triangle of normal `n` and a neighbour of normal
+/// `n2`, whose corner off the edge is `opposite`, is an active crease (activeFeatureFlags' rule).
+bool isActiveCrease(const Vec3& n, const Vec3& n2, const Vec3& start, const Vec3& opposite);
+
 /// The ContactTriangle flags of every triangle: an edge is active when it borders one triangle
 /// only (or more than two), or when its two triangles meet at a convex crease sharper than
 /// kFlatCreaseSine; a vertex is active when any edge at it is. Degenerate triangles (zero

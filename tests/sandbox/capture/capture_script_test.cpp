@@ -129,6 +129,7 @@ TEST(CaptureScript, ErrorsNameTheScriptAndTheJsonPath) {
     EXPECT_EQ(errorOf(script(R"("substeps": 0)")),
               "dir/s.json: captures[0].substeps: must be a whole number from 1 to 10000, got 0");
     EXPECT_EQ(errorOf(script(R"("dt": 0)")), "dir/s.json: captures[0].dt: must be > 0 s");
+    EXPECT_EQ(errorOf(script(R"("dt": 1e-320)")).rfind("dir/s.json: captures[0].dt: must be at least 1e-06 s", 0), 0u);
     EXPECT_EQ(errorOf(script(R"("set": {"velocity_pass": "off"})")),
               "dir/s.json: captures[0].set.velocity_pass: expected a number, got a string");
     EXPECT_EQ(
