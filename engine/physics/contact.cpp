@@ -290,45 +290,128 @@ void solvePushes(const PatchSystem& system, std::span<const Contact> contacts, c
 /// 40). The paper's Fig. 13 case (spheres 40 % into the ground) rises the same either way.
 double pushOut(double depth, const Body& b0, const Body& b1, const Vec3& r0, const Vec3& r1,
                const Vec3& n, const SolverContext& ctx) {
-    if (!(depth > 0.0) || !ctx.capPushOut) return depth;
     const double h = ctx.h;
+    // The cap is never below h kPushOutSpeed: a depth within it (every resting contact, whose
+    // depth is about g h²) needs no approach speed.
+    if (!(depth > h * kPushOutSpeed) || !ctx.capPushOut) return depth;
     const double approach = -(pointVelocity(b0.v, b0.omega, r0) - pointVelocity(b1.v, b1.omega, r1)).dot(n);
     return std::min(depth, h * std::max(approach, kPushOutSpeed));
 }
 
+/// One body's side of a point correction along unit n at world offset r (Eq. 2 or Eq. 3, and
+/// the rotation Eq. 8 or Eq. 9 makes per unit multiplier): what applyPositionalCorrection
+/// computes, without its normalisation of a direction that is already unit.
+struct PointResponse {
+    double w = 0.0;
+    Vec3 turn = Vec3::Zero();
+};
+
+inline PointResponse pointResponse(const Body& b, const Vec3& r, const Vec3& n) {
+    if (b.invMass == 0.0) return {};
+    if (!b.rotates()) return {b.invMass, Vec3::Zero()};
+    const Vec3 rn = r.cross(n);
+    if (b.isotropic) return {b.invMass + b.invInertia.x() * rn.squaredNorm(), b.invInertia.x() * rn};
+    const Vec3 rnBody = b.q.conjugate() * rn;  // into the rest frame (paper 3.3.2)
+    const Vec3 scaled = b.invInertia.cwiseProduct(rnBody);
+    return {b.invMass + rnBody.dot(scaled), b.q * scaled};
+}
+
+/// Eq. 6 to Eq. 9 for one body: moved by Δλ n / m and turned by Δλ I⁻¹ (r × n) (exactly, as
+/// the correction operations turn). Gauss-Seidel only: Jacobi gathers through correction.cpp.
+inline void movePoint(Body& b, const PointResponse& s, const Vec3& p, double deltaLambda) {
+    if (b.invMass == 0.0) return;
+    b.x += p * b.invMass;
+    if (b.rotates()) integrateRotation(b.q, s.turn * deltaLambda);
+}
+
 /// The paper's contact for a pair with one point (a marble, a coin on its rim): the push
 /// (Eq. 26), then static friction from the motion during the substep (Eq. 27, Eq. 28), each
-/// the scalar update of applyPositionalCorrection (Eq. 2 to Eq. 9).
+/// the scalar update of Eq. 2 to Eq. 9. Fused: the normal is already unit, so the push skips
+/// the general correction's normalisation, and both corrections move the bodies in place.
+/// Jacobi takes applyPositionalCorrection, which gathers the motions instead.
 void solveSinglePointPositions(ContactPair& pair, Contact& c, SolverContext& ctx) {
-    const Body& b0 = ctx.bodies[pair.body0];
-    const Body& b1 = ctx.bodies[pair.body1];
+    Body& b0 = ctx.bodies[pair.body0];
+    Body& b1 = ctx.bodies[pair.body1];
+    const Vec3& n = c.normal;
     Vec3 r0 = b0.q * c.local0;
     Vec3 r1 = b1.q * c.local1;
     // Eq. 26: the points p1, p2 on the current poses and the depth d along n (with this
     // file's normal, from body 1 towards body 0), pushed out as Δx = d n with α = 0 and λ_n.
-    const double depth = pushOut(((b1.x + r1) - (b0.x + r0)).dot(c.normal), b0, b1, r0, r1, c.normal, ctx);
-    if (!(depth > 0.0)) {
+    const double depth = pushOut(((b1.x + r1) - (b0.x + r0)).dot(n), b0, b1, r0, r1, n, ctx);
+    if (!(depth > kDirectionEpsilon)) {
         pair.lambdaNormal = c.lambdaNormal;
         return;
     }
-    applyPositionalCorrection(ctx, pair.body0, pair.body1, depth * c.normal, r0, r1, 0.0, c.lambdaNormal);
+    const bool gaussSeidel = ctx.solver == SolverType::GaussSeidel;
+    if (gaussSeidel) {
+        const PointResponse s0 = pointResponse(b0, r0, n);  // Eq. 2
+        const PointResponse s1 = pointResponse(b1, r1, n);  // Eq. 3
+        const double w = s0.w + s1.w;
+        if (!(w > 0.0)) {
+            pair.lambdaNormal = c.lambdaNormal;
+            return;  // two static bodies
+        }
+        const double deltaLambda = depth / w;  // Eq. 4 with α = 0
+        c.lambdaNormal += deltaLambda;          // Eq. 5
+        const Vec3 p = deltaLambda * n;
+        movePoint(b0, s0, p, deltaLambda);      // Eq. 6, Eq. 8
+        movePoint(b1, s1, -p, -deltaLambda);    // Eq. 7, Eq. 9
+    } else {
+        applyPositionalCorrection(ctx, pair.body0, pair.body1, depth * n, r0, r1, 0.0, c.lambdaNormal);
+    }
     pair.lambdaNormal = c.lambdaNormal;
     pair.anchored = false;
     if (!(pair.staticFriction > 0.0)) return;
     r0 = b0.q * c.local0;
     r1 = b1.q * c.local1;
     const Vec3 motion = (b0.x + r0 - previousPoint(b0, c.local0)) - (b1.x + r1 - previousPoint(b1, c.local1));  // Eq. 27
-    const Vec3 slip = motion - motion.dot(c.normal) * c.normal;  // Eq. 28
+    const Vec3 slip = motion - motion.dot(n) * n;  // Eq. 28
     // Static friction: Δx = Δp_t with α = 0, only while λ_t stays within μ_s λ_n (paper 3.5).
     double lambdaTangent = pair.lambdaTangent();
-    applyPositionalCorrection(ctx, pair.body0, pair.body1, -slip, r0, r1, 0.0, lambdaTangent,
-                              pair.staticFriction * pair.lambdaNormal);
+    const double limit = pair.staticFriction * pair.lambdaNormal;
+    if (gaussSeidel) {
+        const double slipLength = slip.norm();
+        if (slipLength > kDirectionEpsilon) {
+            const Vec3 t = slip / -slipLength;  // the correction's direction, −Δp_t / |Δp_t|
+            const PointResponse s0 = pointResponse(b0, r0, t);
+            const PointResponse s1 = pointResponse(b1, r1, t);
+            const double w = s0.w + s1.w;
+            const double deltaLambda = slipLength / w;
+            if (w > 0.0 && lambdaTangent + deltaLambda <= limit) {
+                lambdaTangent += deltaLambda;
+                const Vec3 p = deltaLambda * t;
+                movePoint(b0, s0, p, deltaLambda);
+                movePoint(b1, s1, -p, -deltaLambda);
+            }
+        }
+    } else {
+        applyPositionalCorrection(ctx, pair.body0, pair.body1, -slip, r0, r1, 0.0, lambdaTangent, limit);
+    }
     pair.lambdaTangent1 = lambdaTangent;  // one point: the magnitude is all the readout needs
     pair.lambdaTangent2 = 0.0;
 }
 
+/// Eq. 33 along unit n for a velocity change of `change` along it, given both bodies' responses
+/// along n at r0, r1: p = change n / (w1 + w2), then v and ω of both bodies.
+inline void changePointVelocity(Body& b0, Body& b1, const PointResponse& s0, const PointResponse& s1,
+                                const Vec3& n, double change) {
+    const double w = s0.w + s1.w;
+    if (!(w > 0.0)) return;
+    const double impulse = change / w;
+    if (b0.invMass > 0.0) {
+        b0.v += (impulse * b0.invMass) * n;
+        if (b0.rotates()) b0.omega += impulse * s0.turn;
+    }
+    if (b1.invMass > 0.0) {
+        b1.v -= (impulse * b1.invMass) * n;
+        if (b1.rotates()) b1.omega -= impulse * s1.turn;
+    }
+}
+
 /// The velocity pass for a pair with one point (Eq. 29, Eq. 30, Eq. 33, Eq. 34): restitution,
-/// then dynamic friction with the impulse clamped (ERRATA item 2).
+/// then dynamic friction with the impulse clamped (ERRATA item 2). Fused: each change is
+/// applied along its unit direction with the generalised inverse mass computed once (the
+/// general Eq. 33 normalises the change and computes w again).
 void solveSinglePointVelocities(const ContactPair& pair, const Contact& c, Body& b0, Body& b1,
                                 double h, double gravity) {
     const Vec3& n = c.normal;
@@ -351,18 +434,20 @@ void solveSinglePointVelocities(const ContactPair& pair, const Contact& c, Body&
         const double e = std::abs(vnBefore) <= 2.0 * gravity * h ? 0.0 : pair.restitution;
         change = std::max(-e * vnBefore, 0.0) - vn;  // Eq. 34
     }
-    if (std::abs(change) > kRestingSpeed) applyVelocityCorrection(b0, b1, change * n, r0, r1);  // Eq. 33
+    if (std::abs(change) > kRestingSpeed)
+        changePointVelocity(b0, b1, pointResponse(b0, r0, n), pointResponse(b1, r1, n), n, change);  // Eq. 33
     if (!(pair.dynamicFriction > 0.0)) return;
     const Vec3 vAfter = pointVelocity(b0.v, b0.omega, r0) - pointVelocity(b1.v, b1.omega, r1);
     const Vec3 slip = vAfter - vAfter.dot(n) * n;  // Eq. 29: v_t
     const double slipSpeed = slip.norm();
     if (!(slipSpeed > kRestingSpeed)) return;
     const Vec3 t = slip / slipSpeed;
-    const double w = b0.positionalInverseMass(r0, t) + b1.positionalInverseMass(r1, t);
+    const PointResponse s0 = pointResponse(b0, r0, t);
+    const PointResponse s1 = pointResponse(b1, r1, t);
     // Eq. 30 with ERRATA item 2: an impulse of at most h μ_d f_n, f_n = λ_n / h² (Eq. 10),
     // changes the slip speed by at most that times w1 + w2; applied by Eq. 33.
-    const double maxChange = pair.dynamicFriction * c.lambdaNormal / h * w;
-    applyVelocityCorrection(b0, b1, -std::min(maxChange, slipSpeed) * t, r0, r1);
+    const double maxChange = pair.dynamicFriction * c.lambdaNormal / h * (s0.w + s1.w);
+    changePointVelocity(b0, b1, s0, s1, t, -std::min(maxChange, slipSpeed));
 }
 
 }  // namespace

@@ -206,6 +206,93 @@ TEST(ContactTest, StrikerPassesItsVelocityToTheLastSphereOfARow) {
     EXPECT_LT(std::abs(world.body(striker).v.x()), 0.1 * strikerSpeed);
 }
 
+// One-point contacts take a fused path (contact.cpp, solveSinglePointPositions and
+// solveSinglePointVelocities); these check it against closed forms on the bodies it serves:
+// unequal dynamic masses, particles (no rotation), uneven inertia, and the Jacobi solver,
+// which takes the general correction instead.
+
+// Elastic head-on collision of unequal spheres (e = 1, no gravity): v0' = (m0 − m1) / (m0 + m1) v
+// and v1' = 2 m0 / (m0 + m1) v, momentum and kinetic energy kept.
+TEST(ContactTest, ElasticCollisionOfUnequalSpheresMatchesTheClosedForm) {
+    for (const double ratio : {3.0, 0.2, 40.0}) {
+        World world({.gravity = Vec3::Zero(), .substeps = 20});
+        const double radius = 0.1;
+        const double m0 = 0.5;
+        const double m1 = m0 * ratio;
+        const double v = 2.0;
+        const BodyId striker = world.createBody({.shape = sphereShape(radius), .mass = m0,
+                                                 .velocity = Vec3(v, 0, 0), .restitution = 1.0});
+        const BodyId target = world.createBody({.shape = sphereShape(radius), .mass = m1,
+                                                .position = Vec3(0.5, 0, 0), .restitution = 1.0});
+        test::runFor(world, 1.0, [](double) {});
+        const double expected0 = (m0 - m1) / (m0 + m1) * v;
+        const double expected1 = 2.0 * m0 / (m0 + m1) * v;
+        EXPECT_NEAR(world.body(striker).v.x(), expected0, 0.01 * v) << "m1/m0 = " << ratio;
+        EXPECT_NEAR(world.body(target).v.x(), expected1, 0.01 * v) << "m1/m0 = " << ratio;
+        EXPECT_NEAR(m0 * world.body(striker).v.x() + m1 * world.body(target).v.x(), m0 * v, 1e-9 * m0 * v);
+        EXPECT_LT(world.body(striker).omega.norm() + world.body(target).omega.norm(), 1e-9);
+    }
+}
+
+// A particle on an incline has one contact point and no rotation to blur the closed form: it
+// holds below atan μ_s and slides with a = g (sin θ − μ_d cos θ) above, for any mass.
+TEST(ContactTest, ParticleOnInclineHoldsBelowAndSlidesAboveTheFrictionAngle) {
+    const double muStatic = 0.6;
+    const double muDynamic = 0.4;
+    for (const double mass : {0.05, 7.0}) {
+        for (const double degrees : {20.0, 29.0, 35.0, 50.0}) {
+            const double angle = degrees * kPi / 180.0;
+            const Vec3 normal(-std::sin(angle), std::cos(angle), 0.0);
+            const Vec3 downhill = -Vec3(std::cos(angle), std::sin(angle), 0.0);
+            World world = makeWorld();
+            world.createBody({.shape = planeShape(normal, 0.0), .type = BodyType::Static,
+                              .staticFriction = muStatic, .dynamicFriction = muDynamic});
+            const double radius = 0.05;
+            const BodyId particle = world.createBody(
+                {.shape = sphereShape(radius), .type = BodyType::Particle, .mass = mass,
+                 .position = normal * radius, .staticFriction = muStatic, .dynamicFriction = muDynamic});
+            test::runFor(world, 0.5, [](double) {});
+            const double x0 = world.body(particle).x.dot(downhill);
+            const double v0 = world.body(particle).v.dot(downhill);
+            test::runFor(world, 1.0, [](double) {});
+            const double travelled = world.body(particle).x.dot(downhill) - x0;
+            const double acceleration = world.body(particle).v.dot(downhill) - v0;
+            if (std::tan(angle) < muStatic) {
+                EXPECT_LT(std::abs(travelled), 1e-6) << degrees << "°, " << mass << " kg";
+            } else {
+                const double expected = kG * (std::sin(angle) - muDynamic * std::cos(angle));
+                EXPECT_NEAR(acceleration, expected, 0.01 * expected) << degrees << "°, " << mass << " kg";
+            }
+        }
+    }
+}
+
+// A capsule standing on its end cap (uneven inertia, one contact point) and a sphere under the
+// Jacobi solver (the general correction) bounce to e²h like the sphere of BounceTest.
+TEST(ContactTest, UnevenInertiaAndJacobiBounceToRestitutionSquaredTimesHeight) {
+    const double e = 0.7;
+    const double drop = 0.8;
+    for (const bool jacobi : {false, true}) {
+        World world({.gravity = Vec3(0, -kG, 0), .substeps = 20,
+                     .solver = jacobi ? SolverType::Jacobi : SolverType::GaussSeidel});
+        addGround(world, 0.5, e);
+        const double bottom = jacobi ? 0.1 : 0.1 + 0.15;  // sphere radius, or half the capsule
+        const Shape shape = jacobi ? sphereShape(0.1) : capsuleShape(0.1, 0.3);
+        const BodyId body = world.createBody(
+            {.shape = shape, .mass = 1.7, .position = Vec3(0, bottom + drop, 0), .restitution = e});
+        bool bounced = false;
+        double apex = 0.0;
+        test::runFor(world, 1.4, [&](double) {
+            const Body& b = world.body(body);
+            if (b.v.y() > 0.0) bounced = true;
+            if (bounced) apex = std::max(apex, b.pointToWorld(Vec3::Zero()).y() - bottom);
+        });
+        ASSERT_TRUE(bounced) << (jacobi ? "Jacobi" : "capsule");
+        EXPECT_NEAR(apex, e * e * drop, 0.03 * e * e * drop + 2e-3) << (jacobi ? "Jacobi" : "capsule");
+        EXPECT_LT(world.body(body).omega.norm(), 1e-6) << (jacobi ? "Jacobi" : "capsule");
+    }
+}
+
 // Paper Fig. 13: spheres created 40 % into the ground are pushed out without flying off.
 TEST(ContactTest, SpheresCreatedOverlappingTheGroundRiseGently) {
     World world = makeWorld();
