@@ -61,6 +61,11 @@ class SceneScript {
         return std::nullopt;
     }
 
+    /// A copy of the script with its state (knobs and what it keeps between frames), for the
+    /// timeline's rewind; nullptr from a script that cannot be copied, whose scene then cannot
+    /// be rewound exactly.
+    virtual std::unique_ptr<SceneScript> clone() const { return nullptr; }
+
     std::span<SceneKnob> knobs() { return knobs_; }
     std::span<const SceneKnob> knobs() const { return knobs_; }
     /// The knob called `name`, or nullptr.

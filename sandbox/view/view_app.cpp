@@ -286,6 +286,7 @@ ViewAppResult runViewApp(SceneSource source, const ViewAppOptions& options) {
         if (keys.togglePlay % 2 != 0) session.playback().playing = !session.playback().playing;
         requests.restart |= keys.restart;
         for (int step = 0; step < keys.steps; ++step) session.stepOnce();
+        if (keys.scrub != 0) session.scrubBy(keys.scrub);
         if (keys.resetCamera || keys.restart) camera = OrbitCamera(session.startCamera());
 
         if (requests.loadScene) {
@@ -312,6 +313,8 @@ ViewAppResult runViewApp(SceneSource source, const ViewAppOptions& options) {
         if (requests.controlsChanged) session.applyControls();
         if (requests.drawingChanged) session.applyDrawingOptions();
         if (requests.step) session.stepOnce();
+        if (requests.scrubTo) session.scrubTo(*requests.scrubTo);
+        if (requests.scrubBy != 0) session.scrubBy(requests.scrubBy);
         if (requests.resetCamera) camera = OrbitCamera(session.startCamera());
         if (requests.quality) {
             status.quality = *requests.quality;
