@@ -15,7 +15,7 @@ namespace substep::view {
 class Timeline {
   public:
     /// Keeps at most `seconds` of frames of `dt`, and fewer when that many snapshots would take
-    /// more than `byteBudget` (a thousand spheres take about 1 MB a frame).
+    /// more than `byteBudget` (WorldSnapshot::bytes).
     Timeline(double seconds = 10.0, std::size_t byteBudget = std::size_t{256} << 20)
         : seconds_(seconds), byteBudget_(byteBudget) {}
 

@@ -5,6 +5,8 @@
 #include "physics/world_snapshot.h"
 #include "scenes/scene_registry.h"
 
+#include "ecs/components.h"
+
 #include "physics_test_support.h"
 
 #include <gtest/gtest.h>
