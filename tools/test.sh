@@ -56,7 +56,9 @@ fi
 
 if [[ $stages == *" clang "* ]]; then
   stage "clang: the engine libraries and the program"
-  CC=clang CXX=clang++ cmake -S . -B build-clang -G Ninja -DCMAKE_BUILD_TYPE=Release \
+  # Build type None: no optimisation flags, since this stage checks that clang compiles the
+  # code; the Release stage above is the one whose programs run.
+  CC=clang CXX=clang++ cmake -S . -B build-clang -G Ninja -DCMAKE_BUILD_TYPE=None \
     -DSUBSTEP_BUILD_TESTS=OFF -DSUBSTEP_BUILD_BENCHMARKS=OFF
   cmake --build build-clang -j "$jobs" --target substep
 fi

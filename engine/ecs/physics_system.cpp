@@ -3,6 +3,8 @@
 
 #include "ecs/physics_system.h"
 
+#include "physics/world_snapshot.h"
+
 #include "ecs/body_components.h"
 #include "ecs/components.h"
 
@@ -221,6 +223,13 @@ void PhysicsSystem::destroy(Entity entity) {
         softBody->id = {};
     }
     registry.destroy(entity);
+}
+
+WorldSnapshot PhysicsSystem::snapshot() const { return world_->snapshot(); }
+
+void PhysicsSystem::restore(const WorldSnapshot& snapshot) {
+    world_->restore(snapshot);
+    writeBack();
 }
 
 }  // namespace substep::ecs

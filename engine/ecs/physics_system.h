@@ -57,6 +57,13 @@ class PhysicsSystem {
     /// after creating a scene, so components read the initial state as the world has it.
     void writeBack();
 
+    /// The world's state now (physics/world_snapshot.h), for rewinding.
+    WorldSnapshot snapshot() const;
+    /// Puts the world back in `snapshot`'s state and writes it back into the components. The
+    /// entities must be those the snapshot was taken with (no body or joint created or
+    /// destroyed since); settings stay the current ones.
+    void restore(const WorldSnapshot& snapshot);
+
     /// Destroys the entity, its world body (with every world joint attached to that body), the
     /// world joint of its Joint component, its world soft body, and the world joints of Joint
     /// components that name it; those components stay, with a null id, and sync() leaves them

@@ -21,6 +21,7 @@ namespace substep {
 
 class SoftSystem;
 class WorkerPool;
+class WorldSnapshot;
 struct SoftBodyDef;
 struct SoftBodyReadout;
 struct SoftSurface;
@@ -148,6 +149,13 @@ public:
 
     /// Advances one frame of length dt in `settings().substeps` substeps.
     void step(double dt);
+    /// A copy of everything a step reads that the world carries from frame to frame: bodies
+    /// (poses, velocities, previous poses), joints (their drives' reached targets), the contact
+    /// pairs and points, the broadphase, soft particles. Restoring it makes the following steps
+    /// give the same bytes as the steps that followed the snapshot (world_snapshot.h).
+    WorldSnapshot snapshot() const;
+    /// Puts the world back in a snapshot's state; settings() stay the current ones.
+    void restore(const WorldSnapshot& snapshot);
     /// Asks the next step to repair large violations of hard joint parts first (see
     /// WorldSettings::repairDistance): call it after moving bodies by hand.
     void requestRepair() { repairPending_ = true; }

@@ -103,6 +103,7 @@ constexpr std::array<SolverSplit, 5> kSplits{{{20, 1}, {10, 2}, {5, 4}, {2, 10},
 
 class BunnyChainScript final : public SceneScript {
   public:
+    std::unique_ptr<SceneScript> clone() const override { return std::make_unique<BunnyChainScript>(*this); }
     BunnyChainScript() {
         solver_ = addKnob({.name = "solver",
                            .label = "substeps x iterations",

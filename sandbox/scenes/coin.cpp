@@ -93,6 +93,7 @@ double steadyPrecessionRate(double tilt) {
 
 class CoinScript : public SceneScript {
   public:
+    std::unique_ptr<SceneScript> clone() const override { return std::make_unique<CoinScript>(*this); }
     CoinScript() {
         spin_ = addKnob({.name = "spin",
                          .label = "spin about the vertical (rad/s)",

@@ -69,6 +69,7 @@ SceneDescription buildCradle() {
 
 class CradleScript : public SceneScript {
   public:
+    std::unique_ptr<SceneScript> clone() const override { return std::make_unique<CradleScript>(*this); }
     CradleScript() {
         velocityPass_ = addKnob({.name = "velocity_pass",
                                  .label = "velocity pass (off: plain PBD)",

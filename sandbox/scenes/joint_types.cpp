@@ -121,6 +121,7 @@ std::string rangeLabel(const char* what, double lower, double upper, const char*
 
 class JointTypesScript : public SceneScript {
   public:
+    std::unique_ptr<SceneScript> clone() const override { return std::make_unique<JointTypesScript>(*this); }
     JointTypesScript() {
         animate_ = addKnob({.name = "animate", .label = "sweep the drive targets", .kind = SceneKnob::Kind::Toggle,
                             .value = 1.0});

@@ -9,6 +9,7 @@ LiveScene::LiveScene(SceneDescription description, const SceneEntry* entry)
       script_(entry != nullptr && entry->makeScript != nullptr ? entry->makeScript() : nullptr),
       instance_(buildScene(description_)) {
     if (script_) script_->start(instance_);
+    canSnapshot_ = !script_ || script_->clone() != nullptr;
     sync();
 }
 
@@ -36,6 +37,22 @@ bool LiveScene::setKnob(std::string_view name, double value) {
     if (!script_ || !script_->setKnob(instance_, name, value)) return false;
     sync();
     return true;
+}
+
+bool LiveScene::canSnapshot() const { return canSnapshot_; }
+
+LiveSceneSnapshot LiveScene::snapshot() const {
+    LiveSceneSnapshot s;
+    s.world = instance_.world().snapshot();  // a read of the world: no change goes round the layer
+    if (script_) s.script = script_->clone();
+    s.frame = frame_;
+    return s;
+}
+
+void LiveScene::restore(const LiveSceneSnapshot& snapshot) {
+    instance_.physics().restore(snapshot.world);
+    if (snapshot.script) script_ = snapshot.script->clone();
+    frame_ = snapshot.frame;
 }
 
 }  // namespace substep

@@ -9,11 +9,22 @@
 
 #include "scene/scene.h"
 
+#include "physics/world_snapshot.h"
+
 #include <chrono>
 #include <memory>
 #include <string_view>
 
 namespace substep {
+
+/// A running scene's state at a frame boundary (LiveScene::snapshot): the world's, a copy of the
+/// script, the frame count. Restoring it makes the following frames repeat the original ones
+/// byte for byte.
+struct LiveSceneSnapshot {
+    WorldSnapshot world;
+    std::shared_ptr<const SceneScript> script;  ///< null for a scene without a script
+    long long frame = 0;
+};
 
 class LiveScene {
   public:
@@ -35,6 +46,17 @@ class LiveScene {
     /// Sets knob `name` of the script and syncs; false when there is no script or no such knob.
     bool setKnob(std::string_view name, double value);
 
+    /// Whether snapshot() captures everything: the scene has no script or its script can be
+    /// copied (SceneScript::clone).
+    bool canSnapshot() const;
+    /// The state now; with a script that cannot be copied the snapshot keeps none (see
+    /// canSnapshot) and a restore keeps the current script.
+    LiveSceneSnapshot snapshot() const;
+    /// Puts the scene back in `snapshot`'s state: the world (components written back from it),
+    /// the script and the frame count. The snapshot must come from this build of the scene (no
+    /// restart or load since); the world's settings stay the current ones.
+    void restore(const LiveSceneSnapshot& snapshot);
+
     SceneInstance& instance() { return instance_; }
     const SceneInstance& instance() const { return instance_; }
     /// The scene's physics system (made per call).
@@ -55,6 +77,7 @@ class LiveScene {
     std::unique_ptr<SceneScript> script_;
     SceneInstance instance_;
     long long frame_ = 0;
+    bool canSnapshot_ = true;  ///< no script, or one that copies
 };
 
 }  // namespace substep

@@ -90,6 +90,7 @@ SceneDescription buildMarblesOnWire() {
 
 class MarblesOnWireScript : public SceneScript {
   public:
+    std::unique_ptr<SceneScript> clone() const override { return std::make_unique<MarblesOnWireScript>(*this); }
     MarblesOnWireScript() {
         velocityPass_ = addKnob({.name = "velocity_pass",
                                  .label = "velocity pass (off: plain PBD)",

@@ -66,6 +66,7 @@ std::pair<double, double> autopilot(double t) {
 
 class RcCarScript : public SceneScript {
   public:
+    std::unique_ptr<SceneScript> clone() const override { return std::make_unique<RcCarScript>(*this); }
     RcCarScript() {
         throttle_ = addKnob({.name = "throttle",
                              .label = "throttle (0: motors off)",

@@ -158,6 +158,7 @@ SceneDescription build() {
 
 class RobotArmScript : public SceneScript {
   public:
+    std::unique_ptr<SceneScript> clone() const override { return std::make_unique<RobotArmScript>(*this); }
     RobotArmScript() {
         orbit_ = addKnob({.name = "orbit", .label = "move the target on a path", .kind = SceneKnob::Kind::Toggle,
                           .value = 1.0});

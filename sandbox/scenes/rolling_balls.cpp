@@ -328,6 +328,7 @@ struct Tracked {
 
 class RollingBallsScript : public SceneScript {
   public:
+    std::unique_ptr<SceneScript> clone() const override { return std::make_unique<RollingBallsScript>(*this); }
     RollingBallsScript() {
         marbles_ = addKnob({.name = "marbles",
                             .label = "marbles (more on restart)",

@@ -79,6 +79,10 @@ class SceneScript {
 
     /// The knobs the window drives from the keyboard or a gamepad.
     std::span<const SceneKeyAxis> keyAxes() const { return keyAxes_; }
+    /// A copy of the script with its state (knobs and what it keeps between frames), for the
+    /// timeline's rewind; nullptr from a script that cannot be copied, whose scene then cannot
+    /// be rewound exactly.
+    virtual std::unique_ptr<SceneScript> clone() const { return nullptr; }
 
     std::span<SceneKnob> knobs() { return knobs_; }
     std::span<const SceneKnob> knobs() const { return knobs_; }

@@ -145,6 +145,7 @@ SceneDescription buildTwistedRope() {
 
 class TwistedRopeScript final : public SceneScript {
   public:
+    std::unique_ptr<SceneScript> clone() const override { return std::make_unique<TwistedRopeScript>(*this); }
     TwistedRopeScript() {
         turnRate_ = addKnob({.name = "turn_rate", .label = "turn rate (turns/s)", .value = 0.5,
                              .min = -2.0, .max = 2.0, .format = "%.2f"});

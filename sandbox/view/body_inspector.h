@@ -41,6 +41,9 @@ struct BodyInspection {
     Vec3 velocity = Vec3::Zero();         ///< of the centre of mass (m/s)
     Vec3 angularVelocity = Vec3::Zero();  ///< rad/s, world axes
     std::vector<JointInspection> joints;  ///< every joint with the body on either side
+    /// Filled by the session from the world's read-only view, which the components lack:
+    Vec3 inertia = Vec3::Zero();  ///< principal moments (kg m²; 0 for a static body)
+    int contacts = 0;             ///< contact points on the body in the last substep
 };
 
 /// The inspection of body `entity`; nullopt when it is no body any more (a restart, a load).

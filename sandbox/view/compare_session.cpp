@@ -127,6 +127,19 @@ void CompareSession::stepOnce() {
     if (!anyFinite) playback_.playing = false;
 }
 
+void CompareSession::scrubBy(long long frames) {
+    const long long target = first().frame() + frames;
+    scrubTo(target);
+    // Past the newest kept frame (or with nothing kept), new steps go on.
+    while (first().frame() < target && first().finite()) stepOnce();
+}
+
+void CompareSession::scrubTo(long long frame) {
+    playback_.playing = false;
+    pendingSeconds_ = 0.0;
+    for (const std::unique_ptr<ViewSession>& each : runs_) each->scrubTo(frame);
+}
+
 void CompareSession::applyControls() {
     const float gravityY = first().controls().gravityY;
     for (std::size_t index = 0; index < runs_.size(); ++index) {

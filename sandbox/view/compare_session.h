@@ -72,6 +72,11 @@ class CompareSession {
     void advance(double wallSeconds);
     /// One frame of the scene's dt in every run (a run whose state turned non-finite stays put).
     void stepOnce();
+    /// Pauses and moves every run by `frames` through its timeline (timeline.h): back through
+    /// the kept states, forward through them and, past the newest, by new steps.
+    void scrubBy(long long frames);
+    /// Pauses and shows frame `frame` of every run's timeline (clamped to what it keeps).
+    void scrubTo(long long frame);
 
     /// Copies the shared controls (gravity, the first run's) into every run and applies each
     /// run's controls to its world; each run's splits() follow its substeps and iterations.

@@ -287,9 +287,11 @@ ViewAppResult runViewApp(SceneSource source, const ViewAppOptions& options) {
         if (helpShown) drawHelpOverlay(area);
         if (keys.togglePlay % 2 != 0) session.playback().playing = !session.playback().playing;
         requests.restart |= keys.restart;
-        // S steps a frame unless the scene drives a knob with it (the RC car's WASD).
+        // S steps a frame and Left/Right scrub the timeline, unless the scene drives knobs
+        // with them (the RC car's WASD and arrows).
         if (!keyDriver.binds(session, GLFW_KEY_S))
             for (int step = 0; step < keys.steps; ++step) session.stepOnce();
+        if (keys.scrub != 0 && !keyDriver.binds(session, GLFW_KEY_LEFT)) session.scrubBy(keys.scrub);
         keyDriver.update(session);
         if (keys.resetCamera || keys.restart) camera = OrbitCamera(session.startCamera());
 
@@ -317,6 +319,8 @@ ViewAppResult runViewApp(SceneSource source, const ViewAppOptions& options) {
         if (requests.controlsChanged) session.applyControls();
         if (requests.drawingChanged) session.applyDrawingOptions();
         if (requests.step) session.stepOnce();
+        if (requests.scrubTo) session.scrubTo(*requests.scrubTo);
+        if (requests.scrubBy != 0) session.scrubBy(requests.scrubBy);
         if (requests.resetCamera) camera = OrbitCamera(session.startCamera());
         if (requests.quality) {
             status.quality = *requests.quality;

@@ -9,9 +9,10 @@ namespace substep::view {
 
 namespace {
 
-constexpr std::array<ControlHelp, 14> kControls{{
+constexpr std::array<ControlHelp, 15> kControls{{
     {"Space", "play / pause"},
     {"S", "step one frame (hold to repeat)"},
+    {"Left / Right", "pause; one frame back / forward through the timeline (last 10 s; hold to repeat)"},
     {"R", "restart the scene (and reset the camera)"},
     {"C, Home", "reset the camera to the scene's"},
     {"Tab", "hide / show the panel"},
@@ -60,6 +61,8 @@ KeyActions keyActions(std::span<const InputEvent> events, bool textInput) {
                 if (!repeat) ++actions.togglePlay;
                 break;
             case GLFW_KEY_S: ++actions.steps; break;
+            case GLFW_KEY_LEFT: --actions.scrub; break;
+            case GLFW_KEY_RIGHT: ++actions.scrub; break;
             case GLFW_KEY_R:
                 if (!repeat) actions.restart = true;
                 break;

@@ -26,6 +26,7 @@ std::string controlsHelpText();
 struct KeyActions {
     int togglePlay = 0;
     int steps = 0;          ///< S: one frame each (held, the key repeats)
+    int scrub = 0;          ///< Left / Right: frames back / forward through the timeline (repeat)
     bool restart = false;   ///< R (also resets the camera)
     bool resetCamera = false;   ///< C or Home
     int toggleUi = 0;       ///< Tab

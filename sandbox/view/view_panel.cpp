@@ -161,7 +161,10 @@ void drawInspector(CompareSession& session) {
             ImGui::TextUnformatted("static (no mass)");
         } else {
             ImGui::Text("mass %.6g kg", body->mass);
+            ImGui::TextWrapped("inertia %.4g %.4g %.4g kg m2 (principal)", body->inertia.x(), body->inertia.y(),
+                               body->inertia.z());
         }
+        ImGui::Text("contacts %d", body->contacts);
         ImGui::Text("position %.4g %.4g %.4g m", body->position.x(), body->position.y(), body->position.z());
         ImGui::TextWrapped("velocity %.4g %.4g %.4g m/s (|v| %.4g)", body->velocity.x(), body->velocity.y(),
                     body->velocity.z(), body->velocity.norm());
@@ -176,6 +179,26 @@ void drawInspector(CompareSession& session) {
         if (body->joints.size() > kMaxJoints) ImGui::TextDisabled("... %zu joints in all", body->joints.size());
         return;
     }
+}
+
+/// The timeline (timeline.h): a slider over the kept frames, one frame back and forward.
+void drawTimeline(const ViewSession& first, PanelRequests& requests) {
+    if (!first.canRewind()) {
+        ImGui::TextDisabled("timeline: this scene's script cannot be rewound");
+        return;
+    }
+    const Timeline& timeline = first.timeline();
+    if (ImGui::ArrowButton("##back", ImGuiDir_Left)) requests.scrubBy = -1;
+    ImGui::SameLine();
+    if (ImGui::ArrowButton("##forward", ImGuiDir_Right)) requests.scrubBy = 1;
+    ImGui::SameLine();
+    int frame = static_cast<int>(timeline.cursorFrame());
+    if (ImGui::SliderInt("timeline", &frame, static_cast<int>(timeline.firstFrame()),
+                         static_cast<int>(timeline.lastFrame()), "frame %d"))
+        requests.scrubTo = frame;
+    if (timeline.scrubbed())
+        ImGui::TextWrapped("%lld later frames kept: play or step resumes from here and drops them",
+                           timeline.lastFrame() - timeline.cursorFrame());
 }
 
 /// Frame rate, where the time goes (the swap is where a software rasteriser finishes drawing),
@@ -265,6 +288,7 @@ PanelRequests ViewPanel::draw(CompareSession& session, const ViewStatus& status,
     ImGui::TextDisabled("(F1: keys)");
     ImGui::Text("frame %lld   t = %.3f s", first.frame(), first.simulatedTime());
     ImGui::SliderFloat("time scale", &playback.timeScale, 0.05f, 4.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
+    drawTimeline(first, requests);
     drawTiming(session, status, requests);
 
     // Solver: one column per run, each with its own substeps and iterations.

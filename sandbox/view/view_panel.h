@@ -37,6 +37,8 @@ struct PanelRequests {
     std::optional<bool> compare;   ///< compare mode switched on or off
     bool resetCamera = false;
     std::optional<render::QualityLevel> quality;  ///< a rendering quality chosen
+    std::optional<long long> scrubTo;  ///< a frame of the timeline chosen on its slider
+    long long scrubBy = 0;              ///< frames back (< 0) or forward through the timeline
 };
 
 class ViewPanel {

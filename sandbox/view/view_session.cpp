@@ -59,11 +59,27 @@ void ViewSession::rebuild(bool keepScript) {
     jointError_.clear();
     chainElongation_.clear();
     sample();
+    restartHistory();
+}
+
+void ViewSession::restartHistory() {
+    timeline_.clear();
+    if (live_->canSnapshot()) timeline_.record(live_->snapshot(), live_->description().dt);
+}
+
+bool ViewSession::scrubTo(long long frame) {
+    if (dragger_.active() || timeline_.empty() || frame == live_->frame()) return false;
+    const LiveSceneSnapshot* snapshot = timeline_.seek(frame);
+    if (snapshot == nullptr || snapshot->frame == live_->frame()) return false;
+    live_->restore(*snapshot);
+    finite_ = live_->world().isFinite();
+    return true;
 }
 
 bool ViewSession::grab(const Ray& ray) {
     const bool grabbed = dragger_.grab(live_->physics(), ray);
     live_->sync();
+    if (grabbed) restartHistory();  // the drag spring is an entity the kept states lack
     return grabbed;
 }
 
@@ -73,8 +89,10 @@ void ViewSession::drag(const Ray& ray) {
 }
 
 void ViewSession::release() {
+    const bool held = dragger_.active();
     dragger_.release(live_->physics());
     live_->sync();
+    if (held) restartHistory();
 }
 
 bool ViewSession::select(const Ray& ray) {
@@ -85,7 +103,14 @@ bool ViewSession::select(const Ray& ray) {
 
 std::optional<BodyInspection> ViewSession::inspection() {
     if (!selected_) return std::nullopt;
-    return inspectBody(live_->instance().registry, *selected_);
+    std::optional<BodyInspection> inspection = inspectBody(live_->instance().registry, *selected_);
+    const ecs::RigidBody* rigid = live_->instance().registry.tryGet<ecs::RigidBody>(*selected_);
+    if (!inspection || rigid == nullptr || !live_->world().isValid(rigid->id)) return inspection;
+    const World& world = live_->world();
+    inspection->inertia = world.bodies()[rigid->id.index].inertia;
+    for (const ContactPair& pair : world.contactPairs())
+        if (pair.body0 == rigid->id.index || pair.body1 == rigid->id.index) inspection->contacts += static_cast<int>(pair.count);
+    return inspection;
 }
 
 double ViewSession::jointCompliance(ecs::Entity joint) const {
@@ -98,12 +123,14 @@ void ViewSession::setJointCompliance(ecs::Entity joint, double compliance) {
     if (!registry.has<ecs::Joint>(joint) || !(compliance >= 0.0)) return;
     registry.patch<ecs::Joint>(joint, [&](ecs::Joint& component) { component.def.compliance = compliance; });
     live_->sync();
+    restartHistory();
 }
 
 void ViewSession::setKnob(std::size_t index, double value) {
     SceneScript* script = live_->script();
     if (script == nullptr || index >= script->knobs().size()) return;
     live_->setKnob(script->knobs()[index].name, value);
+    restartHistory();
     // A knob may switch the solver (the bunny chain's 20 x 1 against 1 x 20): the panel's
     // sliders follow, so a restart keeps what the knob chose.
     controls_.substeps = live_->world().settings().substeps;
@@ -135,6 +162,8 @@ void ViewSession::stepOnce() {
     lastStepMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     finite_ = live_->world().isFinite();
     if (finite_) sample();
+    // Recorded after the step; a step from a scrubbed-back frame drops the later history.
+    if (finite_ && live_->canSnapshot()) timeline_.record(live_->snapshot(), live_->description().dt);
 }
 
 void ViewSession::sample() {

@@ -10,6 +10,7 @@
 #include "view/body_dragger.h"
 #include "view/body_inspector.h"
 #include "view/plot_history.h"
+#include "view/timeline.h"
 
 #include "render/render_scene.h"
 #include "scene/scene.h"
@@ -87,6 +88,17 @@ class ViewSession {
     /// when the knob changed them.
     void setKnob(std::size_t index, double value);
 
+    /// The run's last seconds, a state per frame (timeline.h). Restarts, loads and edits that
+    /// the kept states did not see (a knob, a compliance, a grab and its release) start a new
+    /// history from the current frame.
+    const Timeline& timeline() const { return timeline_; }
+    /// Whether the run can be rewound exactly (its script can be copied; live_scene.h).
+    bool canRewind() const { return live_->canSnapshot(); }
+    /// Shows the kept state of `frame` (clamped to the timeline's range): the world, the script
+    /// and the frame count as they were, so that stepping from it replays the run. Nothing
+    /// while a body is held or the scene cannot be rewound; true when the state changed.
+    bool scrubTo(long long frame);
+
     long long frame() const { return live_->frame(); }
     double simulatedTime() const { return live_->time(); }
     bool finite() const { return finite_; }
@@ -100,6 +112,8 @@ class ViewSession {
   private:
     void rebuild(bool keepScript);
     void sample();
+    /// Forgets the kept states and keeps the current one as the first.
+    void restartHistory();
 
     SceneSource source_;
     float aspect_;
@@ -116,6 +130,7 @@ class ViewSession {
     PlotHistory energy_{600};
     PlotHistory jointError_{600};
     PlotHistory chainElongation_{600};
+    Timeline timeline_;
 };
 
 }  // namespace substep::view

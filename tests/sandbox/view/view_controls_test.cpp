@@ -36,6 +36,13 @@ TEST(ViewControlsTest, StepsCountEveryPressAndRepeat) {
     EXPECT_EQ(keyActions(events, false).steps, 3);
 }
 
+TEST(ViewControlsTest, LeftAndRightScrubTheTimelineAFrameAPressOrRepeat) {
+    const std::vector<InputEvent> events{key(GLFW_KEY_LEFT), key(GLFW_KEY_LEFT, GLFW_REPEAT), key(GLFW_KEY_LEFT, GLFW_RELEASE),
+                                         key(GLFW_KEY_RIGHT), key(GLFW_KEY_LEFT)};
+    EXPECT_EQ(keyActions(events, false).scrub, -2);
+    EXPECT_EQ(keyActions(events, true).scrub, 0) << "a text box keeps the arrows";
+}
+
 TEST(ViewControlsTest, EachKeyAsksForItsAction) {
     EXPECT_TRUE(keyActions(std::vector{key(GLFW_KEY_R)}, false).restart);
     EXPECT_TRUE(keyActions(std::vector{key(GLFW_KEY_C)}, false).resetCamera);

@@ -202,6 +202,42 @@ wait_files 2 'substep_hinge_bar_f*.png'
     EXPECT_GT(after, 300u) << "the selected bar's outline";
 }
 
+TEST_F(ViewWindowTest, ScrubbingBackTenFramesAndSteppingOnRedrawsTheSameState) {
+    if (!haveXvfbAndXdotool()) GTEST_SKIP() << "needs xvfb-run and xdotool (tools/install-deps.sh)";
+    // The cradle (a scripted scene) paused at frame N, its view shot; Left x 10 shows frame N-10
+    // from the timeline; S x 10 steps anew from there (the kept later frames dropped) back to
+    // frame N, whose view must be the same picture, pixel for pixel.
+    const std::string out = drive("view cradle --size 1000x700", R"sh(
+xdotool key space
+t=$(wait_title 'paused at frame')
+n=$(echo "$t" | sed -n 's/.*paused at frame \([0-9]*\).*/\1/p')
+echo "paused $t"
+sleep 0.5
+xdotool key shift+p
+wait_files 1 'substep_cradle_f*.png'
+xdotool key --delay 30 Left Left Left Left Left Left Left Left Left Left
+echo "back $(wait_title "paused at frame $((n - 10)),")"
+xdotool key --delay 30 s s s s s s s s s s
+echo "again $(wait_title "paused at frame $n,")"
+sleep 0.5
+xdotool key shift+p
+wait_files 2 'substep_cradle_f*.png'
+)sh");
+    ASSERT_NE(out.find("DONE"), std::string::npos) << out;
+    std::vector<std::string> shots;
+    for (const std::string& name : workEntries())
+        if (name.rfind("substep_cradle_f", 0) == 0) shots.push_back(name);
+    ASSERT_EQ(shots.size(), 2u) << out;
+    std::sort(shots.begin(), shots.end(), [](const std::string& a, const std::string& b) {
+        return a.size() != b.size() ? a.size() < b.size() : a < b;
+    });
+    const render::Image first = render::decodePng(readFile(work() / shots[0]));
+    const render::Image again = render::decodePng(readFile(work() / shots[1]));
+    ASSERT_EQ(first.width, again.width);
+    ASSERT_EQ(first.height, again.height);
+    EXPECT_TRUE(first.rgba == again.rgba) << "the resumed run must redraw frame N as it was: " << out;
+}
+
 TEST_F(ViewWindowTest, HelpListsTheControls) {
     const Result result = substep("view --help");
     EXPECT_EQ(result.exitCode, 0);

@@ -1,0 +1,77 @@
+#include "physics/world_snapshot.h"
+
+namespace substep {
+namespace {
+
+template <class T>
+std::size_t heapBytes(const std::vector<T>& v) {
+    return v.capacity() * sizeof(T);
+}
+
+}  // namespace
+
+std::size_t WorldSnapshot::bytes() const {
+    // The broadphase and soft system are counted by their body count: their own storage is
+    // private, and per body it is of the order of a Body's.
+    const std::size_t perBodyExtra = sizeof(Aabb) * 2 + 64;
+    return sizeof(*this) + heapBytes(bodies_) + heapBytes(freeBodies_) + heapBytes(joints_) +
+           heapBytes(freeJoints_) + heapBytes(contactPairs_) + heapBytes(previousPairs_) +
+           heapBytes(reaches_) + heapBytes(poses_) + heapBytes(contacts_) +
+           heapBytes(jointExclusions_) + bodies_.size() * perBodyExtra +
+           (soft_ ? soft_->elementCount() * 256 : 0);
+}
+
+WorldSnapshot World::snapshot() const {
+    WorldSnapshot s;
+    s.bodies_ = bodies_;
+    s.freeBodies_ = freeBodies_;
+    s.joints_ = joints_;
+    s.freeJoints_ = freeJoints_;
+    s.broadphase_ = broadphase_;
+    s.contactPairs_ = contactPairs_;
+    s.previousPairs_ = previousPairs_;
+    s.reaches_ = reaches_;
+    s.poses_ = poses_;
+    s.contacts_ = contacts_;
+    s.jointExclusions_ = jointExclusions_;
+    s.jointsChanged_ = jointsChanged_;
+    s.collidingBodies_ = collidingBodies_;
+    s.nextGeneration_ = nextGeneration_;
+    s.lastSubstep_ = lastSubstep_;
+    s.anyDamping_ = anyDamping_;
+    s.repairPending_ = repairPending_;
+    s.sleep_ = sleep_;
+    if (soft_) s.soft_ = *soft_;
+    return s;
+}
+
+void World::restore(const WorldSnapshot& s) {
+    bodies_ = s.bodies_;
+    freeBodies_ = s.freeBodies_;
+    joints_ = s.joints_;
+    freeJoints_ = s.freeJoints_;
+    broadphase_ = s.broadphase_;
+    contactPairs_ = s.contactPairs_;
+    previousPairs_ = s.previousPairs_;
+    reaches_ = s.reaches_;
+    poses_ = s.poses_;
+    contacts_ = s.contacts_;
+    jointExclusions_ = s.jointExclusions_;
+    jointsChanged_ = s.jointsChanged_;
+    collidingBodies_ = s.collidingBodies_;
+    nextGeneration_ = s.nextGeneration_;
+    lastSubstep_ = s.lastSubstep_;
+    anyDamping_ = s.anyDamping_;
+    repairPending_ = s.repairPending_;
+    sleep_ = s.sleep_;
+    if (s.soft_) {
+        if (soft_)
+            *soft_ = *s.soft_;
+        else
+            soft_ = std::make_unique<SoftSystem>(*s.soft_);
+    } else {
+        soft_.reset();
+    }
+}
+
+}  // namespace substep
