@@ -82,7 +82,7 @@ constexpr double kGateHubOffset = 0.035;  ///< m beside the centre line
 constexpr double kGateSpoke = 0.05;       ///< m from the hub to a spoke's end
 constexpr double kGateBarMass = 0.05;     ///< kg
 constexpr double kGateSpeed = 4.0;        ///< rad/s: a pocket every 0.26 s
-constexpr double kGateCompliance = 2.0;  ///< rad per N·m: a spoke swinging in onto a marble gives way
+constexpr double kGateCompliance = 0.5;  ///< rad per N·m: a spoke swinging in onto a marble gives way a little
 constexpr size_t kGateInto = 5;           ///< control points into the plunge (10 cm)
 
 /// The circuit's centre line, in running order from the top of the lift, with where the spring
