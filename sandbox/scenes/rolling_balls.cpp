@@ -16,8 +16,12 @@
 // The lift is a paddle wheel: eight arms, each on its own motor-driven hinge about the same
 // axle, sweep through the lift's half circle of track and push one marble each up to the top
 // (a collision filter keeps the arms and the wires apart, so the arms pass between the wires).
-// Nothing is moved by the script: the arms are dynamic bodies turned by their hinge motors, the
-// switch only by the marbles and its hinge's limits, the marbles only by contacts and gravity.
+// An arm can carry two or three marbles, which would reach the switch 35 ms apart, before its
+// beam has tipped, and follow each other: a gate at the head of the plunge, a star wheel turned
+// by its own hinge motor, lets one marble through per spoke, 0.26 s apart.
+// Nothing is moved by the script: the arms and the gate are dynamic bodies turned by their hinge
+// motors, the switch only by the marbles and its hinge's limits, the marbles only by contacts and
+// gravity.
 //
 // The script reads the marbles once per frame (progress along the centre line, searched near
 // the previous frame's place: laps, marbles on the track, speed and turn per frame in the
@@ -68,6 +72,19 @@ constexpr double kSpringEase = 0.04;  ///< m of clothoid into and out of the coi
 constexpr double kSpringTurns = 3.0;
 constexpr double kSpringSlope = 0.4;  ///< drop per horizontal metre: a pitch of 40 mm
 
+// The gate: a star wheel of three bars (six spokes 60° apart) beside the head of the plunge,
+// turned by a hinge motor, its spokes sweeping the track at the marbles' centres. Between two
+// spokes there is room for one marble: the spoke behind it swings in between it and the next,
+// which waits for the following pocket, so marbles lifted together by one arm leave the gate a
+// pocket apart. (A free wheel the marbles turn themselves stalls on the gentle slope here.)
+constexpr int kGateBars = 3;
+constexpr double kGateHubOffset = 0.035;  ///< m beside the centre line
+constexpr double kGateSpoke = 0.05;       ///< m from the hub to a spoke's end
+constexpr double kGateBarMass = 0.05;     ///< kg
+constexpr double kGateSpeed = 4.0;        ///< rad/s: a pocket every 0.26 s
+constexpr double kGateCompliance = 0.5;  ///< rad per N·m: a spoke swinging in onto a marble gives way a little
+constexpr size_t kGateInto = 5;           ///< control points into the plunge (10 cm)
+
 /// The circuit's centre line, in running order from the top of the lift, with where the spring
 /// is along it (indices into points).
 struct SculpturePath {
@@ -76,6 +93,7 @@ struct SculpturePath {
     double length = 0.0;           ///< of the closed loop (m)
     size_t springBegin = 0;
     size_t springEnd = 0;
+    size_t gate = 0;       ///< where the gate stands
     size_t liftBegin = 0;  ///< the foot of the lift: the lift runs from here to the end
     /// The drop (dropBegin to dropEnd): the cage ends, a pipe turns the marbles down onto the
     /// switch, a branch on each side carries them to the funnel, whose spout pipe leads back
@@ -95,6 +113,7 @@ SculpturePath buildPath() {
     Turtle turtle(top, M_PI);
     points.push_back(Turtle::framed(top, turtle.direction()));
     turtle.run(0.2 * M_PI / 2, -1.0 / 0.2, 0.05, points);  // a quarter turn to −z
+    path.gate = points.size() - 1 + kGateInto;
     turtle.run(0.3, 0.0, 0.5, points);                    // the plunge: steepening to 27°
     turtle.run(0.45, 0.0, kSpringSlope, points);          // and easing into the spring
     path.springBegin = points.size() - 1;
@@ -209,6 +228,46 @@ double restingDrop() {
     return half - std::sqrt(reach * reach - half * half);
 }
 
+/// The gate's bars: the first hinged to the world at the hub, the others welded to it.
+void addGate(SceneDescription& scene, const SculpturePath& path) {
+    const PathPoint& p = path.points[path.gate];
+    const Vec3 along = p.up.cross(p.side);
+    const Vec3 hub = p.position - restingDrop() * p.up + kGateHubOffset * p.side;
+    Mat3 frame;
+    frame << along, p.up, p.side;  // the bars' x along the track, y the hub's axle
+    for (int k = 0; k < kGateBars; ++k) {
+        const double angle = M_PI * k / kGateBars;
+        const std::string name = "gate_" + std::to_string(k);
+        scene.bodies.push_back({name,
+                                BodyDef{.shape = boxShape(Vec3(2.0 * kGateSpoke, 0.006, 0.004)),
+                                        .mass = kGateBarMass,
+                                        .position = hub,
+                                        .orientation = Quat(frame) * Quat(Eigen::AngleAxisd(angle, Vec3::UnitY())),
+                                        .staticFriction = kMarbleFriction,
+                                        .dynamicFriction = kMarbleFriction,
+                                        .collisionGroup = kArmGroup,
+                                        .collisionMask = ~(kWireGroup | kArmGroup)},
+                                Vec3(0.25, 0.45, 0.8)});
+        if (k == 0) {
+            addJoint(scene, "gate_hinge", "", name,
+                     JointDef{.type = JointType::Hinge,
+                              .anchor0 = hub,
+                              .axis0 = p.up,
+                              .axis1 = Vec3::UnitY(),
+                              .normal0 = along,
+                              .normal1 = Vec3::UnitX(),
+                              .targetVelocity = -kGateSpeed,  // the spokes cross the track downhill
+                              .driveCompliance = kGateCompliance,
+                              .angularDamping = kLiftDamping});
+            continue;
+        }
+        addJoint(scene, name + "_weld", "gate_0", name,
+                 JointDef{.type = JointType::Fixed,
+                          .normal0 = Vec3(std::cos(angle), 0.0, -std::sin(angle)),
+                          .normal1 = Vec3::UnitX()});
+    }
+}
+
 std::string marbleName(int i) {
     char name[16];
     std::snprintf(name, sizeof name, "marble_%02d", i);
@@ -259,7 +318,8 @@ SceneDescription buildRollingBalls() {
                           .angularDamping = kLiftDamping});
     }
 
-    // The wires after the arms: contact pairs are solved in body order, so a marble an arm
+    addGate(scene, path);
+    // The wires after the arms and the gate: contact pairs are solved in body order, so a marble an arm
     // presses against a wire is pushed out of the wire last (the sprung arm gives way).
     const auto addWire = [&](const std::string& name, std::shared_ptr<const SplineTube> tube) {
         scene.bodies.push_back({name,
@@ -290,14 +350,14 @@ SceneDescription buildRollingBalls() {
                             Vec3(0.7, 0.5, 0.25)});
     addSwitch(scene, path.drop);
 
-    // The marbles, spread evenly along the track from the top of the lift to its foot (not on
-    // the lift, nor in the drop), resting on the lower wires.
-    const double dropLength = path.distance[path.dropEnd] - path.distance[path.dropBegin] + 0.1;
-    const double runLength = path.distance[path.liftBegin] - dropLength;
-    size_t at = 0;
+    // The marbles, spread evenly along the return from the funnel's spout to the foot of the
+    // lift, resting on the lower wires: each goes up the lift and through the gate before it
+    // reaches the switch (marbles started below the gate would reach it bunched).
+    const double returnStart = path.distance[path.dropEnd] + 0.1;
+    const double runLength = path.distance[path.liftBegin] - returnStart;
+    size_t at = path.dropEnd;
     for (int i = 0; i < kMaxMarbles; ++i) {
-        double s = runLength * (i + 0.5) / kMaxMarbles;
-        if (s > path.distance[path.dropBegin] - 0.05) s += dropLength;
+        const double s = returnStart + runLength * (i + 0.5) / kMaxMarbles;
         while (at + 1 < path.liftBegin && path.distance[at + 1] <= s) ++at;
         const PathPoint& p = path.points[at];
         scene.bodies.push_back(
@@ -324,6 +384,9 @@ struct Tracked {
     double along = 0.0;      ///< position along the line in [0, length) (m)
     Vec3 velocity = Vec3::Zero();
     double turn = 0.0;       ///< angle its velocity turned by over the last frame (rad)
+    /// Between entering the drop and being back in a cage: off the centre line, in a branch or
+    /// the funnel, where the nearest segment may be another part of the track passing close by.
+    bool inDrop = false;
 };
 
 class RollingBallsScript : public SceneScript {
@@ -409,8 +472,7 @@ class RollingBallsScript : public SceneScript {
             if (!scene.registry.isValid(marble.id)) continue;
             laps += static_cast<int>(std::floor(marble.progress / path.length));
             // In the drop the marbles leave the centre line for a branch: the whole of it counts.
-            const bool inDrop = marble.segment >= path.dropBegin && marble.segment < path.dropEnd;
-            onTrack += marble.offTrack < (inDrop ? kDropReach : kCageRadius);
+            onTrack += marble.offTrack < (marble.inDrop ? kDropReach : kCageRadius);
         }
         constexpr double kDegree = M_PI / 180.0;
         out.push_back({"laps completed", static_cast<double>(laps), "%.0f"});
@@ -473,6 +535,10 @@ class RollingBallsScript : public SceneScript {
         const Vec3 ab = b - a;
         const double u = std::clamp((body.centreOfMass - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
         marble.offTrack = (body.centreOfMass - (a + u * ab)).norm();
+        if (marble.segment >= path.dropBegin && marble.segment < path.dropEnd)
+            marble.inDrop = true;
+        else if (marble.offTrack < kCageRadius)
+            marble.inDrop = false;
         const double along = path.distance[marble.segment] + u * ab.norm();
         if (!first) {
             double step = along - marble.along;

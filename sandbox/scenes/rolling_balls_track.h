@@ -138,8 +138,9 @@ inline constexpr double kRimBelowBranch = 0.03;   ///< the rim below the branche
 inline constexpr double kSpoutDown = 0.02;
 inline constexpr double kSpoutBend = 0.06;
 inline constexpr double kReturnSlope = 0.1;   ///< where the spout hands over to the cage
-/// How far from the drop's centre line its parts reach (the branches, the funnel).
-inline constexpr double kDropReach = 0.3;
+/// How far from the drop's centre line its parts reach (the branches, the funnel): the
+/// branches' outer bends run 0.38 m out across the track and below the line.
+inline constexpr double kDropReach = 0.45;
 
 /// Where the drop's parts are, from the end of the cage (`cageEnd`, heading `heading`).
 struct DropLayout {
