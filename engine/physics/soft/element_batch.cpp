@@ -47,15 +47,11 @@ static_assert(sizeof(Vec3) == 3 * sizeof(double), "particles are read as packed 
         lane[l] = l < lanes ? l : 0;
 
     Lanes px[8], py[8], pz[8];
-    for (int j = 0; j < 8; ++j) {
-        const double* p0 = pos + 3 * size_t(batch.particle[j][0]);
-        const double* p1 = pos + 3 * size_t(batch.particle[j][1]);
-        const double* p2 = pos + 3 * size_t(batch.particle[j][2]);
-        const double* p3 = pos + 3 * size_t(batch.particle[j][3]);
-        px[j] = Lanes{p0[0], p1[0], p2[0], p3[0]};
-        py[j] = Lanes{p0[1], p1[1], p2[1], p3[1]};
-        pz[j] = Lanes{p0[2], p1[2], p2[2], p3[2]};
-    }
+    for (int j = 0; j < 8; ++j)
+        for (int l = 0; l < kLanes; ++l) {
+            const double* p = pos + 3 * size_t(batch.particle[j][l]);
+            px[j][l] = p[0], py[j][l] = p[1], pz[j][l] = p[2];
+        }
     const Quat* rotations = arrays.rotations.data() + first;
     Lanes w, qx, qy, qz, lambda, spread, alpha;
     for (int l = 0; l < kLanes; ++l) {
@@ -131,9 +127,10 @@ static_assert(sizeof(Vec3) == 3 * sizeof(double), "particles are read as packed 
         const Lanes nx = qx + ox * w + oy * qz - oz * qy;
         const Lanes ny = qy - ox * qz + oy * w + oz * qx;
         const Lanes nz = qz + ox * qy - oy * qx + oz * w;
-        Lanes norm = nw * nw + nx * nx + ny * ny + nz * nz;
-        squareRoot(norm);
-        norm = one / norm;
+        // 1/|q + dq| by its series in ε = |q + dq|² − 1 (dq ⟂ q, so ε ≤ |dq|² + the rounding
+        // of |q|, below 1e-6): ε³ terms are under 1e-18, and no square root or division.
+        const Lanes epsilon = (nw * nw + nx * nx + ny * ny + nz * nz) - 1.0;
+        const Lanes norm = 1.0 - epsilon * (0.5 - 0.375 * epsilon);
         // A lane that did not move keeps its rotation bit for bit.
         w = still ? w : nw * norm, qx = still ? qx : nx * norm;
         qy = still ? qy : ny * norm, qz = still ? qz : nz * norm;
@@ -183,11 +180,11 @@ static_assert(sizeof(Vec3) == 3 * sizeof(double), "particles are read as packed 
         Lanes c = 0.125 * sum;
         squareRoot(c);
         const Lanes cc = active ? c : one;
-        const Lanes denominator = weighted / (64.0 * cc * cc) + alpha;
-        const Lanes solved = (-cc - alpha * lambda) / denominator;  // inf or NaN when inactive
-        const Lanes deltaLambda = active ? solved : zero;
-        lambda += deltaLambda;
-        step = deltaLambda / (8.0 * cc);
+        // Δλ = (−C − α̃ λ) / (weighted / (64 C²) + α̃) and the step Δλ / (8 C), by one division.
+        const Lanes scaled = weighted / (8.0 * cc) + 8.0 * alpha * cc;  // (8 C) × denominator
+        const Lanes solved = (-cc - alpha * lambda) / scaled;  // inf or NaN when inactive
+        step = active ? solved : zero;
+        lambda += step * (8.0 * cc);
     }
     for (int j = 0; j < 8; ++j) {
         Lanes wj;
