@@ -14,14 +14,10 @@ constexpr int kLanes = kBatchLanes;
 /// kLanes doubles operated on together (a GCC vector type: one AVX register, or two SSE2 ones).
 using Lanes = double __attribute__((vector_size(kLanes * sizeof(double))));
 
-// Loads and stores through memory (vectors are not passed by value: a different ABI with and
+// Loads through memory (vectors are not passed by value: a different ABI with and
 // without AVX).
 [[gnu::always_inline]] inline void load(Lanes& v, const double* p) {
     std::memcpy(&v, p, sizeof v);
-}
-
-[[gnu::always_inline]] inline void store(double* p, const Lanes& v) {
-    std::memcpy(p, &v, sizeof v);
 }
 
 /// A lane's Newton step turned more than this (rad²) or met a matrix that is not positive
@@ -29,59 +25,66 @@ using Lanes = double __attribute__((vector_size(kLanes * sizeof(double))));
 /// be: what is left after a step of 1e-3 rad is about its square).
 constexpr double kLaneTurn2 = 1e-6;
 
-/// Projects one batch: the lanes' arithmetic is written lane-innermost so that the compiler
-/// can run the lanes side by side.
+/// Square roots in place, lane by lane (vectorised with -fno-math-errno).
+[[gnu::always_inline]] inline void squareRoot(Lanes& v) {
+    for (int l = 0; l < kLanes; ++l)
+        v[l] = std::sqrt(v[l]);
+}
+
+static_assert(sizeof(Vec3) == 3 * sizeof(double), "particles are read as packed doubles");
+
+/// Projects one batch, every lane's arithmetic in vector registers: the corners gathered once
+/// from the particle array into lanes (the batch holds their indices), the rest offsets,
+/// inverse masses, ℓ² and α_e read from the batch, one warm-started Newton step of the rotation
+/// extraction, the deviations and the XPBD update (Eq. 4), and the corners scattered back.
 [[gnu::always_inline]] inline void solveBatch(const ElementBatch& batch,
                                               const ElementArrays& arrays, double invH2) {
     const uint32_t first = batch.firstElement;
     const int lanes = static_cast<int>(batch.lanes);
-    double x[3][8][kLanes];
-    double q[4][kLanes], scale2[kLanes], alphaTilde[kLanes], lambda[kLanes];
-    for (int l = 0; l < kLanes; ++l) {
-        const uint32_t e = first + static_cast<uint32_t>(l < lanes ? l : 0);
-        const HexElement& element = arrays.elements[e];
-        for (int j = 0; j < 8; ++j) {
-            const Vec3& p = arrays.positions[element[j]];
-            x[0][j][l] = p.x(), x[1][j][l] = p.y(), x[2][j][l] = p.z();
+    double* const pos = arrays.positions.data()->data();
+    int lane[kLanes];  // the element of each lane; lanes past `lanes` repeat lane 0
+    for (int l = 0; l < kLanes; ++l)
+        lane[l] = l < lanes ? l : 0;
+
+    Lanes px[8], py[8], pz[8];
+    for (int j = 0; j < 8; ++j)
+        for (int l = 0; l < kLanes; ++l) {
+            const double* p = pos + 3 * size_t(batch.particle[j][l]);
+            px[j][l] = p[0], py[j][l] = p[1], pz[j][l] = p[2];
         }
-        const Quat& rotation = arrays.rotations[e];
-        q[0][l] = rotation.w(), q[1][l] = rotation.x(), q[2][l] = rotation.y(),
-        q[3][l] = rotation.z();
-        scale2[l] = arrays.scale2[e];
-        alphaTilde[l] = arrays.compliance[e] * invH2;
-        lambda[l] = arrays.lambda[e];
+    const Quat* rotations = arrays.rotations.data() + first;
+    Lanes w, qx, qy, qz, lambda, spread, alpha;
+    for (int l = 0; l < kLanes; ++l) {
+        const Quat& rotation = rotations[lane[l]];
+        w[l] = rotation.w(), qx[l] = rotation.x(), qy[l] = rotation.y(), qz[l] = rotation.z();
+        lambda[l] = arrays.lambda[first + static_cast<uint32_t>(lane[l])];
     }
+    load(spread, batch.scale2), load(alpha, batch.compliance);
+    alpha *= invH2;
 
     // A = Σ ⅛ x_j q_jᵀ (Σ q_j = 0 removes the centroid).
-    double a[3][3][kLanes] = {};
+    Lanes am[3][3] = {};
+    for (int j = 0; j < 8; ++j) {
+        Lanes rx, ry, rz;
+        load(rx, batch.rest[0][j]), load(ry, batch.rest[1][j]), load(rz, batch.rest[2][j]);
+        am[0][0] += px[j] * rx, am[0][1] += px[j] * ry, am[0][2] += px[j] * rz;
+        am[1][0] += py[j] * rx, am[1][1] += py[j] * ry, am[1][2] += py[j] * rz;
+        am[2][0] += pz[j] * rx, am[2][1] += pz[j] * ry, am[2][2] += pz[j] * rz;
+    }
     for (int r = 0; r < 3; ++r)
         for (int c = 0; c < 3; ++c)
-            for (int j = 0; j < 8; ++j)
-                for (int l = 0; l < kLanes; ++l)
-                    a[r][c][l] += x[r][j][l] * batch.rest[c][j][l];
-    for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 3; ++c)
-            for (int l = 0; l < kLanes; ++l)
-                a[r][c][l] *= 0.125;
+            am[r][c] *= 0.125;
 
-    // One Newton step of extractRotation from the warm start, in all lanes at once (GCC vector
-    // types: selects instead of branches).
-    double rot[3][3][kLanes];
-    double dq[4][kLanes];  // the quaternion increment ½ scale (0, ω) q
-    bool scalar[kLanes];
+    // One Newton step of extractRotation from the warm start (selects instead of branches).
+    Lanes r00 = 1 - 2 * (qy * qy + qz * qz), r01 = 2 * (qx * qy - w * qz),
+          r02 = 2 * (qx * qz + w * qy);
+    Lanes r10 = 2 * (qx * qy + w * qz), r11 = 1 - 2 * (qx * qx + qz * qz),
+          r12 = 2 * (qy * qz - w * qx);
+    Lanes r20 = 2 * (qx * qz - w * qy), r21 = 2 * (qy * qz + w * qx),
+          r22 = 1 - 2 * (qx * qx + qy * qy);
+    const Lanes zero = {}, one = zero + 1.0;
+    Lanes handOver;  // all bits set where the lane goes to extractRotation
     {
-        Lanes w, qx, qy, qz, spread;
-        load(w, q[0]), load(qx, q[1]), load(qy, q[2]), load(qz, q[3]), load(spread, scale2);
-        const Lanes r00 = 1 - 2 * (qy * qy + qz * qz), r01 = 2 * (qx * qy - w * qz),
-                    r02 = 2 * (qx * qz + w * qy);
-        const Lanes r10 = 2 * (qx * qy + w * qz), r11 = 1 - 2 * (qx * qx + qz * qz),
-                    r12 = 2 * (qy * qz - w * qx);
-        const Lanes r20 = 2 * (qx * qz - w * qy), r21 = 2 * (qy * qz + w * qx),
-                    r22 = 1 - 2 * (qx * qx + qy * qy);
-        Lanes am[3][3];
-        for (int r = 0; r < 3; ++r)
-            for (int c = 0; c < 3; ++c)
-                load(am[r][c], a[r][c]);
         // B = Rᵀ A.
         const Lanes b00 = r00 * am[0][0] + r10 * am[1][0] + r20 * am[2][0];
         const Lanes b01 = r00 * am[0][1] + r10 * am[1][1] + r20 * am[2][1];
@@ -103,120 +106,109 @@ constexpr double kLaneTurn2 = 1e-6;
         const Lanes det = m00 * c00 + m01 * c01 + m02 * c02;
         const Lanes floor = 1e-6 * (trace < 0 ? -trace : trace) + 1e-9 * spread;
         const auto definite = (m00 > floor) & (c22 > floor * floor) & (det > floor * floor * floor);
-        const Lanes zero = {};
-        const Lanes inverse = definite ? 1.0 / det : zero;
+        const Lanes inverse = definite ? one / det : zero;
         const Lanes tx = (c00 * ux + c01 * uy + c02 * uz) * inverse;
         const Lanes ty = (c01 * ux + c11 * uy + c12 * uz) * inverse;
         const Lanes tz = (c02 * ux + c12 * uy + c22 * uz) * inverse;
         const Lanes angle2 = tx * tx + ty * ty + tz * tz;
         // Not definite, a turn over 1e-3 rad or NaN: the lane goes to extractRotation.
-        const auto handOver = ~definite | (angle2 > kLaneTurn2) | (angle2 != angle2);
+        const auto over = ~definite | (angle2 > kLaneTurn2) | (angle2 != angle2);
+        handOver = over ? one : zero;
         // integrateRotation's small-angle series (|θ|/2 below 5e-4 here); a converged lane
         // (angle2 ≤ 1e-24) stays put, as in extractRotation.
         const Lanes half2 = 0.25 * angle2;
         const Lanes series = 0.5 * (1.0 + half2 * (1.0 / 3.0 + half2 * (2.0 / 15.0)));
-        const Lanes scale = (handOver | (angle2 <= 1e-24)) ? zero : series;
+        const auto still = over | (angle2 <= 1e-24);
+        const Lanes scale = still ? zero : series;
         const Lanes ox = (r00 * tx + r01 * ty + r02 * tz) * scale;  // ½ scale ω, ω = R turn
         const Lanes oy = (r10 * tx + r11 * ty + r12 * tz) * scale;
         const Lanes oz = (r20 * tx + r21 * ty + r22 * tz) * scale;
-        store(dq[0], -ox * qx - oy * qy - oz * qz);
-        store(dq[1], ox * w + oy * qz - oz * qy);
-        store(dq[2], -ox * qz + oy * w + oz * qx);
-        store(dq[3], ox * qy - oy * qx + oz * w);
-        for (int l = 0; l < kLanes; ++l)
-            scalar[l] = handOver[l] != 0;
-    }
-    // One loop per operation, so that each runs in the lanes.
-    for (int k = 0; k < 4; ++k)
-        for (int l = 0; l < kLanes; ++l)
-            q[k][l] += dq[k][l];
-    double norm[kLanes];
-    for (int l = 0; l < kLanes; ++l)
-        norm[l] = q[0][l] * q[0][l] + q[1][l] * q[1][l] + q[2][l] * q[2][l] + q[3][l] * q[3][l];
-    for (int l = 0; l < kLanes; ++l)
-        norm[l] = 1.0 / std::sqrt(norm[l]);
-    for (int k = 0; k < 4; ++k)
-        for (int l = 0; l < kLanes; ++l)
-            q[k][l] *= norm[l];
-    for (int l = 0; l < kLanes; ++l) {
-        const double w = q[0][l], qx = q[1][l], qy = q[2][l], qz = q[3][l];
-        rot[0][0][l] = 1 - 2 * (qy * qy + qz * qz), rot[0][1][l] = 2 * (qx * qy - w * qz),
-        rot[0][2][l] = 2 * (qx * qz + w * qy);
-        rot[1][0][l] = 2 * (qx * qy + w * qz), rot[1][1][l] = 1 - 2 * (qx * qx + qz * qz),
-        rot[1][2][l] = 2 * (qy * qz - w * qx);
-        rot[2][0][l] = 2 * (qx * qz - w * qy), rot[2][1][l] = 2 * (qy * qz + w * qx),
-        rot[2][2][l] = 1 - 2 * (qx * qx + qy * qy);
+        const Lanes nw = w - ox * qx - oy * qy - oz * qz;
+        const Lanes nx = qx + ox * w + oy * qz - oz * qy;
+        const Lanes ny = qy - ox * qz + oy * w + oz * qx;
+        const Lanes nz = qz + ox * qy - oy * qx + oz * w;
+        // 1/|q + dq| by its series in ε = |q + dq|² − 1 (dq ⟂ q, so ε ≤ |dq|² + the rounding
+        // of |q|, below 1e-6): ε³ terms are under 1e-18, and no square root or division.
+        const Lanes epsilon = (nw * nw + nx * nx + ny * ny + nz * nz) - 1.0;
+        const Lanes norm = 1.0 - epsilon * (0.5 - 0.375 * epsilon);
+        // A lane that did not move keeps its rotation bit for bit.
+        w = still ? w : nw * norm, qx = still ? qx : nx * norm;
+        qy = still ? qy : ny * norm, qz = still ? qz : nz * norm;
+        r00 = 1 - 2 * (qy * qy + qz * qz), r01 = 2 * (qx * qy - w * qz), r02 = 2 * (qx * qz + w * qy);
+        r10 = 2 * (qx * qy + w * qz), r11 = 1 - 2 * (qx * qx + qz * qz), r12 = 2 * (qy * qz - w * qx);
+        r20 = 2 * (qx * qz - w * qy), r21 = 2 * (qy * qz + w * qx), r22 = 1 - 2 * (qx * qx + qy * qy);
     }
     for (int l = 0; l < lanes; ++l) {
         const uint32_t e = first + static_cast<uint32_t>(l);
-        if (!scalar[l]) {
-            if (dq[0][l] != 0.0 || dq[1][l] != 0.0 || dq[2][l] != 0.0 || dq[3][l] != 0.0)
-                arrays.rotations[e] = Quat(q[0][l], q[1][l], q[2][l], q[3][l]);
+        if (handOver[l] == 0.0) {
+            arrays.rotations[e] = Quat(w[l], qx[l], qy[l], qz[l]);
             continue;
         }
         // The rare lane: the whole extraction from its warm start, as the scalar sweep does it.
         Mat3 matrix;
         for (int r = 0; r < 3; ++r)
             for (int c = 0; c < 3; ++c)
-                matrix(r, c) = a[r][c][l];
-        const Mat3 r = extractRotation(matrix, scale2[l], arrays.rotations[e]);
-        for (int i = 0; i < 3; ++i)
-            for (int k = 0; k < 3; ++k)
-                rot[i][k][l] = r(i, k);
+                matrix(r, c) = am[r][c][l];
+        const Mat3 r = extractRotation(matrix, spread[l], arrays.rotations[e]);
+        r00[l] = r(0, 0), r01[l] = r(0, 1), r02[l] = r(0, 2);
+        r10[l] = r(1, 0), r11[l] = r(1, 1), r12[l] = r(1, 2);
+        r20[l] = r(2, 0), r21[l] = r(2, 1), r22[l] = r(2, 2);
     }
 
     // Deviations d_j = x_j − c − R q_j, C and the update (Eq. 4, shape_matching.h).
-    double centre[3][kLanes] = {};
-    for (int r = 0; r < 3; ++r)
-        for (int j = 0; j < 8; ++j)
-            for (int l = 0; l < kLanes; ++l)
-                centre[r][l] += 0.125 * x[r][j][l];
-    double d[3][8][kLanes];
-    for (int r = 0; r < 3; ++r)
-        for (int j = 0; j < 8; ++j)
-            for (int l = 0; l < kLanes; ++l)
-                d[r][j][l] =
-                    x[r][j][l] - centre[r][l] -
-                    (rot[r][0][l] * batch.rest[0][j][l] + rot[r][1][l] * batch.rest[1][j][l] +
-                     rot[r][2][l] * batch.rest[2][j][l]);
-    double sum[kLanes] = {}, weighted[kLanes] = {};
+    Lanes cx = zero, cy = zero, cz = zero;
     for (int j = 0; j < 8; ++j)
-        for (int l = 0; l < kLanes; ++l) {
-            const double squared =
-                d[0][j][l] * d[0][j][l] + d[1][j][l] * d[1][j][l] + d[2][j][l] * d[2][j][l];
-            sum[l] += squared;
-            weighted[l] += batch.invMass[j][l] * squared;  // Σ w_j |∇_j C|² = weighted / (64 C²)
-        }
-    double c[kLanes];
-    for (int l = 0; l < kLanes; ++l)
-        c[l] = std::sqrt(0.125 * sum[l]);
-    double step[kLanes];
-    {
-        Lanes sumL, weightedL, cL, spread, alphaL, lambdaL;
-        load(sumL, sum), load(weightedL, weighted), load(cL, c), load(spread, scale2);
-        load(alphaL, alphaTilde), load(lambdaL, lambda);
-        // C ≤ 1e-12 ℓ (C² ≤ 1e-24 ℓ²): already at the goal.
-        const auto active = (sumL > 8e-24 * spread) & (weightedL > 0.0);
-        const Lanes zero = {}, one = zero + 1.0;
-        const Lanes cc = active ? cL : one;
-        const Lanes denominator = weightedL / (64.0 * cc * cc) + alphaL;
-        const Lanes solved = (-cc - alphaL * lambdaL) / denominator;  // inf or NaN when inactive
-        const Lanes deltaLambda = active ? solved : zero;
-        store(lambda, lambdaL + deltaLambda);
-        store(step, deltaLambda / (8.0 * cc));
+        cx += px[j], cy += py[j], cz += pz[j];
+    cx *= 0.125, cy *= 0.125, cz *= 0.125;
+    Lanes dx[8], dy[8], dz[8];
+    Lanes sum = zero, weighted = zero;  // Σ |d_j|², Σ w_j |d_j|²
+    for (int j = 0; j < 8; ++j) {
+        Lanes rx, ry, rz, wj;
+        load(rx, batch.rest[0][j]), load(ry, batch.rest[1][j]), load(rz, batch.rest[2][j]);
+        load(wj, batch.invMass[j]);
+        dx[j] = px[j] - cx - (r00 * rx + r01 * ry + r02 * rz);
+        dy[j] = py[j] - cy - (r10 * rx + r11 * ry + r12 * rz);
+        dz[j] = pz[j] - cz - (r20 * rx + r21 * ry + r22 * rz);
+        const Lanes squared = dx[j] * dx[j] + dy[j] * dy[j] + dz[j] * dz[j];
+        sum += squared;
+        weighted += wj * squared;  // Σ w_j |∇_j C|² = weighted / (64 C²)
     }
-    for (int r = 0; r < 3; ++r)
-        for (int j = 0; j < 8; ++j)
-            for (int l = 0; l < kLanes; ++l)
-                x[r][j][l] += step[l] * batch.invMass[j][l] * d[r][j][l];
+    Lanes step;
+    {
+        // C ≤ 1e-12 ℓ (C² ≤ 1e-24 ℓ²): already at the goal.
+        const auto active = (sum > 8e-24 * spread) & (weighted > 0.0);
+        Lanes c = 0.125 * sum;
+        squareRoot(c);
+        const Lanes cc = active ? c : one;
+        // Δλ = (−C − α̃ λ) / (weighted / (64 C²) + α̃) and the step Δλ / (8 C), by one division.
+        const Lanes scaled = weighted / (8.0 * cc) + 8.0 * alpha * cc;  // (8 C) × denominator
+        const Lanes solved = (-cc - alpha * lambda) / scaled;  // inf or NaN when inactive
+        step = active ? solved : zero;
+        lambda += step * (8.0 * cc);
+    }
+    for (int j = 0; j < 8; ++j) {
+        Lanes wj;
+        load(wj, batch.invMass[j]);
+        const Lanes move = step * wj;
+        px[j] += move * dx[j], py[j] += move * dy[j], pz[j] += move * dz[j];
+    }
 
+    for (int l = 0; l < lanes; ++l)
+        arrays.lambda[first + static_cast<uint32_t>(l)] = lambda[l];
+    if (!batch.volume) {
+        for (int l = 0; l < lanes; ++l)
+            for (int j = 0; j < 8; ++j) {
+                double* p = pos + 3 * size_t(batch.particle[j][l]);
+                p[0] = px[j][l], p[1] = py[j][l], p[2] = pz[j][l];
+            }
+        return;
+    }
     for (int l = 0; l < lanes; ++l) {
         const uint32_t e = first + static_cast<uint32_t>(l);
-        arrays.lambda[e] = lambda[l];
         const HexElement& element = arrays.elements[e];
         std::array<Vec3, 8> corners;
         for (int j = 0; j < 8; ++j)
-            corners[j] = Vec3(x[0][j][l], x[1][j][l], x[2][j][l]);
+            corners[j] = Vec3(px[j][l], py[j][l], pz[j][l]);
         if (arrays.volumeCompliance[e] >= 0.0) {
             // The optional volume constraint, after the element's shape matching.
             std::array<Vec3, 8> gradient;
@@ -278,7 +270,11 @@ void appendBatches(const ElementArrays& arrays, std::span<const uint32_t> wave, 
                 for (int r = 0; r < 3; ++r)
                     batch.rest[r][j][l] = arrays.restOffsets[element][j][r];
                 batch.invMass[j][l] = arrays.invMass[arrays.elements[element][j]];
+                batch.particle[j][l] = arrays.elements[element][j];
             }
+            batch.scale2[l] = arrays.scale2[element];
+            batch.compliance[l] = arrays.compliance[element];
+            batch.volume = batch.volume || arrays.volumeCompliance[element] >= 0.0;
         }
         batches.push_back(batch);
         e += batch.lanes;

@@ -32,8 +32,12 @@ inline constexpr int kBatchLanes = 4;
 struct ElementBatch {
     alignas(32) double rest[3][8][kBatchLanes];  ///< q_j, component by corner by lane
     alignas(32) double invMass[8][kBatchLanes];  ///< w_j
+    alignas(32) double scale2[kBatchLanes];      ///< ℓ²
+    alignas(32) double compliance[kBatchLanes];  ///< α_e (m/N)
+    uint32_t particle[8][kBatchLanes];           ///< the corners' particle indices
     uint32_t firstElement = 0;
     uint32_t lanes = 0;
+    bool volume = false;  ///< a lane has the volume constraint
 };
 
 /// The state the kernel reads and writes, the SoftSystem's arrays.
