@@ -413,7 +413,7 @@ inline void changePointVelocity(Body& b0, Body& b1, const PointResponse& s0, con
 /// applied along its unit direction with the generalised inverse mass computed once (the
 /// general Eq. 33 normalises the change and computes w again).
 void solveSinglePointVelocities(const ContactPair& pair, const Contact& c, Body& b0, Body& b1,
-                                double h, double gravity) {
+                                double h, double gravity, bool swept) {
     const Vec3& n = c.normal;
     const Vec3 r0 = b0.q * c.local0;
     const Vec3 r1 = b1.q * c.local1;
@@ -423,7 +423,7 @@ void solveSinglePointVelocities(const ContactPair& pair, const Contact& c, Body&
     const double vnBefore =
         (pointVelocity(b0.vPrev, b0.omegaPrev, r0) - pointVelocity(b1.vPrev, b1.omegaPrev, r1)).dot(n);
     double change = 0.0;
-    if (c.restitutionImpulse > 0.0 || (pair.restitution > 0.0 && !(-vnBefore > kRestingSpeed))) {
+    if (swept && (c.restitutionImpulse > 0.0 || (pair.restitution > 0.0 && !(-vnBefore > kRestingSpeed)))) {
         // A collision (contact_restitution.h), or a push without approach (another contact's
         // push carried through, or the overlap it left): the push's impulse λ_n / h is
         // replaced by the collision's (none), so an impact passes through touching bodies in
@@ -548,12 +548,12 @@ void solveContactPositions(ContactPair& pair, std::span<Contact> contacts, Solve
 }
 
 void solveContactVelocities(const ContactPair& pair, std::span<const Contact> contacts,
-                            Body* bodies, double h, double gravity) {
+                            Body* bodies, double h, double gravity, bool swept) {
     Body& b0 = bodies[pair.body0];
     Body& b1 = bodies[pair.body1];
     const int points = static_cast<int>(std::min<size_t>(contacts.size(), kMaxPatchPoints));
     if (points == 1) {
-        if (contacts[0].lambdaNormal > 0.0) solveSinglePointVelocities(pair, contacts[0], b0, b1, h, gravity);
+        if (contacts[0].lambdaNormal > 0.0) solveSinglePointVelocities(pair, contacts[0], b0, b1, h, gravity, swept);
         return;
     }
     const auto pushed = [](const Contact& c) { return c.lambdaNormal > 0.0; };

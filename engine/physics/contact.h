@@ -91,8 +91,9 @@ void solveContactPositions(ContactPair& pair, std::span<Contact> contacts, Solve
 /// collided or pushed without approaching: contact_restitution.h's impulse replaces the
 /// push's), and dynamic friction
 /// removes slip with an impulse of at most h μ_d |f_n| (Eq. 30 with ERRATA item 2's units).
-/// Only points that pushed this substep (λ_n > 0) take part.
+/// Only points that pushed this substep (λ_n > 0) take part. `swept`: the collisions of
+/// contact_restitution.h were found this substep (WorldSettings::sweptRestitution).
 void solveContactVelocities(const ContactPair& pair, std::span<const Contact> contacts,
-                            Body* bodies, double h, double gravity);
+                            Body* bodies, double h, double gravity, bool swept);
 
 }  // namespace substep

@@ -544,12 +544,13 @@ void World::solveVelocities(double h) {
     const double gravity = settings_.gravity.norm();
     // Collisions first, on the velocities before the derivation, so that an impact passes
     // through touching bodies whatever their order (contact_restitution.h).
-    findRestitutionImpulses(contactPairs_, contacts_, bodies_.data(), bodies_.size(), h, gravity,
-                            restitutionVelocities_);
+    if (settings_.sweptRestitution)
+        findRestitutionImpulses(contactPairs_, contacts_, bodies_.data(), bodies_.size(), h, gravity,
+                                restitutionVelocities_);
     for (const ContactPair& pair : contactPairs_)
         if (pair.count > 0)
             solveContactVelocities(pair, std::span(contacts_).subspan(pair.first, pair.count),
-                                   bodies_.data(), h, gravity);
+                                   bodies_.data(), h, gravity, settings_.sweptRestitution);
 }
 
 JointReadout World::jointReadout(JointId id) const {

@@ -62,7 +62,7 @@ std::vector<double> closedForm(const Row& row) {
 /// The row in Substep at 20 substeps, the bodies created in `order` (indices into the row,
 /// 0 the striker); 1 s later, the x velocities in row order.
 std::vector<double> simulate(const Row& row, const std::vector<size_t>& order) {
-    World world({.gravity = row.gravity ? Vec3(0, -10, 0) : Vec3::Zero(), .substeps = 20});
+    World world({.gravity = row.gravity ? Vec3(0, -10, 0) : Vec3::Zero(), .substeps = 20, .sweptRestitution = true});
     const double y = row.gravity ? kRadius : 1.0;
     if (row.gravity)
         world.createBody({.shape = planeShape(Vec3::UnitY(), 0.0),
