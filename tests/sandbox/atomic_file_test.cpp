@@ -4,6 +4,8 @@
 
 #include "atomic_file.h"
 
+#include "scratch_directory_test.h"
+
 #include <gtest/gtest.h>
 
 #include <sys/stat.h>
@@ -21,34 +23,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class AtomicFileTest : public ::testing::Test {
-  protected:
-    void SetUp() override {
-        directory_ = fs::temp_directory_path() /
-                     ("atomic_file_test_" + std::to_string(getpid()) + "_" +
-                      ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::remove_all(directory_);
-        fs::create_directories(directory_);
-    }
-    void TearDown() override { fs::remove_all(directory_); }
-
-    std::vector<std::string> entries() const {
-        std::vector<std::string> names;
-        for (const auto& entry : fs::directory_iterator(directory_)) {
-            names.push_back(entry.path().filename().string());
-        }
-        std::sort(names.begin(), names.end());
-        return names;
-    }
-
-    static std::string contents(const fs::path& path) {
-        std::ifstream in(path);
-        std::stringstream text;
-        text << in.rdbuf();
-        return text.str();
-    }
-
-    fs::path directory_;
+class AtomicFileTest : public test::ScratchDirectoryTest {
 };
 
 TEST_F(AtomicFileTest, CommitMovesTheWholeFileIntoPlace) {

@@ -5,6 +5,8 @@
 
 #include "command_options.h"
 
+#include "scratch_directory_test.h"
+
 #include <gtest/gtest.h>
 
 #include <sys/resource.h>
@@ -22,33 +24,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class OutputTransactionTest : public ::testing::Test {
+class OutputTransactionTest : public test::ScratchDirectoryTest {
   protected:
-    void SetUp() override {
-        directory_ = fs::temp_directory_path() /
-                     ("output_transaction_test_" + std::to_string(getpid()) + "_" +
-                      ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::remove_all(directory_);
-        fs::create_directories(directory_);
-    }
-    void TearDown() override { fs::remove_all(directory_); }
-
-    std::vector<std::string> entries() const {
-        std::vector<std::string> names;
-        for (const auto& entry : fs::directory_iterator(directory_))
-            names.push_back(entry.path().filename().string());
-        std::sort(names.begin(), names.end());
-        return names;
-    }
-    static std::string contents(const fs::path& path) {
-        std::ifstream in(path);
-        std::stringstream text;
-        text << in.rdbuf();
-        return text.str();
-    }
     std::string at(const std::string& name) const { return (directory_ / name).string(); }
-
-    fs::path directory_;
 };
 
 TEST_F(OutputTransactionTest, AllOutputsAppearOnCommit) {
