@@ -48,6 +48,14 @@ inline Vec3 previousPoint(const Body& b, const Vec3& local) {
     return b.xPrev + (b.rotates() ? Vec3(b.qPrev * local) : local);
 }
 
+/// Eq. 4 for an attachment of violation c, multiplier lambda (updated) and compliance term
+/// α̃ = α / h², between masses of inverse sum wSum: the multiplier's change.
+inline double attachmentStep(double& lambda, double alphaTilde, double c, double wSum) {
+    const double deltaLambda = (c - alphaTilde * lambda) / (wSum + alphaTilde);  // Eq. 4
+    lambda += deltaLambda;
+    return deltaLambda;
+}
+
 }  // namespace
 
 void SoftSystem::addAttachments(const SoftBodyDef& def, SoftBodyData& data,
@@ -92,11 +100,7 @@ void SoftSystem::solveAttachments(SolverContext& ctx) {
             const Vec3 n = delta / c;
             const double w = invMass_[a.particle];
             const double wb = bodyInverseMass(b, r, n);
-            const double alphaTilde = a.compliance * ctx.invH2;
-            const double deltaLambda =
-                (c - alphaTilde * a.lambda) / (w + wb + alphaTilde);  // Eq. 4
-            a.lambda += deltaLambda;
-            const Vec3 p = deltaLambda * n;
+            const Vec3 p = attachmentStep(a.lambda, a.compliance * ctx.invH2, c, w + wb) * n;
             x_[a.particle] += w * p;                                                    // Eq. 6
             if (wb > 0.0) applyImpulse(ctx, a.body, 0, -p, r.cross(-p), Vec3::Zero());  // Eqs. 7-9
         }
@@ -134,11 +138,7 @@ void SoftSystem::solveAttachments(SolverContext& ctx) {
             const double w = invMass_[a.particle];
             const Vec3 rn = r.cross(n);
             const double wb = inverseMass + rn.dot(inverseInertia * rn);  // Eqs. 2-3
-            const double alphaTilde = a.compliance * ctx.invH2;
-            const double deltaLambda =
-                (c - alphaTilde * a.lambda) / (w + wb + alphaTilde);  // Eq. 4
-            a.lambda += deltaLambda;
-            const Vec3 p = deltaLambda * n;
+            const Vec3 p = attachmentStep(a.lambda, a.compliance * ctx.invH2, c, w + wb) * n;
             x_[a.particle] += w * p;                // Eq. 6
             position -= inverseMass * p;            // Eq. 7, the body receiving −p
             turned -= inverseInertia * r.cross(p);  // Eq. 8
