@@ -41,8 +41,11 @@ fs::path findAsset(std::string_view relative) {
         const fs::path candidate = folder / relative;
         if (fs::is_regular_file(candidate, error)) return candidate;
     }
-    std::string message = "asset '" + std::string(relative) + "' not found; looked in";
-    for (const fs::path& folder : folders) message += " " + folder.string() + ",";
+    // Appended piece by piece: GCC 12 warns (-Wrestrict, a known false positive) on a literal
+    // joined to a temporary string with operator+.
+    std::string message = "asset '";
+    message.append(relative).append("' not found; looked in");
+    for (const fs::path& folder : folders) message.append(" ").append(folder.string()).append(",");
     message += " (set SUBSTEP_ASSET_DIR to the folder holding it)";
     throw std::runtime_error(message);
 }
