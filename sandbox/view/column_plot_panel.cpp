@@ -26,9 +26,12 @@ float sampleOf(void* data, int index) {
 void ColumnPlotPanel::drawPicker(CompareSession& session) {
     const ColumnPlots& plots = session.first().columnPlots();
     const std::span<const std::string> columns = plots.columns();
-    ImGui::InputTextWithHint("##column_filter", "filter columns", filter_, sizeof filter_);
+    ImGui::TextUnformatted("plots of CSV columns");
+    ImGui::SetNextItemWidth(0.45f * ImGui::GetContentRegionAvail().x);
+    ImGui::InputTextWithHint("##column_filter", "filter", filter_, sizeof filter_);
     ImGui::SameLine();
-    if (!ImGui::BeginCombo("plot", "add a column")) return;
+    ImGui::SetNextItemWidth(-1.0f);  // the rest of the row
+    if (!ImGui::BeginCombo("##plot", "add a column")) return;
     matches_.clear();
     for (std::size_t i = 0; i < columns.size(); ++i)
         if (filter_[0] == '\0' || columns[i].find(filter_) != std::string::npos) matches_.push_back(i);
