@@ -1,10 +1,11 @@
 // Tests sandbox/view/column_plots.{h,cpp}: the window's plots of CSV columns hold, frame for
 // frame, the values `substep run --csv` writes (the same sampling code, rounded to float), for
 // bodies, joints, energies and soft bodies; they follow the timeline when scrubbed back and
-// resumed; a restart keeps the chosen columns.
+// resumed; a restart and a switch to compare mode keep the chosen columns.
 
 #include "../command_test_support.h"
 
+#include "view/compare_session.h"
 #include "view/view_session.h"
 
 #include <gtest/gtest.h>
@@ -118,6 +119,19 @@ TEST_F(ColumnPlotsTest, PlotsFollowTheTimelineAndAResumedRunReplacesTheLaterSamp
     session.stepOnce();
     EXPECT_EQ(plots.plots()[0].history.count(), 2u);
     EXPECT_EQ(plots.plots()[0].history.latest(), first[0]);
+}
+
+TEST_F(ColumnPlotsTest, CompareModeKeepsThePlottedColumnsInBothRuns) {
+    view::CompareSession session(resolveScene("pendulum3"), 16.0f / 9.0f);
+    ASSERT_TRUE(session.first().columnPlots().add("energy"));
+    session.compare(view::kPaperCompareSplits);
+    ASSERT_EQ(session.runCount(), 2u);
+    for (std::size_t index = 0; index < 2; ++index) {
+        ASSERT_EQ(session.run(index).columnPlots().plots().size(), 1u);
+        EXPECT_EQ(session.run(index).columnPlots().plots()[0].column, "energy");
+    }
+    session.compare(std::nullopt);
+    ASSERT_EQ(session.first().columnPlots().plots().size(), 1u);
 }
 
 TEST(PlotHistoryTest, DropNewestAndAtCountFromTheOldestAcrossTheWrap) {
