@@ -276,7 +276,7 @@ ViewAppResult runViewApp(SceneSource source, const ViewAppOptions& options) {
 
         imgui.newFrame();
         const ImGuiIO& io = ImGui::GetIO();
-        const ViewArea area = viewArea(io.DisplaySize.x, io.DisplaySize.y, panelShown);
+        ViewArea area = viewArea(io.DisplaySize.x, io.DisplaySize.y, panelShown);
         steerMouse(camera, session, area, events, left);
 
         // Physics: scripted runs step exactly one frame each, so what they show does not depend
@@ -291,7 +291,12 @@ ViewAppResult runViewApp(SceneSource source, const ViewAppOptions& options) {
 
         const KeyActions keys = keyActions(events, io.WantTextInput);
         PanelRequests requests;
-        if (keys.toggleUi % 2 != 0) panelShown = !panelShown;
+        if (keys.toggleUi % 2 != 0) {
+            panelShown = !panelShown;
+            // This frame already draws the view where Tab put it: a Shift+P queued in the same
+            // frame (a slow frame) shoots the view, not the area the panel just left or took.
+            area = viewArea(io.DisplaySize.x, io.DisplaySize.y, panelShown);
+        }
         if (keys.toggleHelp % 2 != 0) helpShown = !helpShown;
         if (panelShown) requests = panel.draw(session, status, area, loadError);
         if (helpShown) drawHelpOverlay(area);
