@@ -85,7 +85,12 @@ render::Colour debugColour(const DebugSegment& segment) {
         case DebugLayer::JointLimit: return {0.35f, 0.85f, 0.95f};
         case DebugLayer::JointForce: return {0.85f, 0.30f, 0.85f};
         case DebugLayer::JointTorque: return {0.95f, 0.55f, 0.15f};
-        case DebugLayer::Contact: return {1.0f, 0.35f, 0.2f};
+        case DebugLayer::Contact:
+            return segment.part == 1 ? render::Colour{1.0f, 1.0f, 0.55f} : render::Colour{1.0f, 0.35f, 0.2f};
+        case DebugLayer::Bounds: return {0.45f, 0.95f, 0.45f};
+        case DebugLayer::CentreOfMass: return {1.0f, 1.0f, 1.0f};
+        case DebugLayer::LinearVelocity: return {0.3f, 0.9f, 1.0f};
+        case DebugLayer::AngularVelocity: return {1.0f, 0.45f, 0.75f};
     }
     return {1.0f, 1.0f, 1.0f};
 }
@@ -168,6 +173,34 @@ SceneDrawing::SceneDrawing(const SceneDescription& description, SceneInstance& s
     longestArrow_ = static_cast<float>(std::min(0.25 * radius, 3.0 * medianSize));
     // Torques: the heaviest weight at the scene's size, drawn as long as its weight's arrow.
     torqueScale_ = heaviestWeight > 0.0 ? forceScale_ / static_cast<float>(radius) : 0.0f;
+    // Velocities: the speed of a fall through the scene's size, sqrt(g R), is drawn a quarter of
+    // that size long; a turn rate of sqrt(g / R) (a pendulum of the scene's size) likewise.
+    const double g = gravity > 0.0 ? gravity : 10.0;
+    velocityScale_ = static_cast<float>(0.25 * radius / std::sqrt(g * radius));
+    angularVelocityScale_ = static_cast<float>(0.25 * radius / std::sqrt(g / radius));
+}
+
+DebugDrawOptions SceneDrawing::debugOptions() const {
+    uint32_t layers = 0;
+    // A joint's link always shows: its length is the spring's stretch or the joint's error.
+    layers |= debugLayerBit(DebugLayer::JointLink);
+    if (options_.jointFrames) layers |= debugLayerBit(DebugLayer::JointFrame) | debugLayerBit(DebugLayer::JointLimit);
+    if (options_.jointForces) layers |= debugLayerBit(DebugLayer::JointForce);
+    if (options_.jointTorques) layers |= debugLayerBit(DebugLayer::JointTorque);
+    if (options_.contacts) layers |= debugLayerBit(DebugLayer::Contact);
+    if (options_.bounds) layers |= debugLayerBit(DebugLayer::Bounds);
+    if (options_.centresOfMass) layers |= debugLayerBit(DebugLayer::CentreOfMass);
+    if (options_.velocities)
+        layers |= debugLayerBit(DebugLayer::LinearVelocity) | debugLayerBit(DebugLayer::AngularVelocity);
+    // A non-finite or non-positive scale from a caller draws the scene's own.
+    const double scale = options_.arrowScale > 0.0f && std::isfinite(options_.arrowScale) ? options_.arrowScale : 1.0;
+    return {.layers = layers,
+            .markerLength = markerLength_,
+            .forceScale = scale * forceScale_,
+            .torqueScale = scale * torqueScale_,
+            .velocityScale = scale * velocityScale_,
+            .angularVelocityScale = scale * angularVelocityScale_,
+            .longestArrow = std::max(scale, 1.0) * longestArrow_};
 }
 
 render::RenderScene SceneDrawing::draw(SceneInstance& sceneInstance) {
@@ -310,20 +343,8 @@ void SceneDrawing::addSoftBodies(const ecs::PhysicsSystem& physics, render::Rend
 }
 
 void SceneDrawing::addDebugLines(const ecs::PhysicsSystem& physics, render::RenderScene& scene) {
-    uint32_t layers = 0;
-    // A joint's link always shows: its length is the spring's stretch or the joint's error.
-    layers |= debugLayerBit(DebugLayer::JointLink);
-    if (options_.jointFrames) layers |= debugLayerBit(DebugLayer::JointFrame) | debugLayerBit(DebugLayer::JointLimit);
-    if (options_.jointForces) layers |= debugLayerBit(DebugLayer::JointForce);
-    if (options_.jointTorques) layers |= debugLayerBit(DebugLayer::JointTorque);
-    if (options_.contacts) layers |= debugLayerBit(DebugLayer::Contact);
-    const DebugDrawOptions options{.layers = layers,
-                                   .markerLength = markerLength_,
-                                   .forceScale = forceScale_,
-                                   .torqueScale = torqueScale_,
-                                   .longestArrow = longestArrow_};
     debugList_.clear();
-    physics.debugDraw(options, debugList_);
+    physics.debugDraw(debugOptions(), debugList_);
     for (const DebugSegment& segment : debugList_.segments)
         scene.lines.push_back({toFloat(segment.from), toFloat(segment.to), debugColour(segment)});
 }

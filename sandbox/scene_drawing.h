@@ -3,7 +3,8 @@
 /// Collider (or a RenderMaterial mesh) is drawn at its Transform in its RenderMaterial's colour;
 /// the ground is the scene's plane, or a reference floor under the bodies; the physics core's
 /// debug draw list (physics/debug_draw.h: joint links, frames, limits, forces and torques,
-/// contacts), which the physics system hands out, becomes lines. It reads components only: what
+/// contacts, broadphase boxes, centres of mass, velocities), which the physics system hands out,
+/// becomes lines. It reads components only: what
 /// the physics system wrote back after the last step. What stays fixed over a rendering (camera,
 /// ground, force scale) is decided once from the initial state, so frames of one scene line up.
 
@@ -25,6 +26,13 @@ struct DrawingOptions {
     /// Contact points with their normals: off by default, since a pile of bodies turns them
     /// into a thicket that hides the scene (the viewer offers them as a toggle).
     bool contacts = false;
+    // Off by default (issue 20): the views a developer turns on to see the collision and motion.
+    bool bounds = false;         ///< the broadphase's box of each body
+    bool centresOfMass = false;  ///< a cross at each moving body's centre of mass, along its principal axes
+    bool velocities = false;     ///< each moving body's v and ω as arrows (ω with an arc of its sense)
+    /// Multiplies every arrow's scale (forces, torques, velocities) and the length they are
+    /// clipped to, as the panel's slider sets it; 1 is the scene's own.
+    float arrowScale = 1.0f;
 };
 
 /// A scene's camera as the renderer takes it (y up).
@@ -43,6 +51,12 @@ class SceneDrawing {
     /// material says so.
     render::RenderScene draw(SceneInstance& scene);
 
+    /// Changes the overlays: what stays fixed (camera, ground, the scene's scales) stays.
+    void setOptions(const DrawingOptions& options) { options_ = options; }
+    const DrawingOptions& options() const { return options_; }
+    /// The debug options drawWorld is given for the current overlays (scales times arrowScale).
+    DebugDrawOptions debugOptions() const;
+
     const render::Camera& camera() const { return camera_; }
 
   private:
@@ -60,6 +74,8 @@ class SceneDrawing {
     float markerLength_ = 0.1f;  ///< joint frame axes and contact normals (m)
     float forceScale_ = 0.0f;    ///< m per N
     float torqueScale_ = 0.0f;   ///< m per N m
+    float velocityScale_ = 0.0f;         ///< m per m/s
+    float angularVelocityScale_ = 0.0f;  ///< m per rad/s
     float longestArrow_ = 1.0f;  ///< force arrows are clipped to this (m)
     DebugDrawList debugList_;    ///< kept across frames for its storage
     std::vector<render::Vec3f> softPoints_;  ///< a soft surface's points, kept for their storage

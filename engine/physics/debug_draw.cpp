@@ -81,6 +81,46 @@ void addScaledArrow(DebugDrawList& list, const Vec3& from, const Vec3& vector, d
     list.arrow(from, from + arrow, layer);
 }
 
+/// The twelve edges of `box`.
+void addBox(DebugDrawList& list, const Aabb& box) {
+    const auto corner = [&](int i) {
+        return Vec3((i & 1) ? box.max.x() : box.min.x(), (i & 2) ? box.max.y() : box.min.y(),
+                    (i & 4) ? box.max.z() : box.min.z());
+    };
+    // Corners i and i | bit differ along one axis: each such pair is an edge.
+    for (int i = 0; i < 8; ++i)
+        for (const int bit : {1, 2, 4})
+            if ((i & bit) == 0) list.line(corner(i), corner(i | bit), DebugLayer::Bounds);
+}
+
+/// ω as an arrow along its axis from the centre of mass (right-hand rule), and three quarters of a
+/// circle about that axis ending in a barb, so the sense of turning reads without the rule.
+void addAngularVelocity(DebugDrawList& list, const Body& body, double scale, double longest, double radius) {
+    const double rate = body.omega.norm();
+    if (!(rate * scale > 1e-4)) return;
+    Vec3 arrow = scale * body.omega;
+    if (arrow.norm() > longest) arrow *= longest / arrow.norm();
+    list.arrow(body.x, body.x + arrow, DebugLayer::AngularVelocity);
+    const Vec3 axis = body.omega / rate;
+    const Vec3 b = axis.unitOrthogonal();
+    const Vec3 c = axis.cross(b);  // b turns towards c about the axis: the sense of ω
+    const Vec3 centre = body.x + 0.5 * arrow;
+    const auto at = [&](double angle) { return centre + radius * (std::cos(angle) * b + std::sin(angle) * c); };
+    constexpr double kSpan = 1.5 * kPi;
+    Vec3 previous = at(0.0);
+    for (int i = 1; i <= kArcSegments; ++i) {
+        const Vec3 next = at(kSpan * i / kArcSegments);
+        list.line(previous, next, DebugLayer::AngularVelocity, 1);
+        previous = next;
+    }
+    // The barb points back along the arc's tangent at its end.
+    const Vec3 tangent = -std::sin(kSpan) * b + std::cos(kSpan) * c;
+    const Vec3 radial = (previous - centre) / radius;
+    for (const double sign : {1.0, -1.0})
+        list.line(previous, previous - 0.4 * radius * tangent + sign * 0.25 * radius * radial,
+                  DebugLayer::AngularVelocity, 1);
+}
+
 }  // namespace
 
 void DebugDrawList::arrow(const Vec3& from, const Vec3& to, DebugLayer layer) {
@@ -136,13 +176,47 @@ void drawWorld(const World& world, const DebugDrawOptions& options, DebugDrawLis
                                options.torqueScale, options.longestArrow, DebugLayer::JointTorque);
     if (wants(DebugLayer::Contact)) {
         const std::span<const Contact> contacts = world.contacts();
+        const double cross = 0.25 * options.markerLength;
         for (const ContactPair& pair : world.contactPairs()) {
             for (uint32_t i = pair.first; i < pair.first + pair.count && i < contacts.size(); ++i) {
                 const Vec3 point = bodies[pair.body1].pointToWorld(contacts[i].local1);
                 list.arrow(point, point + options.markerLength * contacts[i].normal, DebugLayer::Contact);
+                // The point itself, a cross in the contact plane: visible where the normal is
+                // seen end on, and at a software rasteriser's half resolution.
+                const Vec3 t1 = contacts[i].normal.unitOrthogonal();
+                const Vec3 t2 = contacts[i].normal.cross(t1);
+                list.line(point - cross * t1, point + cross * t1, DebugLayer::Contact, 1);
+                list.line(point - cross * t2, point + cross * t2, DebugLayer::Contact, 1);
             }
         }
     }
+    // Bodies: boxes of whatever the broadphase saw; the rest for rigid bodies that move (soft
+    // bodies' particles would bury the scene under markers).
+    if (wants(DebugLayer::Bounds))
+        for (uint32_t index = 0; index < bodies.size(); ++index) {
+            const Aabb& box = world.broadphaseBounds(index);
+            if (bodies[index].alive && bodies[index].type != BodyType::Particle && !box.isEmpty() &&
+                box.min.allFinite() && box.max.allFinite())
+                addBox(list, box);
+        }
+    const auto movingRigid = [](const Body& body) { return body.alive && body.type == BodyType::Dynamic && body.isDynamic(); };
+    if (wants(DebugLayer::CentreOfMass))
+        for (const Body& body : bodies)
+            if (movingRigid(body))
+                for (uint8_t axis = 0; axis < 3; ++axis) {
+                    const Vec3 half = 0.5 * options.markerLength * body.toWorld(Vec3::Unit(axis));
+                    list.line(body.x - half, body.x + half, DebugLayer::CentreOfMass, axis);
+                }
+    if (wants(DebugLayer::LinearVelocity) && options.velocityScale > 0.0)
+        for (const Body& body : bodies)
+            if (movingRigid(body))
+                addScaledArrow(list, body.x, body.v, options.velocityScale, options.longestArrow,
+                               DebugLayer::LinearVelocity);
+    if (wants(DebugLayer::AngularVelocity) && options.angularVelocityScale > 0.0)
+        for (const Body& body : bodies)
+            if (movingRigid(body))
+                addAngularVelocity(list, body, options.angularVelocityScale, options.longestArrow,
+                                   0.5 * options.markerLength);
 }
 
 }  // namespace substep

@@ -1,7 +1,8 @@
 #pragma once
 /// The physics core's draw list: what a World would show a developer — joint links (a spring's
 /// stretch, a rope's slack, a joint's error), joint frames and limits, joint forces and torques,
-/// contact points and normals — as plain segments in world coordinates. The core knows no
+/// contact points and normals, the broadphase's boxes, centres of mass, linear and angular
+/// velocities — as plain segments in world coordinates. The core knows no
 /// renderer: a front end colours the segments by layer and draws them (sandbox/scene_drawing).
 
 #include "physics/math.h"
@@ -20,7 +21,12 @@ enum class DebugLayer : uint8_t {
     JointLimit,   ///< a hinge's or twist's allowed arc, a slide's range, a swing cone
     JointForce,   ///< the joint's force on body 1 (λ/h², Eq. 10), an arrow
     JointTorque,  ///< the joint's torque on body 1 (Eq. 17), an arrow
-    Contact,      ///< a contact point's normal, an arrow from the point on body 1
+    Contact,      ///< a contact point on body 1 (`part` 1: a small cross) and its normal (`part` 0: an arrow)
+    // Bodies (issue 20), together:
+    Bounds,           ///< the box the broadphase paired a body with (World::broadphaseBounds), 12 edges
+    CentreOfMass,     ///< a dynamic body's centre of mass: three crossed lines along its principal axes
+    LinearVelocity,   ///< a dynamic body's velocity v at its centre of mass, an arrow
+    AngularVelocity,  ///< a dynamic body's ω: an arrow along the axis (`part` 0) and an arc turning its way (`part` 1)
 };
 
 struct DebugSegment {
@@ -38,6 +44,8 @@ struct DebugDrawOptions {
     double markerLength = 0.1;   ///< frame axes, contact normals, limit arcs (m)
     double forceScale = 0.0;     ///< m of arrow per N; 0 draws no forces
     double torqueScale = 0.0;    ///< m of arrow per N m; 0 draws no torques
+    double velocityScale = 0.0;         ///< m of arrow per m/s; 0 draws no linear velocities
+    double angularVelocityScale = 0.0;  ///< m of arrow per rad/s; 0 draws no angular velocities
     double longestArrow = 1.0;   ///< arrows are clipped to this (m)
 };
 

@@ -199,6 +199,10 @@ public:
     /// (a pair's points are contacts()[pair.first, pair.first + pair.count)).
     std::span<const ContactPair> contactPairs() const { return contactPairs_; }
     std::span<const Contact> contacts() const { return contacts_; }
+    /// The box the last broadphase paired body `index` with: its shape's box grown by the
+    /// frame's motion and the margin (broadphase.h). Empty for a body it left out, or while fewer
+    /// than two bodies collide (no broadphase runs); infinite for a plane.
+    const Aabb& broadphaseBounds(uint32_t index) const { return broadphase_.bounds(index); }
     /// Candidate pairs beyond kMaxContactPairs that the last step dropped (0 in any sane
     /// scene; thousands of bodies piled at one point reach it). Callers warn about it.
     std::size_t droppedContactPairs() const { return droppedContactPairs_; }

@@ -13,7 +13,7 @@ RenderQuality qualitySettings(QualityLevel level) {
         // on spheres1000, with the 2304-triangle sphere (2.3 million triangles drawn twice,
         // shadow and view).
         case QualityLevel::Light:
-            return {.msaaSamples = 0, .renderScale = 0.5f, .shadows = ShadowMode::Hard, .shadowMapSize = 1024,
+            return {.msaaSamples = 0, .renderScale = 0.5f, .shadows = ShadowMode::Hard, .shadowMapSize = 512,
                     .sphereRings = 12, .sphereSegments = 24, .coarseSphereBelowPixels = 16.0f, .frontToBack = true};
         case QualityLevel::Medium:
             return {.msaaSamples = 2, .shadows = ShadowMode::Soft, .shadowMapSize = 1024, .sphereRings = 16,

@@ -262,7 +262,10 @@ void Renderer::drawShadowMap(const Mat4f& lightViewProjection) {
 }
 
 void Renderer::drawSky(const RenderScene& scene, const Mat4f& viewProjection) {
-    gl_.Disable(GL_DEPTH_TEST);
+    // Drawn after the opaque geometry, at the far plane with the depth test: only the pixels
+    // nothing covers run its shader (a software rasteriser otherwise shades the whole view
+    // twice where the ground lies), and the picture is the same.
+    gl_.DepthFunc(GL_LEQUAL);
     gl_.DepthMask(GL_FALSE);
     skyProgram_->use();
     skyProgram_->set("uInverseViewProjection", Mat4f(viewProjection.inverse()));
@@ -273,7 +276,6 @@ void Renderer::drawSky(const RenderScene& scene, const Mat4f& viewProjection) {
     gl_.DrawArrays(GL_TRIANGLES, 0, 3);
     gl_.BindVertexArray(0);
     gl_.DepthMask(GL_TRUE);
-    gl_.Enable(GL_DEPTH_TEST);
 }
 
 void Renderer::setLighting(const ShaderProgram& program, const RenderScene& scene, const Mat4f& viewProjection,
@@ -395,7 +397,8 @@ void Renderer::render(const RenderScene& scene, const RenderTarget& target) {
     gl_.ClearDepth(1.0);
     gl_.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     gl_.Disable(GL_SCISSOR_TEST);
-    drawSky(scene, viewProjection);
+    gl_.Enable(GL_DEPTH_TEST);
+    gl_.DepthFunc(GL_LEQUAL);
 
     gl_.ActiveTexture(GL_TEXTURE0);
     gl_.BindTexture(GL_TEXTURE_2D, shadowTexture_);
@@ -407,6 +410,7 @@ void Renderer::render(const RenderScene& scene, const RenderTarget& target) {
     }
     setLighting(*meshProgram_, scene, viewProjection, lightViewProjection, fogDistance, normalOffset);
     drawMeshes();
+    drawSky(scene, viewProjection);
     drawLines(scene, viewProjection);
 
     const GLenum error = gl_.GetError();

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <string>
+#include <vector>
 
 namespace substep::view {
 
@@ -62,6 +64,8 @@ void CompareSession::compare(std::optional<CompareSplits> splits) {
     // Copies: the runs they come from are replaced.
     const SceneSource source = first().source();
     const SessionControls kept = first().controls();
+    std::vector<std::string> plotted;  // the CSV columns plotted, kept in the new runs
+    for (const ColumnPlots::Plot& plot : first().columnPlots().plots()) plotted.push_back(plot.column);
     if (splits) splits_ = *splits;
     const std::size_t count = splits ? 2 : 1;
     runs_.clear();
@@ -70,6 +74,7 @@ void CompareSession::compare(std::optional<CompareSplits> splits) {
         runs_.push_back(std::make_unique<ViewSession>(source, aspect_ / static_cast<float>(count)));
         runs_.back()->controls().gravityY = kept.gravityY;
         runs_.back()->controls().drawing = kept.drawing;
+        for (const std::string& column : plotted) runs_.back()->columnPlots().add(column);
     }
     applySplits();
     applyControls();

@@ -25,6 +25,17 @@ class PlotHistory {
         latest_ = 0.0f;
     }
 
+    /// Forgets the `n` newest samples (all when there are fewer): a run resumed from an earlier
+    /// frame replaces them.
+    void dropNewest(std::size_t n) {
+        n = std::min(n, count_);
+        next_ = (next_ + values_.size() - n) % values_.size();
+        count_ -= n;
+        latest_ = count_ > 0 ? values_[(next_ + values_.size() - 1) % values_.size()] : 0.0f;
+    }
+    /// Sample `i` of the count() held, counted from the oldest.
+    float at(std::size_t i) const { return values_[(next_ + values_.size() - count_ + i) % values_.size()]; }
+
     /// The buffer and the index of its oldest sample, as PlotLines takes them. Before the buffer
     /// is full the unused slots read 0.
     const float* data() const { return values_.data(); }

@@ -1,6 +1,7 @@
 #include "view/view_app.h"
 
 #include "view/compare_session.h"
+#include "view/debug_layer_panel.h"
 #include "view/frame_stats.h"
 #include "view/glfw_context.h"
 #include "view/input_queue.h"
@@ -23,6 +24,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <ctime>
 #include <filesystem>
 #include <memory>
 #include <stdexcept>
@@ -35,6 +37,13 @@ using Clock = std::chrono::steady_clock;
 
 double millisecondsSince(Clock::time_point start) {
     return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+/// CPU time the process has used so far, all its threads (ms).
+double processCpuMs() {
+    timespec now{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &now);
+    return 1e3 * static_cast<double>(now.tv_sec) + 1e-6 * static_cast<double>(now.tv_nsec);
 }
 
 /// Dear ImGui's context and its two backends, torn down in reverse order even when the loop
@@ -226,6 +235,7 @@ ViewAppResult runViewApp(SceneSource source, const ViewAppOptions& options) {
     std::string loadError;
     FrameStats stats;
     std::vector<FrameSample> scriptedSamples;
+    std::vector<double> scriptedRenderCpu;  ///< the drawing's CPU time of each scripted frame (ms)
     ViewAppResult result;
     status.stats = &stats;
     // The scene is drawn multisampled here and resolved into the window, so the quality level
@@ -266,7 +276,7 @@ ViewAppResult runViewApp(SceneSource source, const ViewAppOptions& options) {
 
         imgui.newFrame();
         const ImGuiIO& io = ImGui::GetIO();
-        const ViewArea area = viewArea(io.DisplaySize.x, io.DisplaySize.y, panelShown);
+        ViewArea area = viewArea(io.DisplaySize.x, io.DisplaySize.y, panelShown);
         steerMouse(camera, session, area, events, left);
 
         // Physics: scripted runs step exactly one frame each, so what they show does not depend
@@ -281,7 +291,12 @@ ViewAppResult runViewApp(SceneSource source, const ViewAppOptions& options) {
 
         const KeyActions keys = keyActions(events, io.WantTextInput);
         PanelRequests requests;
-        if (keys.toggleUi % 2 != 0) panelShown = !panelShown;
+        if (keys.toggleUi % 2 != 0) {
+            panelShown = !panelShown;
+            // This frame already draws the view where Tab put it: a Shift+P queued in the same
+            // frame (a slow frame) shoots the view, not the area the panel just left or took.
+            area = viewArea(io.DisplaySize.x, io.DisplaySize.y, panelShown);
+        }
         if (keys.toggleHelp % 2 != 0) helpShown = !helpShown;
         if (panelShown) requests = panel.draw(session, status, area, loadError);
         if (helpShown) drawHelpOverlay(area);
@@ -293,6 +308,12 @@ ViewAppResult runViewApp(SceneSource source, const ViewAppOptions& options) {
             for (int step = 0; step < keys.steps; ++step) session.stepOnce();
         if (keys.scrub != 0 && !keyDriver.binds(session, GLFW_KEY_LEFT)) session.scrubBy(keys.scrub);
         keyDriver.update(session);
+        // B, M and V toggle the bodies' debug layers, unless the scene drives knobs with them.
+        KeyActions layerKeys = keys;
+        if (keyDriver.binds(session, GLFW_KEY_B)) layerKeys.toggleBounds = 0;
+        if (keyDriver.binds(session, GLFW_KEY_M)) layerKeys.toggleCentresOfMass = 0;
+        if (keyDriver.binds(session, GLFW_KEY_V)) layerKeys.toggleVelocities = 0;
+        if (toggleLayersByKey(layerKeys, session.first().controls().drawing)) session.applyDrawingOptions();
         if (keys.resetCamera || keys.restart) camera = OrbitCamera(session.startCamera());
 
         if (requests.loadScene) {
@@ -337,6 +358,7 @@ ViewAppResult runViewApp(SceneSource source, const ViewAppOptions& options) {
 
         const render::PixelSize size = context.framebufferSize();
         double renderMs = 0.0;
+        const double renderCpuStart = processCpuMs();
         if (size.width > 0 && size.height > 0) {  // minimised: nothing to draw into
             const Clock::time_point renderStart = Clock::now();
             const render::RenderTarget view = pixelArea(area, size, io.DisplaySize.x, io.DisplaySize.y);
@@ -410,13 +432,19 @@ ViewAppResult runViewApp(SceneSource source, const ViewAppOptions& options) {
                                  .simulatedSeconds = simulated,
                                  .playing = session.playback().playing};
         stats.record(sample);
-        if (scripted) scriptedSamples.push_back(sample);
+        if (scripted) {
+            scriptedSamples.push_back(sample);
+            scriptedRenderCpu.push_back(processCpuMs() - renderCpuStart);
+        }
         if (scripted && frame + 1 >= options.frames) break;
     }
     for (std::size_t index = 0; index < session.runCount(); ++index) {
         result.finite = result.finite && session.run(index).finite();
     }
     summariseTiming(scriptedSamples, result.timing);
+    const std::size_t skip = std::min<std::size_t>(10, scriptedRenderCpu.size() / 2);  // as summariseTiming
+    result.timing.renderCpuMs =
+        median(std::vector<double>(scriptedRenderCpu.begin() + static_cast<std::ptrdiff_t>(skip), scriptedRenderCpu.end()));
     result.timing.glRenderer = status.glRenderer;
     result.timing.quality = status.quality;
     return result;

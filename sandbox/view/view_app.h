@@ -38,6 +38,9 @@ struct ViewFrameTiming {
     double physicsMs = 0.0;
     double renderMs = 0.0;  ///< draw calls (CPU side)
     double swapMs = 0.0;
+    /// CPU time of the whole process, every thread (a software rasteriser's too), from the start
+    /// of the drawing to the end of the swap: what drawing costs whatever else loads the machine.
+    double renderCpuMs = 0.0;
     std::string glRenderer;              ///< GL_RENDERER of the window's context
     render::QualityLevel quality = render::QualityLevel::Full;
 };

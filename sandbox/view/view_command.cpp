@@ -81,10 +81,10 @@ int runView(const ViewOptions& options) {
     if (options.frames > 0) {
         const ViewFrameTiming& timing = result.timing;
         std::printf("frames: %.2f ms median (%.1f fps) over %lld frames: physics %.2f, draw %.2f, swap %.2f ms; "
-                    "quality %s on %s\n",
+                    "drawing's CPU %.2f ms (all threads); quality %s on %s\n",
                     timing.frameMs, timing.frameMs > 0.0 ? 1000.0 / timing.frameMs : 0.0, timing.frames,
-                    timing.physicsMs, timing.renderMs, timing.swapMs, render::qualityName(timing.quality),
-                    timing.glRenderer.c_str());
+                    timing.physicsMs, timing.renderMs, timing.swapMs, timing.renderCpuMs,
+                    render::qualityName(timing.quality), timing.glRenderer.c_str());
     }
     if (!result.finite) {
         std::fprintf(stderr, "substep view: the state of %s turned non-finite\n", label.c_str());

@@ -9,7 +9,7 @@ namespace substep::view {
 
 namespace {
 
-constexpr std::array<ControlHelp, 15> kControls{{
+constexpr std::array<ControlHelp, 18> kControls{{
     {"Space", "play / pause"},
     {"S", "step one frame (hold to repeat)"},
     {"Left / Right", "pause; one frame back / forward through the timeline (last 10 s; hold to repeat)"},
@@ -19,6 +19,9 @@ constexpr std::array<ControlHelp, 15> kControls{{
     {"F1", "this help"},
     {"P", "screenshot of the window as shown (PNG in the working folder)"},
     {"Shift+P", "screenshot of the 3D view without the panel"},
+    {"B", "show / hide the bodies' broadphase boxes"},
+    {"M", "show / hide the centres of mass"},
+    {"V", "show / hide the velocities (v and omega; the panel's arrow scale sizes them)"},
     {"left drag", "orbit the camera"},
     {"Ctrl + left drag", "grab a body with a spring (paper Fig. 5) or move a mount"},
     {"left click", "select a body: the panel's inspector shows it, the view outlines it"},
@@ -77,6 +80,15 @@ KeyActions keyActions(std::span<const InputEvent> events, bool textInput) {
                 } else {
                     actions.screenshot = true;
                 }
+                break;
+            case GLFW_KEY_B:
+                if (!repeat) ++actions.toggleBounds;
+                break;
+            case GLFW_KEY_M:
+                if (!repeat) ++actions.toggleCentresOfMass;
+                break;
+            case GLFW_KEY_V:
+                if (!repeat) ++actions.toggleVelocities;
                 break;
             default: break;
         }

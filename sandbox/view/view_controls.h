@@ -33,6 +33,9 @@ struct KeyActions {
     int toggleHelp = 0;     ///< F1
     bool screenshot = false;        ///< P: the window as shown
     bool screenshotViewOnly = false;  ///< Shift+P: the 3D view without the panel
+    int toggleBounds = 0;          ///< B: the broadphase's boxes
+    int toggleCentresOfMass = 0;   ///< M: centres of mass
+    int toggleVelocities = 0;      ///< V: linear and angular velocities
 };
 
 /// The actions asked by the key presses (and repeats, for stepping) in `events`.

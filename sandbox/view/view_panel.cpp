@@ -1,5 +1,8 @@
 #include "view/view_panel.h"
 
+#include "view/column_plot_panel.h"
+#include "view/debug_layer_panel.h"
+
 #include "scenes/scene_registry.h"
 
 #include <imgui.h>
@@ -144,6 +147,7 @@ void drawRunOverlays(CompareSession& session, const ViewArea& view) {
                          ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav);
         ImGui::TextWrapped("%s: %s (substeps x iterations)", index == 0 ? "left" : "right", splitLabel(run.controls()).c_str());
         drawRunMeasures(run, true);
+        drawColumnPlots(session, run, 45.0f);
         ImGui::End();
     }
 }
@@ -343,6 +347,7 @@ PanelRequests ViewPanel::draw(CompareSession& session, const ViewStatus& status,
     requests.drawingChanged |= ImGui::Checkbox("torques", &shared.drawing.jointTorques);
     ImGui::SameLine();
     requests.drawingChanged |= ImGui::Checkbox("contacts", &shared.drawing.contacts);
+    requests.drawingChanged |= drawBodyLayerControls(shared.drawing);
 
     // Per-joint compliance (the attachment's α), live in every run; a restart brings back the
     // scene's.
@@ -365,6 +370,10 @@ PanelRequests ViewPanel::draw(CompareSession& session, const ViewStatus& status,
         ImGui::Separator();
         drawRunMeasures(first, false);
     }
+    // Plots of any column the CSV would have; in compare mode drawn in each run's half.
+    ImGui::Separator();
+    columnPlotPanel_.drawPicker(session);
+    if (!comparing) drawColumnPlots(session, first, 70.0f);
 
     ImGui::Separator();
     ImGui::TextDisabled("F1: every key; Tab hides the panel");

@@ -3,11 +3,12 @@
 /// play/pause/step/restart, time scale, rendering quality, the
 /// compare mode switch, substeps and iterations per run, gravity, the debug layers, and per run
 /// live plots of total energy, of the largest joint error and of a chain's elongation, with its
-/// physics time. It edits the controls in place and returns what must happen to the session as a
+/// physics time, and plots of any CSV column the user picks (column_plot_panel.h). It edits the controls in place and returns what must happen to the session as a
 /// whole (a new scene, a restart, compare mode), which the app then does. In compare mode each
 /// run's measures are drawn over its own half of the window.
 
 #include "view/compare_session.h"
+#include "view/column_plot_panel.h"
 #include "view/frame_stats.h"
 #include "view/view_layout.h"
 
@@ -51,6 +52,7 @@ class ViewPanel {
 
   private:
     char path_[512] = {};  ///< the file box's text
+    ColumnPlotPanel columnPlotPanel_;  ///< the picker of CSV columns to plot
 };
 
 }  // namespace substep::view

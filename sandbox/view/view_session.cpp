@@ -43,7 +43,7 @@ void ViewSession::rebuild(bool keepScript) {
         live_ = std::make_unique<LiveScene>(startLabelledScene(source_));
     }
     applyControls();
-    applyDrawingOptions();
+    makeDrawing();
     chainMeasure_.reset();
     if (source_.entry != nullptr && !source_.entry->chain.endBody.empty()) {
         chainMeasure_ = std::make_unique<ErrorRecorder>(live_->instance(),
@@ -58,6 +58,7 @@ void ViewSession::rebuild(bool keepScript) {
     energy_.clear();
     jointError_.clear();
     chainElongation_.clear();
+    columnPlots_.reset(live_->instance());
     sample();
     restartHistory();
 }
@@ -73,6 +74,7 @@ bool ViewSession::scrubTo(long long frame) {
     if (snapshot == nullptr || snapshot->frame == live_->frame()) return false;
     live_->restore(*snapshot);
     finite_ = live_->world().isFinite();
+    columnPlots_.showUpTo(live_->frame());
     return true;
 }
 
@@ -148,7 +150,9 @@ void ViewSession::applyControls() {
     physics.setSettings(settings);
 }
 
-void ViewSession::applyDrawingOptions() {
+void ViewSession::applyDrawingOptions() { drawing_->setOptions(controls_.drawing); }
+
+void ViewSession::makeDrawing() {
     // SceneDrawing fixes its camera, ground and force scale from the state it is made from; a
     // fresh build of the scene gives the same ones as at the start, whatever the world did since.
     SceneInstance initial = buildLabelledScene(source_.description, source_.label);
@@ -188,6 +192,7 @@ void ViewSession::sample() {
         chainMeasure_->sample();
         chainElongation_.push(static_cast<float>(chainMeasure_->measures().chainElongation.value_or(0.0)));
     }
+    columnPlots_.record(live_->instance(), live_->frame(), live_->time());
 }
 
 render::RenderScene ViewSession::draw(const render::Camera& camera) {

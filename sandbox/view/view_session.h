@@ -9,6 +9,7 @@
 #include "scene_source.h"
 #include "view/body_dragger.h"
 #include "view/body_inspector.h"
+#include "view/column_plots.h"
 #include "view/plot_history.h"
 #include "view/timeline.h"
 
@@ -43,7 +44,8 @@ class ViewSession {
     void restart();
     /// Pushes substeps, iterations and gravity from controls() into the world.
     void applyControls();
-    /// Redoes the overlays after a change of controls().drawing.
+    /// Redoes the overlays after a change of controls().drawing (cheap: camera, ground and the
+    /// scene's arrow scales stay as the build fixed them).
     void applyDrawingOptions();
 
     /// One frame of the scene's dt; does nothing once the state turned non-finite.
@@ -108,9 +110,14 @@ class ViewSession {
     /// The chain's relative elongation (L − L0) / L0 (error_measures.h; paper Fig. 11), when the
     /// built-in scene has a chain measure; else nullptr.
     const PlotHistory* chainElongationHistory() const { return chainMeasure_ ? &chainElongation_ : nullptr; }
+    /// Plots of any column `run --csv` would write (column_plots.h), following the timeline.
+    ColumnPlots& columnPlots() { return columnPlots_; }
+    const ColumnPlots& columnPlots() const { return columnPlots_; }
 
   private:
     void rebuild(bool keepScript);
+    /// A new SceneDrawing from a fresh build of the scene (its camera, ground and scales).
+    void makeDrawing();
     void sample();
     /// Forgets the kept states and keeps the current one as the first.
     void restartHistory();
@@ -130,6 +137,7 @@ class ViewSession {
     PlotHistory energy_{600};
     PlotHistory jointError_{600};
     PlotHistory chainElongation_{600};
+    ColumnPlots columnPlots_;
     Timeline timeline_;
 };
 

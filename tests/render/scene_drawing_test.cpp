@@ -159,10 +159,43 @@ TEST(SceneDrawing, ContactsAreArrowsAlongTheirNormalsWhenAskedFor) {
     for (const ContactPair& pair : scene.world().contactPairs()) points += pair.count;
     const DrawingOptions contactsOnly{.jointFrames = false, .jointForces = false, .contacts = true};
     SceneDrawing drawing(description, scene, 1.0f, contactsOnly);
-    EXPECT_EQ(drawing.draw(scene).lines.size(), points * 3);
+    // Per point a normal (a shaft and two barbs) and a cross (two strokes) at the point.
+    EXPECT_EQ(drawing.draw(scene).lines.size(), points * 5);
     // Off by default.
     SceneDrawing plain(description, scene, 1.0f);
     EXPECT_EQ(plain.draw(scene).lines.size(), scene.world().joints().size() * 7);
+}
+
+TEST(SceneDrawing, BodyLayersAreOffByDefaultAndTheArrowScaleMultipliesEveryArrow) {
+    const SceneEntry* entry = findBuiltinScene("stack10");
+    if (entry == nullptr) GTEST_SKIP() << "no stack10 scene in this build";
+    const SceneDescription description = entry->build();
+    SceneInstance scene = buildScene(description);
+    for (int i = 0; i < 5; ++i) scene.physics().step(description.dt);
+    SceneDrawing drawing(description, scene, 1.0f);
+    const DebugDrawOptions plain = drawing.debugOptions();
+    for (const DebugLayer layer : {DebugLayer::Bounds, DebugLayer::CentreOfMass, DebugLayer::LinearVelocity,
+                                   DebugLayer::AngularVelocity})
+        EXPECT_EQ(plain.layers & debugLayerBit(layer), 0u);
+    EXPECT_GT(plain.velocityScale, 0.0);
+    EXPECT_GT(plain.angularVelocityScale, 0.0);
+
+    // Every body's box: 12 edges for each of the 10 boxes (the ground plane has none).
+    drawing.setOptions({.jointFrames = false, .jointForces = false, .bounds = true});
+    EXPECT_EQ(drawing.draw(scene).lines.size(), 10u * 12u);
+    drawing.setOptions({.velocities = true, .arrowScale = 3.0f});
+    const DebugDrawOptions tripled = drawing.debugOptions();
+    EXPECT_NE(tripled.layers & debugLayerBit(DebugLayer::LinearVelocity), 0u);
+    EXPECT_NE(tripled.layers & debugLayerBit(DebugLayer::AngularVelocity), 0u);
+    EXPECT_DOUBLE_EQ(tripled.forceScale, 3.0 * plain.forceScale);
+    EXPECT_DOUBLE_EQ(tripled.torqueScale, 3.0 * plain.torqueScale);
+    EXPECT_DOUBLE_EQ(tripled.velocityScale, 3.0 * plain.velocityScale);
+    EXPECT_DOUBLE_EQ(tripled.angularVelocityScale, 3.0 * plain.angularVelocityScale);
+    EXPECT_DOUBLE_EQ(tripled.longestArrow, 3.0 * plain.longestArrow) << "a longer arrow is not clipped back";
+    drawing.setOptions({.arrowScale = 0.5f});
+    EXPECT_DOUBLE_EQ(drawing.debugOptions().longestArrow, plain.longestArrow) << "shorter arrows keep the clip";
+    drawing.setOptions({.arrowScale = -1.0f});
+    EXPECT_DOUBLE_EQ(drawing.debugOptions().forceScale, plain.forceScale) << "a bad scale draws the scene's own";
 }
 
 }  // namespace

@@ -62,6 +62,17 @@ TEST(ViewControlsTest, EachKeyAsksForItsAction) {
     EXPECT_EQ(none.togglePlay, 0);
 }
 
+TEST(ViewControlsTest, LayerKeysCountPressesNotRepeatsAndYieldToATextBox) {
+    const std::vector<InputEvent> presses{key(GLFW_KEY_B), key(GLFW_KEY_M), key(GLFW_KEY_V), key(GLFW_KEY_V),
+                                          key(GLFW_KEY_B, GLFW_REPEAT), key(GLFW_KEY_M, GLFW_RELEASE)};
+    const KeyActions actions = keyActions(presses, false);
+    EXPECT_EQ(actions.toggleBounds, 1);
+    EXPECT_EQ(actions.toggleCentresOfMass, 1);
+    EXPECT_EQ(actions.toggleVelocities, 2);  // two taps in a frame: an even count, no change
+    const KeyActions typed = keyActions(presses, true);  // "bmvv" into the column filter
+    EXPECT_EQ(typed.toggleBounds + typed.toggleCentresOfMass + typed.toggleVelocities, 0);
+}
+
 TEST(ViewControlsTest, ATextBoxKeepsEveryKeyButF1) {
     const std::vector<InputEvent> typing{key(GLFW_KEY_SPACE), key(GLFW_KEY_S), key(GLFW_KEY_R), key(GLFW_KEY_P),
                                          key(GLFW_KEY_F1), key(GLFW_KEY_TAB)};

@@ -238,10 +238,63 @@ wait_files 2 'substep_cradle_f*.png'
     EXPECT_TRUE(first.rgba == again.rgba) << "the resumed run must redraw frame N as it was: " << out;
 }
 
+TEST_F(ViewWindowTest, LayerKeysAddBoxesCentresAndVelocitiesToTheViewAndTakeThemAway) {
+    if (!haveXvfbAndXdotool()) GTEST_SKIP() << "needs xvfb-run and xdotool (tools/install-deps.sh)";
+    // The cradle paused while its marbles swing (light quality, as Xvfb's software GL starts):
+    // the view alone shot plain, with B (the broadphase's boxes), with B, M and V (centres of
+    // mass and velocities too), and plain again once all three are toggled off.
+    const std::string out = drive("view cradle --size 1000x700", R"sh(
+sleep 1
+xdotool key space
+wait_title 'paused at frame'
+sleep 0.5
+xdotool key shift+p
+wait_files 1 'substep_cradle_f*.png'
+xdotool key b
+sleep 0.5
+xdotool key shift+p
+wait_files 2 'substep_cradle_f*.png'
+xdotool key m v
+sleep 0.5
+xdotool key shift+p
+wait_files 3 'substep_cradle_f*.png'
+xdotool key b m v
+sleep 0.5
+xdotool key shift+p
+wait_files 4 'substep_cradle_f*.png'
+)sh");
+    ASSERT_NE(out.find("DONE"), std::string::npos) << out;
+    std::vector<std::string> shots;
+    for (const std::string& name : workEntries())
+        if (name.rfind("substep_cradle_f", 0) == 0) shots.push_back(name);
+    ASSERT_EQ(shots.size(), 4u) << out;
+    std::sort(shots.begin(), shots.end(), [](const std::string& a, const std::string& b) {
+        return a.size() != b.size() ? a.size() < b.size() : a < b;
+    });
+    std::vector<render::Image> images;
+    for (const std::string& shot : shots) images.push_back(render::decodePng(readFile(work() / shot)));
+    const auto differing = [](const render::Image& a, const render::Image& b) {
+        std::size_t count = 0;
+        for (int y = 0; y < a.height; ++y)
+            for (int x = 0; x < a.width; ++x)
+                for (int c = 0; c < 3; ++c)
+                    if (std::abs(int(a.pixel(x, y)[c]) - int(b.pixel(x, y)[c])) > 24) {
+                        ++count;
+                        break;
+                    }
+        return count;
+    };
+    for (const render::Image& image : images) ASSERT_EQ(image.rgba.size(), images[0].rgba.size());
+    EXPECT_GT(differing(images[0], images[1]), 300u) << "B draws boxes around the marbles and the frame";
+    EXPECT_GT(differing(images[1], images[2]), 50u) << "M and V add centres and arrows";
+    EXPECT_TRUE(images[0].rgba == images[3].rgba) << "toggled off, the view is as it was";
+}
+
 TEST_F(ViewWindowTest, HelpListsTheControls) {
     const Result result = substep("view --help");
     EXPECT_EQ(result.exitCode, 0);
-    for (const char* expected : {"Controls in the window", "Space", "F1", "Tab", "Ctrl + left drag", "--quality"}) {
+    for (const char* expected :
+         {"Controls in the window", "Space", "F1", "Tab", "Ctrl + left drag", "--quality", "broadphase boxes"}) {
         EXPECT_NE(result.out.find(expected), std::string::npos) << expected << "\n" << result.out;
     }
 }
