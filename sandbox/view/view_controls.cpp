@@ -9,9 +9,11 @@ namespace substep::view {
 
 namespace {
 
-constexpr std::array<ControlHelp, 15> kControls{{
+constexpr std::array<ControlHelp, 16> kControls{{
     {"Space", "play / pause"},
-    {"S", "step one frame (hold to repeat)"},
+    {"S", "step one frame (hold to repeat); mid-frame, finish the frame"},
+    {". or Shift+Right", "pause; step one substep, drawing what each constraint corrected (orange: moves, "
+                         "magenta: turns; the panel lists them)"},
     {"Left / Right", "pause; one frame back / forward through the timeline (last 10 s; hold to repeat)"},
     {"R", "restart the scene (and reset the camera)"},
     {"C, Home", "reset the camera to the scene's"},
@@ -21,7 +23,8 @@ constexpr std::array<ControlHelp, 15> kControls{{
     {"Shift+P", "screenshot of the 3D view without the panel"},
     {"left drag", "orbit the camera"},
     {"Ctrl + left drag", "grab a body with a spring (paper Fig. 5) or move a mount"},
-    {"left click", "select a body: the panel's inspector shows it, the view outlines it"},
+    {"left click", "select a body (or, near a joint's anchor, the joint): the panel's inspector shows it, "
+                   "the view outlines it"},
     {"right / middle drag", "pan"},
     {"wheel", "zoom"},
     {"panel: quality", "light / medium / full rendering (light on software GL)"},
@@ -34,7 +37,7 @@ std::span<const ControlHelp> viewControls() { return kControls; }
 std::string controlsHelpText() {
     std::string text = "Controls in the window:\n";
     for (const ControlHelp& control : kControls) {
-        char line[160];
+        char line[256];
         std::snprintf(line, sizeof line, "  %-20s %s\n", control.keys, control.does);
         text += line;
     }
@@ -62,7 +65,14 @@ KeyActions keyActions(std::span<const InputEvent> events, bool textInput) {
                 break;
             case GLFW_KEY_S: ++actions.steps; break;
             case GLFW_KEY_LEFT: --actions.scrub; break;
-            case GLFW_KEY_RIGHT: ++actions.scrub; break;
+            case GLFW_KEY_RIGHT:
+                if (event.mods & GLFW_MOD_SHIFT) {
+                    ++actions.substeps;
+                } else {
+                    ++actions.scrub;
+                }
+                break;
+            case GLFW_KEY_PERIOD: ++actions.substeps; break;
             case GLFW_KEY_R:
                 if (!repeat) actions.restart = true;
                 break;
