@@ -59,9 +59,9 @@ std::string formatLength(double metres) {
     char text[48];
     if (size >= 1.0) {
         std::snprintf(text, sizeof text, "%.3g m", metres);
-    } else if (size >= 1e-3) {
+    } else if (size >= 1e-4) {
         std::snprintf(text, sizeof text, "%.3g mm", metres * 1e3);
-    } else if (size >= 1e-6) {
+    } else if (size >= 1e-7) {
         std::snprintf(text, sizeof text, "%.3g um", metres * 1e6);
     } else {
         std::snprintf(text, sizeof text, "%.3g nm", metres * 1e9);
@@ -123,8 +123,9 @@ void drawCorrections(const std::vector<CorrectionEntry>& entries, const World& w
     const double reach = largest.bodyIndex < bodies.size() ? shapeReach(bodies[largest.bodyIndex].shape) : 0.0;
     const double length = std::isfinite(reach) && reach > 0.0 ? 2.0 * reach : 0.5;
     const double scale = length / largest.size;
-    const render::Colour move(1.0f, 0.55f, 0.1f);
-    const render::Colour turn(0.9f, 0.2f, 0.9f);
+    // Colours no debug layer uses (torques are orange, forces magenta, limits cyan).
+    const render::Colour move(1.0f, 0.15f, 0.6f);
+    const render::Colour turn(0.55f, 0.35f, 1.0f);
     const auto arrow = [&](const Vec3& from, const Vec3& vector, const render::Colour& colour) {
         const double size = vector.norm();
         if (!(size > 0.0) || !from.allFinite()) return;

@@ -2,7 +2,7 @@
 /// The substep corrections as the viewer shows them (issue 20): after a substep stepped by hand,
 /// what each joint and contact pair moved each of its bodies, named ("hinge 'h2' moved 'box3'
 /// 0.42 mm"), sorted by size for the panel, and drawn as arrows at the bodies' centres (the
-/// displacement in orange, the rotation vector in magenta), scaled so the largest is about twice
+/// displacement in pink, the rotation vector in violet), scaled so the largest is about twice
 /// its body's size. Reads the world's record (physics/substep_corrections.h) and the components'
 /// names; knows nothing of ImGui.
 

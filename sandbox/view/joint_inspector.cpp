@@ -138,9 +138,12 @@ void highlightJoint(SceneInstance& scene, ecs::Entity entity, const render::Colo
     if (joint == nullptr) return;
     const std::span<const Body> bodies = scene.world().bodies();
     const JointAnchors anchors = jointAnchors(*joint, bodies.data());
-    // The cross's size follows the bodies' spacing, so it shows on a coin and on a crane alike.
-    const double span = (bodies[joint->body0].x - bodies[joint->body1].x).norm();
-    const double arm = std::clamp(0.15 * span, 0.005, 0.3);
+    // The cross's size follows the lever arms of the joint's moving bodies, so it shows on a coin
+    // and on a crane alike.
+    double lever = 0.0;
+    if (bodies[joint->body0].invMass > 0.0) lever = std::max(lever, anchors.r0.norm());
+    if (bodies[joint->body1].invMass > 0.0) lever = std::max(lever, anchors.r1.norm());
+    const double arm = std::clamp(0.3 * lever, 0.005, 0.3);
     for (const Vec3& anchor : {anchors.p0, anchors.p1}) {
         for (int axis = 0; axis < 3; ++axis) {
             const Vec3 offset = arm * Vec3::Unit(axis);

@@ -12,8 +12,8 @@ namespace {
 constexpr std::array<ControlHelp, 16> kControls{{
     {"Space", "play / pause"},
     {"S", "step one frame (hold to repeat); mid-frame, finish the frame"},
-    {". or Shift+Right", "pause; step one substep, drawing what each constraint corrected (orange: moves, "
-                         "magenta: turns; the panel lists them)"},
+    {". or Shift+Right", "pause; step one substep, drawing what each constraint corrected (pink: moves, "
+                         "violet: turns; the panel lists them)"},
     {"Left / Right", "pause; one frame back / forward through the timeline (last 10 s; hold to repeat)"},
     {"R", "restart the scene (and reset the camera)"},
     {"C, Home", "reset the camera to the scene's"},

@@ -72,10 +72,10 @@ TEST(SubstepStepping, EachSubstepListsItsCorrectionsAndTheFrameEndsAsAWholeStepW
     // The arrows: drawn while corrections are listed.
     split.stepSubstep();
     const render::RenderScene drawn = split.draw(split.startCamera());
-    std::size_t orange = 0;
+    std::size_t pink = 0;
     for (const render::DebugLine& line : drawn.lines)
-        if (line.colour.isApprox(render::Colour(1.0f, 0.55f, 0.1f))) ++orange;
-    EXPECT_GE(orange, 3u) << "at least one arrow of three strokes";
+        if (line.colour.isApprox(render::Colour(1.0f, 0.15f, 0.6f))) ++pink;
+    EXPECT_GE(pink, 3u) << "at least one arrow of three strokes";
 
     // Back from mid-frame: the open frame is abandoned and the kept frame shown.
     ASSERT_TRUE(split.scrubTo(32));

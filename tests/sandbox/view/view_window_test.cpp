@@ -240,15 +240,18 @@ wait_files 2 'substep_cradle_f*.png'
 
 TEST_F(ViewWindowTest, SubstepKeysAdvanceTheSubstepCounterAndTheFinishedFrameIsTheWholeFrame) {
     if (!haveXvfbAndXdotool()) GTEST_SKIP() << "needs xvfb-run and xdotool (tools/install-deps.sh)";
-    // The cradle paused at frame N. Frame N stepped whole (S from N-1) is shot; then, from N-1
+    // The cradle paused at frame N (its view shot before any substep). Frame N stepped whole (S from N-1) is shot; then, from N-1
     // again, three substeps by hand (. . Shift+Right): the title counts "substep 3/", the view
-    // draws the corrections' orange arrows; S finishes the frame, and frame N's view is the
+    // draws the corrections' pink arrows; S finishes the frame, and frame N's view is the
     // whole-frame one pixel for pixel (both with the last substep's arrows, as recording was on).
     const std::string out = drive("view cradle --size 1000x700", R"sh(
 xdotool key space
 t=$(wait_title 'paused at frame')
 n=$(echo "$t" | sed -n 's/.*paused at frame \([0-9]*\).*/\1/p')
 echo "paused $t"
+sleep 0.5
+xdotool key shift+p
+wait_files 1 'substep_cradle_f*.png'
 xdotool key period
 echo "one $(wait_title "paused at frame $n, substep 1/")"
 xdotool key Left
@@ -257,19 +260,19 @@ xdotool key s
 echo "whole $(wait_title "paused at frame $n, t")"
 sleep 0.5
 xdotool key shift+p
-wait_files 1 'substep_cradle_f*.png'
+wait_files 2 'substep_cradle_f*.png'
 xdotool key Left
 wait_title "paused at frame $((n - 1)), t"
 xdotool key --delay 30 period period shift+Right
 echo "three $(wait_title "paused at frame $((n - 1)), substep 3/")"
 sleep 0.5
 xdotool key shift+p
-wait_files 2 'substep_cradle_f*.png'
+wait_files 3 'substep_cradle_f*.png'
 xdotool key s
 echo "finished $(wait_title "paused at frame $n, t")"
 sleep 0.5
 xdotool key shift+p
-wait_files 3 'substep_cradle_f*.png'
+wait_files 4 'substep_cradle_f*.png'
 )sh");
     ASSERT_NE(out.find("DONE"), std::string::npos) << out;
     std::map<std::string, std::string> said;
@@ -279,25 +282,27 @@ wait_files 3 'substep_cradle_f*.png'
     EXPECT_NE(said["one"].find("substep 1/"), std::string::npos) << out;
     EXPECT_NE(said["three"].find("substep 3/"), std::string::npos) << out;
     const std::string stem = "substep_cradle_f";
-    const fs::path whole = work() / (stem + std::to_string(n) + ".png");
+    const fs::path plain = work() / (stem + std::to_string(n) + ".png");
+    const fs::path whole = work() / (stem + std::to_string(n) + "_2.png");
     const fs::path middle = work() / (stem + std::to_string(n - 1) + ".png");
-    const fs::path finished = work() / (stem + std::to_string(n) + "_2.png");
-    ASSERT_TRUE(fs::exists(whole) && fs::exists(middle) && fs::exists(finished)) << out;
+    const fs::path finished = work() / (stem + std::to_string(n) + "_3.png");
+    ASSERT_TRUE(fs::exists(plain) && fs::exists(whole) && fs::exists(middle) && fs::exists(finished)) << out;
+    const render::Image plainImage = render::decodePng(readFile(plain));
     const render::Image wholeImage = render::decodePng(readFile(whole));
     const render::Image middleImage = render::decodePng(readFile(middle));
     const render::Image finishedImage = render::decodePng(readFile(finished));
     EXPECT_TRUE(wholeImage.rgba == finishedImage.rgba) << "a frame finished after substeps is the whole frame";
-    const auto orangePixels = [](const render::Image& image) {
+    const auto pinkPixels = [](const render::Image& image) {
         std::size_t count = 0;
         for (int y = 0; y < image.height; ++y) {
             for (int x = 0; x < image.width; ++x) {
                 const uint8_t* p = image.pixel(x, y);
-                if (p[0] > 200 && p[1] > 90 && p[1] < 180 && p[2] < 70) ++count;
+                if (p[0] > 180 && p[1] < 110 && p[2] > 90 && p[2] < 200) ++count;
             }
         }
         return count;
     };
-    EXPECT_GT(orangePixels(middleImage), 20u) << "the corrections' arrows";
+    EXPECT_GT(pinkPixels(middleImage), pinkPixels(plainImage) + 20) << "the corrections' arrows";
 }
 
 TEST_F(ViewWindowTest, HelpListsTheControls) {
