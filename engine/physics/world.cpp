@@ -247,6 +247,8 @@ void World::lap(double& bucket) {
 }
 
 void World::beginFrame(double dt) {
+    // A frame still open is abandoned, not finished: callers that step substeps by hand finish
+    // theirs first (LiveScene::step does).
     frame_ = {};
     if (!(dt > 0.0) || !std::isfinite(dt)) return;
     const int substeps = std::max(settings_.substeps, 1);
