@@ -35,8 +35,8 @@ SubstepCorrections::Before SubstepCorrections::capture(const SolverContext& ctx,
     return before;
 }
 
-void SubstepCorrections::record(const SolverContext& ctx, ConstraintKind kind, uint32_t index, uint32_t body0,
-                                uint32_t body1, const Before& before) {
+void SubstepCorrections::record(const SolverContext& ctx, ConstraintKind kind, uint32_t index,
+                                uint32_t body0, uint32_t body1, const Before& before) {
     if (cursor_ == constraints_.size())
         constraints_.push_back({.kind = kind, .index = index, .body0 = body0, .body1 = body1});
     ConstraintCorrection& entry = constraints_[cursor_++];
@@ -60,24 +60,28 @@ void SubstepCorrections::record(const SolverContext& ctx, ConstraintKind kind, u
     }
 }
 
-void SubstepCorrections::solveRecorded(std::span<Joint> joints, const uint8_t* asleep, std::span<ContactPair> pairs,
-                                       std::span<Contact> contacts, SolverContext& ctx) {
+void SubstepCorrections::solveRecorded(std::span<Joint> joints, const uint8_t* asleep,
+                                       std::span<ContactPair> pairs, std::span<Contact> contacts,
+                                       SolverContext& ctx) {
     // Each iteration visits the same constraints in the same order, so entry k is the same
     // constraint in every iteration of the substep.
     cursor_ = 0;
     for (std::size_t j = 0; j < joints.size(); ++j) {
         Joint& joint = joints[j];
-        if (!joint.alive || (asleep != nullptr && (asleep[joint.body0] | asleep[joint.body1]) != 0)) continue;
+        if (!joint.alive || (asleep != nullptr && (asleep[joint.body0] | asleep[joint.body1]) != 0))
+            continue;
         const Before before = capture(ctx, joint.body0, joint.body1);
         solveJointPositions(joint, ctx);
-        record(ctx, ConstraintKind::Joint, static_cast<uint32_t>(j), joint.body0, joint.body1, before);
+        record(ctx, ConstraintKind::Joint, static_cast<uint32_t>(j), joint.body0, joint.body1,
+               before);
     }
     for (std::size_t p = 0; p < pairs.size(); ++p) {
         ContactPair& pair = pairs[p];
         if (pair.count == 0) continue;
         const Before before = capture(ctx, pair.body0, pair.body1);
         solveContactPositions(pair, contacts.subspan(pair.first, pair.count), ctx);
-        record(ctx, ConstraintKind::Contact, static_cast<uint32_t>(p), pair.body0, pair.body1, before);
+        record(ctx, ConstraintKind::Contact, static_cast<uint32_t>(p), pair.body0, pair.body1,
+               before);
     }
 }
 

@@ -64,14 +64,14 @@ class SubstepCorrections {
     struct Before {
         Vec3 x0, x1;
         Quat q0, q1;
-        Vec3 d0, d1;   ///< Jacobi: gathered position deltas
-        Vec3 r0, r1;   ///< Jacobi: gathered rotation deltas
+        Vec3 d0, d1;  ///< Jacobi: gathered position deltas
+        Vec3 r0, r1;  ///< Jacobi: gathered rotation deltas
     };
     Before capture(const SolverContext& ctx, uint32_t body0, uint32_t body1) const;
     /// Adds what the projection since `before` did to the next entry (made on the first
     /// iteration, accumulated on later ones).
-    void record(const SolverContext& ctx, ConstraintKind kind, uint32_t index, uint32_t body0, uint32_t body1,
-                const Before& before);
+    void record(const SolverContext& ctx, ConstraintKind kind, uint32_t index, uint32_t body0,
+                uint32_t body1, const Before& before);
 
     std::vector<ConstraintCorrection> constraints_;
     std::size_t cursor_ = 0;  ///< the entry the next projection adds to, this iteration

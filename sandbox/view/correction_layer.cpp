@@ -14,11 +14,16 @@ namespace {
 
 const char* typeName(JointType type) {
     switch (type) {
-        case JointType::Distance: return "distance joint";
-        case JointType::Fixed: return "fixed joint";
-        case JointType::Hinge: return "hinge";
-        case JointType::Spherical: return "ball joint";
-        case JointType::Prismatic: return "prismatic joint";
+        case JointType::Distance:
+            return "distance joint";
+        case JointType::Fixed:
+            return "fixed joint";
+        case JointType::Hinge:
+            return "hinge";
+        case JointType::Spherical:
+            return "ball joint";
+        case JointType::Prismatic:
+            return "prismatic joint";
     }
     return "joint";
 }
@@ -32,13 +37,15 @@ struct Names {
         registry.view<ecs::RigidBody>().each([&](ecs::Entity entity, const ecs::RigidBody& body) {
             if (body.id.isNull()) return;
             const ecs::Name* name = registry.tryGet<ecs::Name>(entity);
-            bodies[body.id.index] = "'" + (name ? name->value : "body " + std::to_string(entity.index)) + "'";
+            bodies[body.id.index] =
+                "'" + (name ? name->value : "body " + std::to_string(entity.index)) + "'";
         });
         registry.view<ecs::Joint>().each([&](ecs::Entity entity, const ecs::Joint& joint) {
             if (joint.id.isNull()) return;
             const ecs::Name* name = registry.tryGet<ecs::Name>(entity);
-            joints[joint.id.index] = std::string(typeName(joint.def.type)) + " '" +
-                                     (name ? name->value : "joint " + std::to_string(entity.index)) + "'";
+            joints[joint.id.index] =
+                std::string(typeName(joint.def.type)) + " '" +
+                (name ? name->value : "joint " + std::to_string(entity.index)) + "'";
         });
     }
     std::string body(uint32_t index) const {
@@ -89,12 +96,14 @@ std::vector<CorrectionEntry> listCorrections(SceneInstance& scene) {
     const std::span<const Body> bodies = world.bodies();
     for (const ConstraintCorrection& c : corrections->constraints()) {
         const std::string constraint =
-            c.kind == ConstraintKind::Joint ? names.joint(c.index)
-                                            : "contact " + names.body(c.body0) + " / " + names.body(c.body1);
+            c.kind == ConstraintKind::Joint
+                ? names.joint(c.index)
+                : "contact " + names.body(c.body0) + " / " + names.body(c.body1);
         const auto add = [&](uint32_t index, const Vec3& displacement, const Vec3& rotation) {
             if (index >= bodies.size() || bodies[index].invMass == 0.0) return;
             const double reach = shapeReach(bodies[index].shape);
-            const double size = displacement.norm() + rotation.norm() * (std::isfinite(reach) ? reach : 0.0);
+            const double size =
+                displacement.norm() + rotation.norm() * (std::isfinite(reach) ? reach : 0.0);
             if (!(size > 0.0)) return;
             entries.push_back({.constraint = constraint,
                                .body = names.body(index),
@@ -108,8 +117,9 @@ std::vector<CorrectionEntry> listCorrections(SceneInstance& scene) {
         if (c.body1 != c.body0) add(c.body1, c.displacement1, c.rotation1);
     }
     // Largest first; ties keep the solve order, so the list is the same every time.
-    std::stable_sort(entries.begin(), entries.end(),
-                     [](const CorrectionEntry& a, const CorrectionEntry& b) { return a.size > b.size; });
+    std::stable_sort(
+        entries.begin(), entries.end(),
+        [](const CorrectionEntry& a, const CorrectionEntry& b) { return a.size > b.size; });
     return entries;
 }
 
@@ -120,12 +130,14 @@ void drawCorrections(const std::vector<CorrectionEntry>& entries, const World& w
     // One scale for every arrow, so their lengths compare: the largest motion drawn about twice
     // its body's size (a correction is micrometres; drawn true to scale nothing would show).
     const CorrectionEntry& largest = entries.front();
-    const double reach = largest.bodyIndex < bodies.size() ? shapeReach(bodies[largest.bodyIndex].shape) : 0.0;
+    const double reach =
+        largest.bodyIndex < bodies.size() ? shapeReach(bodies[largest.bodyIndex].shape) : 0.0;
     const double length = std::isfinite(reach) && reach > 0.0 ? 2.0 * reach : 0.5;
     const double scale = length / largest.size;
-    // Colours no debug layer uses (torques are orange, forces magenta, limits cyan).
-    const render::Colour move(1.0f, 0.15f, 0.6f);
-    const render::Colour turn(0.55f, 0.35f, 1.0f);
+    // Colours no debug layer uses (torques are orange, forces magenta, limits cyan, axes red,
+    // green and blue).
+    const render::Colour move(0.6f, 1.0f, 0.0f);
+    const render::Colour turn(1.0f, 1.0f, 1.0f);
     const auto arrow = [&](const Vec3& from, const Vec3& vector, const render::Colour& colour) {
         const double size = vector.norm();
         if (!(size > 0.0) || !from.allFinite()) return;
@@ -133,9 +145,13 @@ void drawCorrections(const std::vector<CorrectionEntry>& entries, const World& w
         lines.push_back({from.cast<float>(), to.cast<float>(), colour});
         // A head of two strokes, a fifth of the arrow, in a plane holding it.
         const Vec3 along = vector / size;
-        const Vec3 side = (std::abs(along.y()) < 0.9 ? along.cross(Vec3::UnitY()) : along.cross(Vec3::UnitX())).normalized();
+        const Vec3 side =
+            (std::abs(along.y()) < 0.9 ? along.cross(Vec3::UnitY()) : along.cross(Vec3::UnitX()))
+                .normalized();
         for (const double sign : {-1.0, 1.0})
-            lines.push_back({to.cast<float>(), (to - 0.2 * size * along + sign * 0.1 * size * side).cast<float>(), colour});
+            lines.push_back({to.cast<float>(),
+                             (to - 0.2 * size * along + sign * 0.1 * size * side).cast<float>(),
+                             colour});
     };
     for (const CorrectionEntry& entry : entries) {
         if (entry.bodyIndex >= bodies.size()) continue;

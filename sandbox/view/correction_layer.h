@@ -2,7 +2,7 @@
 /// The substep corrections as the viewer shows them (issue 20): after a substep stepped by hand,
 /// what each joint and contact pair moved each of its bodies, named ("hinge 'h2' moved 'box3'
 /// 0.42 mm"), sorted by size for the panel, and drawn as arrows at the bodies' centres (the
-/// displacement in pink, the rotation vector in violet), scaled so the largest is about twice
+/// displacement in lime, the rotation vector in white), scaled so the largest is about twice
 /// its body's size. Reads the world's record (physics/substep_corrections.h) and the components'
 /// names; knows nothing of ImGui.
 
@@ -21,7 +21,7 @@ struct CorrectionEntry {
     std::string constraint;  ///< "hinge 'h2'", "contact 'box3' / 'ground'"
     std::string body;        ///< "'box3'"
     ConstraintKind kind = ConstraintKind::Joint;
-    uint32_t bodyIndex = 0;  ///< in World::bodies()
+    uint32_t bodyIndex = 0;            ///< in World::bodies()
     Vec3 displacement = Vec3::Zero();  ///< of the centre of mass (m)
     Vec3 rotation = Vec3::Zero();      ///< rotation vector (rad)
     /// The size it is sorted by: the largest motion of a point of the body, |Δx| + |Δθ| reach (m).

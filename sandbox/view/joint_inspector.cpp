@@ -12,11 +12,16 @@ namespace {
 
 const char* typeName(JointType type) {
     switch (type) {
-        case JointType::Distance: return "distance";
-        case JointType::Fixed: return "fixed";
-        case JointType::Hinge: return "hinge";
-        case JointType::Spherical: return "spherical";
-        case JointType::Prismatic: return "prismatic";
+        case JointType::Distance:
+            return "distance";
+        case JointType::Fixed:
+            return "fixed";
+        case JointType::Hinge:
+            return "hinge";
+        case JointType::Spherical:
+            return "spherical";
+        case JointType::Prismatic:
+            return "prismatic";
     }
     return "joint";
 }
@@ -33,7 +38,9 @@ const Joint* worldJoint(const World& world, const ecs::Joint& component) {
 }
 
 /// The angle (rad) between two unit vectors.
-double angleBetween(const Vec3& a, const Vec3& b) { return std::atan2(a.cross(b).norm(), a.dot(b)); }
+double angleBetween(const Vec3& a, const Vec3& b) {
+    return std::atan2(a.cross(b).norm(), a.dot(b));
+}
 
 }  // namespace
 
@@ -42,7 +49,8 @@ std::optional<double> JointDetails::withinLimits() const {
     return (coordinate - limits->lower) / (limits->upper - limits->lower);
 }
 
-std::optional<ecs::Entity> pickJoint(SceneInstance& scene, const Ray& ray, double radiansPerPixel, double pixels) {
+std::optional<ecs::Entity> pickJoint(SceneInstance& scene, const Ray& ray, double radiansPerPixel,
+                                     double pixels) {
     const World& world = scene.world();
     const std::span<const Body> bodies = world.bodies();
     std::optional<ecs::Entity> nearest;
@@ -94,8 +102,11 @@ std::optional<JointDetails> inspectJoint(SceneInstance& scene, ecs::Entity entit
         return 2.0 * std::atan2(relative.vec().norm(), std::abs(relative.w()));
     };
     switch (joint->type()) {
-        case JointType::Distance: break;
-        case JointType::Fixed: details.angleError = turn(); break;
+        case JointType::Distance:
+            break;
+        case JointType::Fixed:
+            details.angleError = turn();
+            break;
         case JointType::Hinge: {
             const HingeJoint& hinge = joint->hinge();
             details.angleError = angleBetween(axis0, axis1);
@@ -147,11 +158,14 @@ void highlightJoint(SceneInstance& scene, ecs::Entity entity, const render::Colo
     for (const Vec3& anchor : {anchors.p0, anchors.p1}) {
         for (int axis = 0; axis < 3; ++axis) {
             const Vec3 offset = arm * Vec3::Unit(axis);
-            lines.push_back({(anchor - offset).cast<float>(), (anchor + offset).cast<float>(), colour});
+            lines.push_back(
+                {(anchor - offset).cast<float>(), (anchor + offset).cast<float>(), colour});
         }
     }
-    if (joint->body0 != 0) lines.push_back({bodies[joint->body0].x.cast<float>(), anchors.p0.cast<float>(), colour});
-    if (joint->body1 != 0) lines.push_back({bodies[joint->body1].x.cast<float>(), anchors.p1.cast<float>(), colour});
+    if (joint->body0 != 0)
+        lines.push_back({bodies[joint->body0].x.cast<float>(), anchors.p0.cast<float>(), colour});
+    if (joint->body1 != 0)
+        lines.push_back({bodies[joint->body1].x.cast<float>(), anchors.p1.cast<float>(), colour});
 }
 
 }  // namespace substep::view

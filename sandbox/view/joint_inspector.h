@@ -23,19 +23,20 @@ struct JointDetails {
     std::string type;   ///< "hinge", "distance", "fixed", "spherical", "prismatic"
     std::string body0;  ///< its bodies' names; "the world" for none
     std::string body1;
-    double force = 0.0;       ///< N, Eq. 10: |Σ impulses| / h² of the last substep
-    double torque = 0.0;      ///< N m, Eq. 17
-    double error = 0.0;       ///< m, the anchors' gap (a rope's excess length)
-    double angleError = 0.0;  ///< rad: a hinge's axes apart, a weld's or slider's turn, a cone's excess
+    double force = 0.0;   ///< N, Eq. 10: |Σ impulses| / h² of the last substep
+    double torque = 0.0;  ///< N m, Eq. 17
+    double error = 0.0;   ///< m, the anchors' gap (a rope's excess length)
+    double angleError =
+        0.0;  ///< rad: a hinge's axes apart, a weld's or slider's turn, a cone's excess
     /// The joint's coordinate: a hinge's angle (rad), a prismatic joint's offset (m), a ball
     /// joint's swing (rad); `angular` says which unit.
     double coordinate = 0.0;
     bool angular = true;
-    bool hasCoordinate = false;  ///< distance and fixed joints have none
+    bool hasCoordinate = false;   ///< distance and fixed joints have none
     std::optional<Range> limits;  ///< in the coordinate's unit (a ball joint: [0, swing limit])
     bool hasDrive = false;
-    double target = 0.0;  ///< the drive's current target (a motor's advancing angle)
-    double reach = 0.0;   ///< coordinate − target, wrapped to (−π, π] for angles
+    double target = 0.0;          ///< the drive's current target (a motor's advancing angle)
+    double reach = 0.0;           ///< coordinate − target, wrapped to (−π, π] for angles
     Vec3 anchor0 = Vec3::Zero();  ///< world anchors now
     Vec3 anchor1 = Vec3::Zero();
     /// Where the coordinate lies in its limits, 0 at the lower and 1 at the upper (outside
@@ -46,7 +47,8 @@ struct JointDetails {
 /// The joint with an anchor nearest `ray` within `pixels` screen pixels, each pixel being
 /// `radiansPerPixel` of the view (its vertical field of view / its height in pixels); nullopt
 /// when none is that near.
-std::optional<ecs::Entity> pickJoint(SceneInstance& scene, const Ray& ray, double radiansPerPixel, double pixels = 12.0);
+std::optional<ecs::Entity> pickJoint(SceneInstance& scene, const Ray& ray, double radiansPerPixel,
+                                     double pixels = 12.0);
 
 /// The inspection of joint `entity`; nullopt when it is no live joint (a restart, a load).
 std::optional<JointDetails> inspectJoint(SceneInstance& scene, ecs::Entity entity);

@@ -12,8 +12,7 @@ namespace {
 constexpr std::array<ControlHelp, 16> kControls{{
     {"Space", "play / pause"},
     {"S", "step one frame (hold to repeat); mid-frame, finish the frame"},
-    {". or Shift+Right", "pause; step one substep, drawing what each constraint corrected (pink: moves, "
-                         "violet: turns; the panel lists them)"},
+    {". or Shift+Right", "pause; one substep, what each constraint corrected drawn and listed"},
     {"Left / Right", "pause; one frame back / forward through the timeline (last 10 s; hold to repeat)"},
     {"R", "restart the scene (and reset the camera)"},
     {"C, Home", "reset the camera to the scene's"},
@@ -23,8 +22,7 @@ constexpr std::array<ControlHelp, 16> kControls{{
     {"Shift+P", "screenshot of the 3D view without the panel"},
     {"left drag", "orbit the camera"},
     {"Ctrl + left drag", "grab a body with a spring (paper Fig. 5) or move a mount"},
-    {"left click", "select a body (or, near a joint's anchor, the joint): the panel's inspector shows it, "
-                   "the view outlines it"},
+    {"left click", "select a body, or near a joint's anchor the joint, for the inspector"},
     {"right / middle drag", "pan"},
     {"wheel", "zoom"},
     {"panel: quality", "light / medium / full rendering (light on software GL)"},

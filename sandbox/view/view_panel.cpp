@@ -239,7 +239,7 @@ void drawCorrectionList(CompareSession& session) {
         ImGui::TextDisabled("no constraint moved a body");
         return;
     }
-    ImGui::TextDisabled("arrows: pink moves, violet turns (scaled)");
+    ImGui::TextDisabled("arrows: lime moves, white turns (scaled)");
     constexpr std::size_t kListed = 12;
     for (std::size_t i = 0; i < entries.size() && i < kListed; ++i) {
         if (i == 0) {

@@ -260,7 +260,8 @@ render::RenderScene ViewSession::draw(const render::Camera& camera) {
     if (const std::optional<render::DebugLine> spring = dragger_.line(live_->instance().registry))
         scene.lines.push_back(*spring);
     if (selected_) outlineBody(live_->instance().registry, *selected_, render::Colour(1.0f, 0.85f, 0.1f), scene.lines);
-    if (selectedJoint_) highlightJoint(live_->instance(), *selectedJoint_, render::Colour(1.0f, 1.0f, 1.0f), scene.lines);
+    // A selected joint is marked in the selection's yellow too.
+    if (selectedJoint_) highlightJoint(live_->instance(), *selectedJoint_, render::Colour(1.0f, 0.85f, 0.1f), scene.lines);
     drawCorrections(corrections_, live_->world(), scene.lines);
     return scene;
 }

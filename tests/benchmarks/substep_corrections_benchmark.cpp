@@ -16,7 +16,8 @@ void stepRecorded(benchmark::State& state, const char* name) {
     const SceneDescription description = findBuiltinScene(name)->build();
     const double dt = description.dt;
     SceneInstance scene = buildScene(description);
-    for (int i = 0; i < 60; ++i) scene.physics().step(dt);
+    for (int i = 0; i < 60; ++i)
+        scene.physics().step(dt);
     const int mode = static_cast<int>(state.range(0));
     scene.physics().recordCorrections(mode > 0);
     for (auto _ : state) {
@@ -33,8 +34,12 @@ void stepRecorded(benchmark::State& state, const char* name) {
     }
 }
 
-void BM_corrections_chain100(benchmark::State& state) { stepRecorded(state, "chain100"); }
-void BM_corrections_pyramid10(benchmark::State& state) { stepRecorded(state, "pyramid10"); }
+void BM_corrections_chain100(benchmark::State& state) {
+    stepRecorded(state, "chain100");
+}
+void BM_corrections_pyramid10(benchmark::State& state) {
+    stepRecorded(state, "pyramid10");
+}
 
 BENCHMARK(BM_corrections_chain100)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_corrections_pyramid10)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMicrosecond);

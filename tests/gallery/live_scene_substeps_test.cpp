@@ -26,22 +26,25 @@ std::vector<double> frameBits(const LiveScene& scene) {
     for (const ecs::Entity entity : scene.instance().bodyEntities) {
         const ecs::Transform& t = registry.get<ecs::Transform>(entity);
         const ecs::RigidBody& b = registry.get<ecs::RigidBody>(entity);
-        out.insert(out.end(), {t.position.x(), t.position.y(), t.position.z(), t.rotation.w(), t.rotation.x(),
-                               t.rotation.y(), t.rotation.z(), b.velocity.x(), b.velocity.y(), b.velocity.z(),
-                               b.angularVelocity.x(), b.angularVelocity.y(), b.angularVelocity.z()});
+        out.insert(out.end(),
+                   {t.position.x(), t.position.y(), t.position.z(), t.rotation.w(), t.rotation.x(),
+                    t.rotation.y(), t.rotation.z(), b.velocity.x(), b.velocity.y(), b.velocity.z(),
+                    b.angularVelocity.x(), b.angularVelocity.y(), b.angularVelocity.z()});
     }
     for (const ecs::Entity entity : scene.instance().jointEntities) {
         const JointReadout& r = registry.get<ecs::Joint>(entity).readout;
         out.insert(out.end(), {r.force, r.torque, r.error});
     }
     for (const Body& body : scene.world().bodies())
-        out.insert(out.end(), {body.x.x(), body.x.y(), body.x.z(), body.q.w(), body.q.x(), body.q.y(), body.q.z(),
-                               body.v.x(), body.v.y(), body.v.z(), body.omega.x(), body.omega.y(), body.omega.z()});
+        out.insert(out.end(), {body.x.x(), body.x.y(), body.x.z(), body.q.w(), body.q.x(),
+                               body.q.y(), body.q.z(), body.v.x(), body.v.y(), body.v.z(),
+                               body.omega.x(), body.omega.y(), body.omega.z()});
     out.push_back(static_cast<double>(scene.world().activeContactCount()));
     if (const SceneScript* script = scene.script()) {
         std::vector<SceneReadout> readouts;
         script->readouts(scene.instance(), readouts);
-        for (const SceneReadout& r : readouts) out.push_back(r.value);
+        for (const SceneReadout& r : readouts)
+            out.push_back(r.value);
     }
     return out;
 }
@@ -75,14 +78,18 @@ TEST_P(LiveSceneSubsteps, SteppingASubstepAtATimeGivesTheWholeFramesBytes) {
                 split.finishFrame();
                 break;
             case 1:  // a few substeps, then a whole-frame step finishes the frame
-                for (int s = 0; s < std::min(3, substeps); ++s) ASSERT_TRUE(split.stepSubstep());
+                for (int s = 0; s < std::min(3, substeps); ++s)
+                    ASSERT_TRUE(split.stepSubstep());
                 split.step();
                 break;
-            default: split.step(); break;
+            default:
+                split.step();
+                break;
         }
         ASSERT_FALSE(split.frameOpen());
         ASSERT_EQ(split.frame(), whole.frame());
-        ASSERT_TRUE(sameBits(frameBits(split), frameBits(whole))) << GetParam() << ", frame " << f + 1;
+        ASSERT_TRUE(sameBits(frameBits(split), frameBits(whole)))
+            << GetParam() << ", frame " << f + 1;
     }
 }
 
@@ -108,12 +115,15 @@ TEST(LiveSceneSubsteps, RestoringASnapshotAbandonsTheOpenFrame) {
 
 std::vector<std::string> sceneNames() {
     std::vector<std::string> names;
-    for (const SceneEntry& entry : builtinScenes()) names.emplace_back(entry.name);
+    for (const SceneEntry& entry : builtinScenes())
+        names.emplace_back(entry.name);
     return names;
 }
 
 INSTANTIATE_TEST_SUITE_P(Builtin, LiveSceneSubsteps, testing::ValuesIn(sceneNames()),
-                         [](const testing::TestParamInfo<std::string>& info) { return info.param; });
+                         [](const testing::TestParamInfo<std::string>& info) {
+                             return info.param;
+                         });
 
 }  // namespace
 }  // namespace substep

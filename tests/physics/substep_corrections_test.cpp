@@ -48,7 +48,8 @@ TEST_P(HingePendulumSubstep, TheAttachmentLiftsAndTurnsTheBodyAsEqsTwoToSevenSay
     World world({.gravity = Vec3(0.0, -kGravity, 0.0), .substeps = substeps, .solver = solver});
     // At rest, level with the pivot: after the first substep's integration the anchor has
     // dropped by c = g h² straight down, and the gap is along y only.
-    const BodyId bob = world.createBody({.shape = sphereShape(radius), .mass = mass, .position = Vec3(arm, 0.0, 0.0)});
+    const BodyId bob = world.createBody(
+        {.shape = sphereShape(radius), .mass = mass, .position = Vec3(arm, 0.0, 0.0)});
     const JointId hinge = world.createJoint({.type = JointType::Hinge,
                                              .body1 = bob,
                                              .anchor0 = Vec3::Zero(),
@@ -75,7 +76,8 @@ TEST_P(HingePendulumSubstep, TheAttachmentLiftsAndTurnsTheBodyAsEqsTwoToSevenSay
     const double inertia = 0.4 * mass * radius * radius;
     const double w = 1.0 / mass + arm * arm / inertia;
     const double deltaLambda = gap / w;
-    const auto [displacement, rotation] = motionOf(corrections->constraints(), bob.index, ConstraintKind::Joint);
+    const auto [displacement, rotation] =
+        motionOf(corrections->constraints(), bob.index, ConstraintKind::Joint);
     EXPECT_NEAR(displacement.y(), deltaLambda / mass, 1e-9 * gap);
     EXPECT_NEAR(displacement.x(), 0.0, 1e-9 * gap);
     EXPECT_NEAR(displacement.z(), 0.0, 1e-9 * gap);
@@ -104,15 +106,17 @@ TEST_P(RestingBoxes, ContactsGiveEachBoxBackWhatGravityTookEverySubstep) {
     const auto [size, mass, stacked, substeps] = GetParam();
     World world({.gravity = Vec3(0.0, -kGravity, 0.0), .substeps = substeps});
     world.createBody({.shape = planeShape(Vec3::UnitY(), 0.0), .type = BodyType::Static});
-    const BodyId bottom =
-        world.createBody({.shape = boxShape(Vec3::Constant(size)), .mass = mass, .position = Vec3(0.0, size / 2, 0.0)});
+    const BodyId bottom = world.createBody({.shape = boxShape(Vec3::Constant(size)),
+                                            .mass = mass,
+                                            .position = Vec3(0.0, size / 2, 0.0)});
     BodyId top;
     if (stacked)
         top = world.createBody({.shape = boxShape(Vec3::Constant(0.8 * size)),
                                 .mass = 0.3 * mass,
                                 .position = Vec3(0.0, 1.4 * size, 0.0)});
     const double dt = 1.0 / 60.0;
-    for (int frame = 0; frame < 120; ++frame) world.step(dt);  // settle
+    for (int frame = 0; frame < 120; ++frame)
+        world.step(dt);  // settle
     world.recordCorrections(true);
     const double h = dt / substeps;
     const double drop = kGravity * h * h;
@@ -123,8 +127,10 @@ TEST_P(RestingBoxes, ContactsGiveEachBoxBackWhatGravityTookEverySubstep) {
         EXPECT_EQ(corrections.substep(), s + 1);
         for (const BodyId box : {bottom, top}) {
             if (box.isNull()) continue;
-            const auto [displacement, rotation] = motionOf(corrections.constraints(), box.index, ConstraintKind::Contact);
-            EXPECT_NEAR(displacement.y(), drop, 0.02 * drop) << "box " << box.index << ", substep " << s + 1;
+            const auto [displacement, rotation] =
+                motionOf(corrections.constraints(), box.index, ConstraintKind::Contact);
+            EXPECT_NEAR(displacement.y(), drop, 0.02 * drop)
+                << "box " << box.index << ", substep " << s + 1;
             EXPECT_NEAR(displacement.x(), 0.0, 0.01 * drop);
             EXPECT_NEAR(displacement.z(), 0.0, 0.01 * drop);
             EXPECT_LT(rotation.norm() * size, 0.01 * drop);
@@ -136,12 +142,15 @@ TEST_P(RestingBoxes, ContactsGiveEachBoxBackWhatGravityTookEverySubstep) {
 }
 
 INSTANTIATE_TEST_SUITE_P(SizesMassesAndStacks, RestingBoxes,
-                         testing::Values(std::make_tuple(1.0, 1.0, false, 20), std::make_tuple(0.1, 0.05, false, 10),
-                                         std::make_tuple(2.0, 500.0, false, 40), std::make_tuple(0.5, 3.0, true, 20)));
+                         testing::Values(std::make_tuple(1.0, 1.0, false, 20),
+                                         std::make_tuple(0.1, 0.05, false, 10),
+                                         std::make_tuple(2.0, 500.0, false, 40),
+                                         std::make_tuple(0.5, 3.0, true, 20)));
 
 TEST(SubstepCorrections, NothingIsRecordedUnlessAsked) {
     World world;
-    const BodyId bob = world.createBody({.shape = sphereShape(0.1), .mass = 1.0, .position = Vec3(1.0, 0.0, 0.0)});
+    const BodyId bob =
+        world.createBody({.shape = sphereShape(0.1), .mass = 1.0, .position = Vec3(1.0, 0.0, 0.0)});
     world.createJoint({.type = JointType::Distance, .body1 = bob, .anchor1 = Vec3(-1.0, 0.0, 0.0)});
     EXPECT_EQ(world.corrections(), nullptr);
     world.step(1.0 / 60.0);
@@ -150,7 +159,8 @@ TEST(SubstepCorrections, NothingIsRecordedUnlessAsked) {
     world.step(1.0 / 60.0);
     ASSERT_NE(world.corrections(), nullptr);
     EXPECT_EQ(world.corrections()->constraints().size(), 1u);
-    EXPECT_EQ(world.corrections()->substep(), world.settings().substeps) << "the frame's last substep";
+    EXPECT_EQ(world.corrections()->substep(), world.settings().substeps)
+        << "the frame's last substep";
     world.recordCorrections(false);
     EXPECT_EQ(world.corrections(), nullptr);
 }
@@ -163,7 +173,8 @@ TEST(SubstepCorrections, RotationBetweenInvertsAnExactTurn) {
         const Vec3 turn = rotationBetween(from, to);
         EXPECT_NEAR((turn - angle * axis).norm(), 0.0, 1e-12 + 1e-12 * std::abs(angle)) << angle;
         // q and −q are the same orientation: the shorter rotation is reported.
-        EXPECT_NEAR((rotationBetween(from, Quat(-to.coeffs())) - angle * axis).norm(), 0.0, 1e-12) << angle;
+        EXPECT_NEAR((rotationBetween(from, Quat(-to.coeffs())) - angle * axis).norm(), 0.0, 1e-12)
+            << angle;
     }
 }
 

@@ -5,9 +5,9 @@
 // (and one far from every anchor selects no joint), the view highlights it; a drive's target and
 // reach are read from the world.
 
+#include "view/joint_inspector.h"
 #include "scene_source.h"
 #include "scenes/scenes.h"
-#include "view/joint_inspector.h"
 #include "view/view_session.h"
 
 #include "ecs/components.h"
@@ -23,7 +23,8 @@ constexpr double kGravity = 10.0;
 
 /// A box of `mass` hanging 1 m under a static ceiling by a joint of `type` named "holder".
 SceneSource hangingMass(JointType type, double mass) {
-    SceneDescription scene{.name = "hanging", .gravity = Vec3(0.0, -kGravity, 0.0), .substeps = 20, .iterations = 1};
+    SceneDescription scene{
+        .name = "hanging", .gravity = Vec3(0.0, -kGravity, 0.0), .substeps = 20, .iterations = 1};
     scenes::addStaticBox(scene, "ceiling", Vec3(0.4, 0.1, 0.4), Vec3(0.0, 2.0, 0.0));
     scenes::addBox(scene, "weight", Vec3(0.2, 0.2, 0.2), mass, Vec3(0.0, 0.9, 0.0));
     // The ceiling's anchor is at y = 1.95: the weight's is there too (a massless arm 1.05 m
@@ -52,7 +53,8 @@ class HangingMass : public testing::TestWithParam<std::tuple<JointType, double>>
 TEST_P(HangingMass, TheJointShowsTheWeightItCarries) {
     const auto [type, mass] = GetParam();
     ViewSession session(hangingMass(type, mass), 16.0f / 9.0f);
-    for (int frame = 0; frame < 60; ++frame) session.stepOnce();
+    for (int frame = 0; frame < 60; ++frame)
+        session.stepOnce();
     EXPECT_FALSE(session.jointInspection());
     // A click 5 pixels beside the ceiling's anchor (0, 1.95, 0), the view 800 pixels high.
     const double radiansPerPixel = session.startCamera().fovY / 800.0;
@@ -81,10 +83,10 @@ TEST_P(HangingMass, TheJointShowsTheWeightItCarries) {
 
     // The highlight: a cross at each anchor and a line from each body's centre to its anchor.
     const render::RenderScene drawn = session.draw(session.startCamera());
-    std::size_t white = 0;
+    std::size_t yellow = 0;
     for (const render::DebugLine& line : drawn.lines)
-        if (line.colour.isApprox(render::Colour(1.0f, 1.0f, 1.0f))) ++white;
-    EXPECT_EQ(white, 8u);
+        if (line.colour.isApprox(render::Colour(1.0f, 0.85f, 0.1f))) ++yellow;
+    EXPECT_EQ(yellow, 8u);
 
     // Far from every anchor (the middle of the weight's face), a click selects the body.
     ASSERT_TRUE(session.select(rayTo(session, Vec3(0.0, 0.9, 0.1)), radiansPerPixel));
@@ -94,14 +96,15 @@ TEST_P(HangingMass, TheJointShowsTheWeightItCarries) {
 }
 
 INSTANTIATE_TEST_SUITE_P(TypesAndMasses, HangingMass,
-                         testing::Combine(testing::Values(JointType::Spherical, JointType::Hinge, JointType::Distance,
-                                                          JointType::Fixed),
+                         testing::Combine(testing::Values(JointType::Spherical, JointType::Hinge,
+                                                          JointType::Distance, JointType::Fixed),
                                           testing::Values(0.2, 3.0, 40.0)));
 
 TEST(JointInspectorTest, ADriveShowsItsTargetAndHowFarTheJointIsFromIt) {
     // hinge_bar: a hard drive to 0 holds the 1 kg, 0.4 m bar level against m g L / 2 = 2 N m.
     ViewSession session(resolveScene("hinge_bar"), 16.0f / 9.0f);
-    for (int frame = 0; frame < 60; ++frame) session.stepOnce();
+    for (int frame = 0; frame < 60; ++frame)
+        session.stepOnce();
     ASSERT_EQ(session.instance().jointEntities.size(), 1u);
     session.selectJoint(session.instance().jointEntities[0]);
     const std::optional<JointDetails> hinge = session.jointInspection();

@@ -22,8 +22,8 @@ namespace {
 std::vector<double> stateBits(const ViewSession& session) {
     std::vector<double> out{session.simulatedTime()};
     for (const Body& b : session.world().bodies())
-        out.insert(out.end(), {b.x.x(), b.x.y(), b.x.z(), b.q.w(), b.q.x(), b.q.y(), b.q.z(), b.v.x(), b.v.y(),
-                               b.v.z(), b.omega.x(), b.omega.y(), b.omega.z()});
+        out.insert(out.end(), {b.x.x(), b.x.y(), b.x.z(), b.q.w(), b.q.x(), b.q.y(), b.q.z(),
+                               b.v.x(), b.v.y(), b.v.z(), b.omega.x(), b.omega.y(), b.omega.z()});
     return out;
 }
 
@@ -50,7 +50,8 @@ TEST(SubstepStepping, EachSubstepListsItsCorrectionsAndTheFrameEndsAsAWholeStepW
         EXPECT_EQ(split.correctionsSubstep(), s);
         ASSERT_FALSE(split.corrections().empty()) << "the cradle's strings correct every substep";
         for (std::size_t i = 1; i < split.corrections().size(); ++i)
-            EXPECT_GE(split.corrections()[i - 1].size, split.corrections()[i].size) << "largest first";
+            EXPECT_GE(split.corrections()[i - 1].size, split.corrections()[i].size)
+                << "largest first";
     }
     const std::string largest = split.corrections().front().describe();
     EXPECT_NE(largest.find(" moved '"), std::string::npos) << largest;
@@ -72,10 +73,10 @@ TEST(SubstepStepping, EachSubstepListsItsCorrectionsAndTheFrameEndsAsAWholeStepW
     // The arrows: drawn while corrections are listed.
     split.stepSubstep();
     const render::RenderScene drawn = split.draw(split.startCamera());
-    std::size_t pink = 0;
+    std::size_t lime = 0;
     for (const render::DebugLine& line : drawn.lines)
-        if (line.colour.isApprox(render::Colour(1.0f, 0.15f, 0.6f))) ++pink;
-    EXPECT_GE(pink, 3u) << "at least one arrow of three strokes";
+        if (line.colour.isApprox(render::Colour(0.6f, 1.0f, 0.0f))) ++lime;
+    EXPECT_GE(lime, 3u) << "at least one arrow of three strokes";
 
     // Back from mid-frame: the open frame is abandoned and the kept frame shown.
     ASSERT_TRUE(split.scrubTo(32));
@@ -88,12 +89,14 @@ TEST(SubstepStepping, PlayingAgainStopsTheRecording) {
     session.stepSubstep();
     EXPECT_FALSE(session.playback().playing) << "a substep pauses";
     ASSERT_FALSE(session.first().corrections().empty());
-    EXPECT_NE(session.first().corrections().front().describe().find("hinge 'hinge' moved 'bar'"), std::string::npos)
+    EXPECT_NE(session.first().corrections().front().describe().find("hinge 'hinge' moved 'bar'"),
+              std::string::npos)
         << session.first().corrections().front().describe();
     session.playback().playing = true;
     session.advance(1.0 / 60.0);
     EXPECT_TRUE(session.first().corrections().empty());
-    EXPECT_EQ(session.first().world().corrections(), nullptr) << "playing, the solve records nothing";
+    EXPECT_EQ(session.first().world().corrections(), nullptr)
+        << "playing, the solve records nothing";
 }
 
 TEST(SubstepStepping, LengthsReadInTheirUnits) {

@@ -242,7 +242,7 @@ TEST_F(ViewWindowTest, SubstepKeysAdvanceTheSubstepCounterAndTheFinishedFrameIsT
     if (!haveXvfbAndXdotool()) GTEST_SKIP() << "needs xvfb-run and xdotool (tools/install-deps.sh)";
     // The cradle paused at frame N (its view shot before any substep). Frame N stepped whole (S from N-1) is shot; then, from N-1
     // again, three substeps by hand (. . Shift+Right): the title counts "substep 3/", the view
-    // draws the corrections' pink arrows; S finishes the frame, and frame N's view is the
+    // draws the corrections' lime arrows; S finishes the frame, and frame N's view is the
     // whole-frame one pixel for pixel (both with the last substep's arrows, as recording was on).
     const std::string out = drive("view cradle --size 1000x700", R"sh(
 xdotool key space
@@ -292,17 +292,17 @@ wait_files 4 'substep_cradle_f*.png'
     const render::Image middleImage = render::decodePng(readFile(middle));
     const render::Image finishedImage = render::decodePng(readFile(finished));
     EXPECT_TRUE(wholeImage.rgba == finishedImage.rgba) << "a frame finished after substeps is the whole frame";
-    const auto pinkPixels = [](const render::Image& image) {
+    const auto limePixels = [](const render::Image& image) {
         std::size_t count = 0;
         for (int y = 0; y < image.height; ++y) {
             for (int x = 0; x < image.width; ++x) {
                 const uint8_t* p = image.pixel(x, y);
-                if (p[0] > 180 && p[1] < 110 && p[2] > 90 && p[2] < 200) ++count;
+                if (p[0] > 90 && p[0] < 210 && p[1] > 200 && p[2] < 80) ++count;
             }
         }
         return count;
     };
-    EXPECT_GT(pinkPixels(middleImage), pinkPixels(plainImage) + 20) << "the corrections' arrows";
+    EXPECT_GT(limePixels(middleImage), limePixels(plainImage) + 20) << "the corrections' arrows";
 }
 
 TEST_F(ViewWindowTest, HelpListsTheControls) {
