@@ -3,6 +3,7 @@
 
 #include "ecs/physics_system.h"
 
+#include "physics/step_cancellation.h"
 #include "physics/world_snapshot.h"
 
 #include "ecs/body_components.h"
@@ -166,6 +167,29 @@ std::chrono::steady_clock::duration PhysicsSystem::step(double dt) {
     sync();
     const auto start = std::chrono::steady_clock::now();
     world_->step(dt);
+    const auto elapsed = std::chrono::steady_clock::now() - start;
+    writeBack();
+    return elapsed;
+}
+
+void PhysicsSystem::beginFrame(double dt) {
+    sync();
+    world_->beginFrame(dt);
+}
+
+bool PhysicsSystem::substep() {
+    const bool stepped = world_->substep();
+    if (stepped) writeBack();
+    return stepped;
+}
+
+std::chrono::steady_clock::duration PhysicsSystem::finishFrame() {
+    const auto start = std::chrono::steady_clock::now();
+    while (world_->frameOpen() && world_->frameSubstepsDone() < world_->frameSubsteps()) {
+        if (stepCancellationRequested()) break;  // as World::step: the caller discards the world
+        world_->substep();
+    }
+    world_->endFrame();
     const auto elapsed = std::chrono::steady_clock::now() - start;
     writeBack();
     return elapsed;

@@ -51,6 +51,20 @@ class PhysicsSystem {
     /// sync(), one world step of dt, writeBack(). Returns the time of the world's step alone
     /// (what `bench`, `run` and `sweep` report), without the system's own work.
     std::chrono::steady_clock::duration step(double dt);
+    /// step() a substep at a time (World::beginFrame): beginFrame syncs and starts a frame of dt;
+    /// substep() solves the next substep and writes the state back (false when none is left);
+    /// finishFrame() solves the rest, ends the frame and writes back, returning the time of the
+    /// world's work it did. The three give step()'s bytes.
+    void beginFrame(double dt);
+    bool substep();
+    std::chrono::steady_clock::duration finishFrame();
+    /// Whether a frame begun with beginFrame is still open; its substeps done and in all.
+    bool frameOpen() const { return world_->frameOpen(); }
+    int frameSubstepsDone() const { return world_->frameSubstepsDone(); }
+    int frameSubsteps() const { return world_->frameSubsteps(); }
+    /// Records what each constraint moved in every substep (World::recordCorrections; read
+    /// through world().corrections()), or stops: off, the solve pays nothing for it.
+    void recordCorrections(bool on) { world_->recordCorrections(on); }
 
     /// Writes the world's state into the components: each body's Transform (the pose of its user
     /// frame), velocities and centre of mass, each joint's readout and each soft body's readout. buildScene calls it once

@@ -1,6 +1,7 @@
 #include "physics/world.h"
 
 #include "physics/step_cancellation.h"
+#include "physics/substep_corrections.h"
 
 #include "physics/collision/narrowphase.h"
 #include "physics/collision/shape_bounds.h"
@@ -230,6 +231,25 @@ void World::destroyJoint(JointId id) {
 }
 
 void World::step(double dt) {
+    beginFrame(dt);
+    while (frame_.open && frame_.done < frame_.substeps) {
+        if (stepCancellationRequested()) break;  // SIGINT/SIGTERM: the caller discards the world
+        substep();
+    }
+    endFrame();
+}
+
+void World::lap(double& bucket) {
+    if (!settings_.measureTime) return;
+    const auto now = Clock::now();
+    bucket += std::chrono::duration<double, std::milli>(now - lapMark_).count();
+    lapMark_ = now;
+}
+
+void World::beginFrame(double dt) {
+    // A frame still open is abandoned, not finished: callers that step substeps by hand finish
+    // theirs first (LiveScene::step does).
+    frame_ = {};
     if (!(dt > 0.0) || !std::isfinite(dt)) return;
     const int substeps = std::max(settings_.substeps, 1);
     const double h = dt / substeps;
@@ -251,14 +271,7 @@ void World::step(double dt) {
 
     // Each stage's time goes to its bucket when measuring (a clock read per stage).
     stepTimes_ = {};
-    const bool measure = settings_.measureTime;
-    auto mark = measure ? Clock::now() : Clock::time_point{};
-    const auto lap = [&](double& bucket) {
-        if (!measure) return;
-        const auto now = Clock::now();
-        bucket += std::chrono::duration<double, std::milli>(now - mark).count();
-        mark = now;
-    };
+    if (settings_.measureTime) lapMark_ = Clock::now();
 
     // Algorithm 2: pairs once per frame, their contacts on the current poses every substep.
     collectContactPairs(dt);
@@ -271,35 +284,55 @@ void World::step(double dt) {
     const bool soft = hasSoftBodies();
     if (soft) soft_->collectCandidates(bodies_, dt, settings_.contactMargin, settings_.gravity);
     lap(stepTimes_.broadphase);
-    for (int s = 0; s < substeps; ++s) {
-        if (stepCancellationRequested()) break;  // SIGINT/SIGTERM: the caller discards the world
-        // λ is zeroed before each substep's solve (paper 3.3.1); motors advance their target.
-        for (Joint& joint : joints_)
-            if (!sleeps(joint)) beginJointSubstep(joint, h);
-        integrate(h);
-        if (soft) soft_->integrate(h, settings_.gravity);
-        lap(stepTimes_.integrate);
-        if (!contactPairs_.empty()) findContacts(sleeping);
-        if (soft) soft_->findContacts(bodies_, settings_.contactMargin);
-        lap(stepTimes_.narrowphase);
-        for (int i = 0; i < settings_.iterations; ++i) solvePositions(h);
-        lap(stepTimes_.solve);
-        deriveVelocities(h);
-        if (soft) soft_->deriveVelocities(h);
-        lap(stepTimes_.integrate);
-        if (settings_.velocityPass && (anyDamping_ || !contacts_.empty())) solveVelocities(h);
-        if (soft && settings_.velocityPass)
-            soft_->solveVelocities(bodies_.data(), h, settings_.gravity.norm());
-        lap(stepTimes_.velocities);
-    }
-    if (soft) soft_->damp(dt);
-    if (sleeping) {
+    frame_ = {.open = true, .dt = dt, .h = h, .substeps = substeps, .done = 0, .sleeping = sleeping, .soft = soft};
+}
+
+bool World::substep() {
+    if (!frame_.open || frame_.done >= frame_.substeps) return false;
+    const double h = frame_.h;
+    const bool soft = frame_.soft;
+    if (settings_.measureTime) lapMark_ = Clock::now();
+    if (corrections_) corrections_->beginSubstep(frame_.done + 1, frame_.substeps);
+    // λ is zeroed before each substep's solve (paper 3.3.1); motors advance their target.
+    for (Joint& joint : joints_)
+        if (!sleeps(joint)) beginJointSubstep(joint, h);
+    integrate(h);
+    if (soft) soft_->integrate(h, settings_.gravity);
+    lap(stepTimes_.integrate);
+    if (!contactPairs_.empty()) findContacts(frame_.sleeping);
+    if (soft) soft_->findContacts(bodies_, settings_.contactMargin);
+    lap(stepTimes_.narrowphase);
+    for (int i = 0; i < settings_.iterations; ++i) solvePositions(h);
+    lap(stepTimes_.solve);
+    deriveVelocities(h);
+    if (soft) soft_->deriveVelocities(h);
+    lap(stepTimes_.integrate);
+    if (settings_.velocityPass && (anyDamping_ || !contacts_.empty())) solveVelocities(h);
+    if (soft && settings_.velocityPass) soft_->solveVelocities(bodies_.data(), h, settings_.gravity.norm());
+    lap(stepTimes_.velocities);
+    ++frame_.done;
+    return true;
+}
+
+void World::endFrame() {
+    if (!frame_.open) return;
+    if (frame_.soft) soft_->damp(frame_.dt);
+    if (frame_.sleeping) {
         touching_.clear();
         for (size_t i = 0; i < contactPairs_.size(); ++i)
             if (pairTouched_[i]) touching_.push_back({contactPairs_[i].body0, contactPairs_[i].body1});
-        sleep_.update(bodies_, touching_, joints_, dt, settings_.sleep);
+        sleep_.update(bodies_, touching_, joints_, frame_.dt, settings_.sleep);
     }
     sleepFlags_ = nullptr;
+    frame_.open = false;
+}
+
+void World::recordCorrections(bool on) {
+    if (!on) {
+        corrections_.reset();
+    } else if (!corrections_) {
+        corrections_ = std::make_unique<SubstepCorrections>();
+    }
 }
 
 bool World::sleepingActive() const { return settings_.sleeping && !hasSoftBodies(); }
@@ -508,12 +541,17 @@ void World::solvePositions(double h) {
                       .deltas = jacobiDeltas_.data(),
                       .capPushOut = settings_.velocityPass,
                       .projection = settings_.jointProjection};
-    // Joints first, contacts last: a substep ends with the hard inequalities met.
-    for (Joint& joint : joints_)
-        if (joint.alive && !sleeps(joint)) solveJointPositions(joint, ctx);
-    for (ContactPair& pair : contactPairs_)
-        if (pair.count > 0)
-            solveContactPositions(pair, std::span(contacts_).subspan(pair.first, pair.count), ctx);
+    // Joints first, contacts last: a substep ends with the hard inequalities met. Recording
+    // each projection's corrections (the viewer's substep stepping) runs the same loops apart.
+    if (corrections_) [[unlikely]] {
+        corrections_->solveRecorded(joints_, sleepFlags_, contactPairs_, contacts_, ctx);
+    } else {
+        for (Joint& joint : joints_)
+            if (joint.alive && !sleeps(joint)) solveJointPositions(joint, ctx);
+        for (ContactPair& pair : contactPairs_)
+            if (pair.count > 0)
+                solveContactPositions(pair, std::span(contacts_).subspan(pair.first, pair.count), ctx);
+    }
     // Soft bodies after the rigid ones: elements, attachments, then their contacts.
     if (hasSoftBodies()) soft_->solvePositions(ctx);
     // Jacobi: every constraint saw the iteration's starting state; the gathered corrections

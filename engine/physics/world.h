@@ -13,6 +13,7 @@
 #include "physics/math.h"
 #include "physics/sleep_islands.h"
 
+#include <chrono>
 #include <memory>
 #include <span>
 #include <vector>
@@ -20,6 +21,7 @@
 namespace substep {
 
 class SoftSystem;
+class SubstepCorrections;
 class WorkerPool;
 class WorldSnapshot;
 struct SoftBodyDef;
@@ -153,8 +155,27 @@ public:
     /// The soft bodies' storage, or null while the world has never had one.
     const SoftSystem* softBodies() const { return soft_.get(); }
 
-    /// Advances one frame of length dt in `settings().substeps` substeps.
+    /// Advances one frame of length dt in `settings().substeps` substeps: beginFrame(dt), every
+    /// substep, endFrame().
     void step(double dt);
+    /// The frame split (the viewer steps one substep at a time): beginFrame does Algorithm 2's
+    /// once-per-frame work (the repair, the frame's contact pairs, sleeping islands), each
+    /// substep() one substep of the frame, endFrame what follows the last (soft damping, the
+    /// sleep update). Together they give step()'s bytes. The substep count and length are fixed
+    /// at beginFrame; a frame still open is closed by restore(). Returns false when no substep
+    /// is left (or none is open, or the step was cancelled).
+    void beginFrame(double dt);
+    bool substep();
+    void endFrame();
+    /// Whether a frame is open (begun and not ended), its substeps done so far and in all.
+    bool frameOpen() const { return frame_.open; }
+    int frameSubstepsDone() const { return frame_.done; }
+    int frameSubsteps() const { return frame_.substeps; }
+    /// Records each constraint's corrections of every substep (substep_corrections.h), or
+    /// stops; off by default, when the solve does no extra work. What the last substep recorded,
+    /// or null while recording is off.
+    void recordCorrections(bool on);
+    const SubstepCorrections* corrections() const { return corrections_.get(); }
     /// A copy of everything a step reads that the world carries from frame to frame: bodies
     /// (poses, velocities, previous poses), joints (their drives' reached targets), the contact
     /// pairs and points, the broadphase, soft particles. Restoring it makes the following steps
@@ -227,6 +248,22 @@ private:
     void solvePositions(double h);
     void deriveVelocities(double h);
     void solveVelocities(double h);
+    /// Adds the time since the last lap to `bucket` (WorldSettings::measureTime).
+    void lap(double& bucket);
+
+    /// The frame in progress between beginFrame and endFrame.
+    struct FrameInProgress {
+        bool open = false;
+        double dt = 0.0;
+        double h = 0.0;
+        int substeps = 0;
+        int done = 0;
+        bool sleeping = false;  ///< sleeping acts in this frame
+        bool soft = false;      ///< soft bodies take part
+    };
+    FrameInProgress frame_;
+    std::chrono::steady_clock::time_point lapMark_;
+    std::unique_ptr<SubstepCorrections> corrections_;
 
     WorldSettings settings_;
     std::vector<Body> bodies_;

@@ -1,5 +1,7 @@
 #include "physics/world_snapshot.h"
 
+#include "physics/substep_corrections.h"
+
 namespace substep {
 namespace {
 
@@ -46,6 +48,11 @@ WorldSnapshot World::snapshot() const {
 }
 
 void World::restore(const WorldSnapshot& s) {
+    // A frame left open (stepped a substep at a time) is abandoned: the snapshot is a frame
+    // boundary, and its sleep flags belong to the state being replaced.
+    frame_ = {};
+    sleepFlags_ = nullptr;
+    if (corrections_) corrections_->beginSubstep(0, 0);
     bodies_ = s.bodies_;
     freeBodies_ = s.freeBodies_;
     joints_ = s.joints_;

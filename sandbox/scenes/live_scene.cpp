@@ -14,8 +14,25 @@ LiveScene::LiveScene(SceneDescription description, const SceneEntry* entry)
 }
 
 std::chrono::steady_clock::duration LiveScene::step() {
+    if (frameOpen()) return finishFrame();
     if (script_) script_->beforeFrame(instance_, time(), description_.dt);
     const auto worldStep = instance_.physics().step(description_.dt);
+    ++frame_;
+    return worldStep;
+}
+
+bool LiveScene::stepSubstep() {
+    ecs::PhysicsSystem physics = instance_.physics();
+    if (!physics.frameOpen()) {
+        if (script_) script_->beforeFrame(instance_, time(), description_.dt);
+        physics.beginFrame(description_.dt);
+    }
+    return physics.substep();
+}
+
+std::chrono::steady_clock::duration LiveScene::finishFrame() {
+    if (!frameOpen()) return {};
+    const auto worldStep = instance_.physics().finishFrame();
     ++frame_;
     return worldStep;
 }

@@ -37,6 +37,18 @@ class LiveScene {
     /// (patched components applied, the world stepped, its state written back into components).
     /// Returns the time of the world's step alone, which the commands report.
     std::chrono::steady_clock::duration step();
+    /// The same frame a substep at a time (the viewer's substep stepping): the first call begins
+    /// the frame (the script's beforeFrame, the physics system's beginFrame) and solves its first
+    /// substep; each later call the next one. False when the frame has no substep left. A frame
+    /// left open is finished by finishFrame() or step(); either way its bytes are step()'s.
+    bool stepSubstep();
+    /// Solves the open frame's remaining substeps and ends it (counted as a frame); nothing when
+    /// none is open. Returns the time of the world's work it did.
+    std::chrono::steady_clock::duration finishFrame();
+    /// Whether a frame is open, and its substeps done and in all (0 while none is open).
+    bool frameOpen() const { return instance_.world().frameOpen(); }
+    int frameSubstepsDone() const { return frameOpen() ? instance_.world().frameSubstepsDone() : 0; }
+    int frameSubsteps() const { return frameOpen() ? instance_.world().frameSubsteps() : 0; }
     /// Builds the scene again from its description; the script keeps its knobs.
     void restart();
     /// Applies what the script or the caller changed in components (Registry::patch) to the
@@ -49,7 +61,8 @@ class LiveScene {
     /// Whether snapshot() captures everything: the scene has no script or its script can be
     /// copied (SceneScript::clone).
     bool canSnapshot() const;
-    /// The state now; with a script that cannot be copied the snapshot keeps none (see
+    /// The state now (at a frame boundary: an open frame is not captured mid-way; finish it
+    /// first); with a script that cannot be copied the snapshot keeps none (see
     /// canSnapshot) and a restore keeps the current script.
     LiveSceneSnapshot snapshot() const;
     /// Puts the scene back in `snapshot`'s state: the world (components written back from it),

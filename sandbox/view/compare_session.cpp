@@ -110,6 +110,8 @@ void CompareSession::advance(double wallSeconds) {
         pendingSeconds_ = 0.0;
         return;
     }
+    // Playing shows no substep's corrections: their recording stops.
+    for (const std::unique_ptr<ViewSession>& each : runs_) each->stopRecordingCorrections();
     const double dt = source().description.dt;
     pendingSeconds_ += wallSeconds * playback_.timeScale;
     int frames = 0;
@@ -130,6 +132,12 @@ void CompareSession::stepOnce() {
     const bool anyFinite =
         std::any_of(runs_.begin(), runs_.end(), [](const std::unique_ptr<ViewSession>& each) { return each->finite(); });
     if (!anyFinite) playback_.playing = false;
+}
+
+void CompareSession::stepSubstep() {
+    playback_.playing = false;
+    pendingSeconds_ = 0.0;
+    for (const std::unique_ptr<ViewSession>& each : runs_) each->stepSubstep();
 }
 
 void CompareSession::scrubBy(long long frames) {

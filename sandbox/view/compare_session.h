@@ -72,6 +72,9 @@ class CompareSession {
     void advance(double wallSeconds);
     /// One frame of the scene's dt in every run (a run whose state turned non-finite stays put).
     void stepOnce();
+    /// Pauses and steps every run by one substep of its current frame, drawing what each
+    /// constraint corrected (ViewSession::stepSubstep). Playing again stops the recording.
+    void stepSubstep();
     /// Pauses and moves every run by `frames` through its timeline (timeline.h): back through
     /// the kept states, forward through them and, past the newest, by new steps.
     void scrubBy(long long frames);

@@ -131,7 +131,8 @@ void steerMouse(OrbitCamera& camera, CompareSession& session, const ViewArea& ar
             if (left.drag == LeftDrag::Orbit && std::abs(x - left.pressX) < kClickSlop &&
                 std::abs(y - left.pressY) < kClickSlop) {
                 const std::size_t under = session.runAt(x, area);
-                session.run(under).select(ray(under, x, y));
+                // Near a joint's anchor (12 pixels) the click selects the joint.
+                session.run(under).select(ray(under, x, y), camera.camera().fovY / std::max(area.height, 1.0f));
             }
             left.drag = LeftDrag::None;
         }
@@ -173,9 +174,16 @@ void drawHelpOverlay(const ViewArea& area) {
 std::string windowTitle(CompareSession& session) {
     std::string title = "Substep - " + session.source().label;
     if (!session.playback().playing) {
-        char paused[96];
-        std::snprintf(paused, sizeof paused, " (paused at frame %lld, t = %.3f s)", session.first().frame(),
-                      session.first().simulatedTime());
+        char paused[128];
+        const ViewSession& first = session.first();
+        if (first.frameOpen()) {
+            // Mid-frame (substep stepping): the frames done and the substeps of the next one.
+            std::snprintf(paused, sizeof paused, " (paused at frame %lld, substep %d/%d, t = %.3f s)", first.frame(),
+                          first.frameSubstepsDone(), first.frameSubsteps(), first.simulatedTime());
+        } else {
+            std::snprintf(paused, sizeof paused, " (paused at frame %lld, t = %.3f s)", first.frame(),
+                          first.simulatedTime());
+        }
         title += paused;
     }
     return title;
@@ -307,6 +315,7 @@ ViewAppResult runViewApp(SceneSource source, const ViewAppOptions& options) {
         if (!keyDriver.binds(session, GLFW_KEY_S))
             for (int step = 0; step < keys.steps; ++step) session.stepOnce();
         if (keys.scrub != 0 && !keyDriver.binds(session, GLFW_KEY_LEFT)) session.scrubBy(keys.scrub);
+        for (int substep = 0; substep < keys.substeps; ++substep) session.stepSubstep();
         keyDriver.update(session);
         // B, M and V toggle the bodies' debug layers, unless the scene drives knobs with them.
         KeyActions layerKeys = keys;
@@ -340,6 +349,7 @@ ViewAppResult runViewApp(SceneSource source, const ViewAppOptions& options) {
         if (requests.controlsChanged) session.applyControls();
         if (requests.drawingChanged) session.applyDrawingOptions();
         if (requests.step) session.stepOnce();
+        if (requests.substep) session.stepSubstep();
         if (requests.scrubTo) session.scrubTo(*requests.scrubTo);
         if (requests.scrubBy != 0) session.scrubBy(requests.scrubBy);
         if (requests.resetCamera) camera = OrbitCamera(session.startCamera());

@@ -9,9 +9,10 @@ namespace substep::view {
 
 namespace {
 
-constexpr std::array<ControlHelp, 18> kControls{{
+constexpr std::array<ControlHelp, 19> kControls{{
     {"Space", "play / pause"},
-    {"S", "step one frame (hold to repeat)"},
+    {"S", "step one frame (hold to repeat); mid-frame, finish the frame"},
+    {". or Shift+Right", "pause; one substep, what each constraint corrected drawn and listed"},
     {"Left / Right", "pause; one frame back / forward through the timeline (last 10 s; hold to repeat)"},
     {"R", "restart the scene (and reset the camera)"},
     {"C, Home", "reset the camera to the scene's"},
@@ -24,7 +25,7 @@ constexpr std::array<ControlHelp, 18> kControls{{
     {"V", "show / hide the velocities (v and omega; the panel's arrow scale sizes them)"},
     {"left drag", "orbit the camera"},
     {"Ctrl + left drag", "grab a body with a spring (paper Fig. 5) or move a mount"},
-    {"left click", "select a body: the panel's inspector shows it, the view outlines it"},
+    {"left click", "select a body, or near a joint's anchor the joint, for the inspector"},
     {"right / middle drag", "pan"},
     {"wheel", "zoom"},
     {"panel: quality", "light / medium / full rendering (light on software GL)"},
@@ -37,7 +38,7 @@ std::span<const ControlHelp> viewControls() { return kControls; }
 std::string controlsHelpText() {
     std::string text = "Controls in the window:\n";
     for (const ControlHelp& control : kControls) {
-        char line[160];
+        char line[256];
         std::snprintf(line, sizeof line, "  %-20s %s\n", control.keys, control.does);
         text += line;
     }
@@ -65,7 +66,14 @@ KeyActions keyActions(std::span<const InputEvent> events, bool textInput) {
                 break;
             case GLFW_KEY_S: ++actions.steps; break;
             case GLFW_KEY_LEFT: --actions.scrub; break;
-            case GLFW_KEY_RIGHT: ++actions.scrub; break;
+            case GLFW_KEY_RIGHT:
+                if (event.mods & GLFW_MOD_SHIFT) {
+                    ++actions.substeps;
+                } else {
+                    ++actions.scrub;
+                }
+                break;
+            case GLFW_KEY_PERIOD: ++actions.substeps; break;
             case GLFW_KEY_R:
                 if (!repeat) actions.restart = true;
                 break;

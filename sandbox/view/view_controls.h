@@ -27,6 +27,7 @@ struct KeyActions {
     int togglePlay = 0;
     int steps = 0;          ///< S: one frame each (held, the key repeats)
     int scrub = 0;          ///< Left / Right: frames back / forward through the timeline (repeat)
+    int substeps = 0;       ///< . (period) or Shift+Right: one substep each (repeat)
     bool restart = false;   ///< R (also resets the camera)
     bool resetCamera = false;   ///< C or Home
     int toggleUi = 0;       ///< Tab

@@ -5,6 +5,8 @@
 
 #include "scenes/scene_registry.h"
 
+#include "ecs/components.h"
+
 #include <imgui.h>
 
 #include <algorithm>
@@ -185,6 +187,76 @@ void drawInspector(CompareSession& session) {
     }
 }
 
+/// The joint inspector (joint_inspector.h): a joint picked in a list or by a click near its
+/// anchor: its bodies, force and torque, errors, limits and drive; in compare mode the first
+/// run's.
+void drawJointInspector(CompareSession& session) {
+    ViewSession& run = session.first();
+    const SceneInstance& scene = run.instance();
+    if (scene.jointEntities.empty()) return;
+    ImGui::Separator();
+    const std::optional<JointDetails> joint = run.jointInspection();
+    if (ImGui::BeginCombo("joint", joint ? joint->name.c_str() : "(click near an anchor)")) {
+        constexpr std::size_t kMaxListed = 200;
+        std::size_t listed = 0;
+        for (const ecs::Entity entity : scene.jointEntities) {
+            if (listed++ == kMaxListed) break;
+            const ecs::Name* name = scene.registry.tryGet<ecs::Name>(entity);
+            const std::string label = name ? name->value : "joint " + std::to_string(entity.index);
+            ImGui::PushID(static_cast<int>(entity.index));
+            if (ImGui::Selectable(label.c_str(), run.selectedJoint() == entity)) run.selectJoint(entity);
+            ImGui::PopID();
+        }
+        ImGui::EndCombo();
+    }
+    if (!joint) return;
+    ImGui::TextColored(ImVec4(0.2f, 0.9f, 1.0f, 1.0f), "%s '%s'", joint->type.c_str(), joint->name.c_str());
+    ImGui::TextWrapped("bodies: '%s' and '%s'", joint->body0.c_str(), joint->body1.c_str());
+    ImGui::Text("force %.5g N   torque %.5g N m", joint->force, joint->torque);
+    ImGui::TextWrapped("error %.3g m, %.3g deg", joint->error, joint->angleError * 180.0 / M_PI);
+    const double unit = joint->angular ? 180.0 / M_PI : 1.0;
+    const char* unitName = joint->angular ? "deg" : "m";
+    if (joint->hasCoordinate) ImGui::Text("%s %.4g %s", joint->angular ? "angle" : "offset", joint->coordinate * unit, unitName);
+    if (joint->limits) {
+        const std::optional<double> within = joint->withinLimits();
+        ImGui::TextWrapped("limits %.4g .. %.4g %s: %s", joint->limits->lower * unit, joint->limits->upper * unit, unitName,
+                           !within                                     ? "-"
+                           : *within < 0.0 || *within > 1.0           ? "outside"
+                           : *within < 0.02 || *within > 0.98         ? "at a limit"
+                                                                       : "within");
+        if (within) ImGui::ProgressBar(static_cast<float>(std::clamp(*within, 0.0, 1.0)), ImVec2(-1.0f, 0.0f), "");
+    }
+    if (joint->hasDrive)
+        ImGui::TextWrapped("drive target %.4g %s, off by %.3g %s", joint->target * unit, unitName, joint->reach * unit,
+                           unitName);
+}
+
+/// The corrections of the last substep stepped by hand (correction_layer.h), largest first; the
+/// view draws them as arrows.
+void drawCorrectionList(CompareSession& session) {
+    const ViewSession& run = session.first();
+    if (run.correctionsSubstep() == 0) return;
+    ImGui::Separator();
+    ImGui::Text("substep %d/%d corrections", run.correctionsSubstep(), run.correctionsSubsteps());
+    const std::vector<CorrectionEntry>& entries = run.corrections();
+    if (entries.empty()) {
+        ImGui::TextDisabled("no constraint moved a body");
+        return;
+    }
+    ImGui::TextDisabled("arrows: lime moves, white turns (scaled)");
+    constexpr std::size_t kListed = 12;
+    for (std::size_t i = 0; i < entries.size() && i < kListed; ++i) {
+        if (i == 0) {
+            ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.6f, 0.2f, 1.0f));
+            ImGui::TextWrapped("%s", entries[i].describe().c_str());
+            ImGui::PopStyleColor();
+        } else {
+            ImGui::TextWrapped("%s", entries[i].describe().c_str());
+        }
+    }
+    if (entries.size() > kListed) ImGui::TextDisabled("... %zu in all", entries.size());
+}
+
 /// The timeline (timeline.h): a slider over the kept frames, one frame back and forward.
 void drawTimeline(const ViewSession& first, PanelRequests& requests) {
     if (!first.canRewind()) {
@@ -285,12 +357,20 @@ PanelRequests ViewPanel::draw(CompareSession& session, const ViewStatus& status,
     ImGui::SameLine();
     if (ImGui::Button("step")) requests.step = true;
     ImGui::SameLine();
+    if (ImGui::Button("substep")) requests.substep = true;
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("One substep (key . or Shift+Right): what each constraint corrected is drawn and listed");
+    ImGui::SameLine();
     if (ImGui::Button("restart")) requests.restart = true;
     ImGui::SameLine();
     if (ImGui::Button("camera")) requests.resetCamera = true;
     ImGui::SameLine();
     ImGui::TextDisabled("(F1: keys)");
-    ImGui::Text("frame %lld   t = %.3f s", first.frame(), first.simulatedTime());
+    if (first.frameOpen()) {
+        ImGui::Text("frame %lld, substep %d/%d   t = %.3f s", first.frame(), first.frameSubstepsDone(),
+                    first.frameSubsteps(), first.simulatedTime());
+    } else {
+        ImGui::Text("frame %lld   t = %.3f s", first.frame(), first.simulatedTime());
+    }
     ImGui::SliderFloat("time scale", &playback.timeScale, 0.05f, 4.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
     drawTimeline(first, requests);
     drawTiming(session, status, requests);
@@ -364,6 +444,8 @@ PanelRequests ViewPanel::draw(CompareSession& session, const ViewStatus& status,
     }
 
     drawInspector(session);
+    drawJointInspector(session);
+    drawCorrectionList(session);
 
     // Measures; in compare mode each run's are drawn in its half of the window instead.
     if (!comparing) {

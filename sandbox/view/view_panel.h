@@ -33,6 +33,7 @@ struct PanelRequests {
     std::optional<std::string> loadScene;  ///< a built-in name or a .json path
     bool restart = false;
     bool step = false;
+    bool substep = false;  ///< one substep, its corrections drawn
     bool controlsChanged = false;  ///< substeps, iterations or gravity
     bool drawingChanged = false;   ///< a debug layer toggled
     std::optional<bool> compare;   ///< compare mode switched on or off

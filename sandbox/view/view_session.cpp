@@ -36,6 +36,11 @@ void ViewSession::restart() { rebuild(true); }
 void ViewSession::rebuild(bool keepScript) {
     dragger_.forget();  // its spring goes with the old world
     selected_.reset();
+    selectedJoint_.reset();
+    // A new world records nothing until substeps are stepped again.
+    recordingCorrections_ = false;
+    corrections_.clear();
+    correctionsSubstep_ = correctionsSubsteps_ = 0;
     // A restart keeps the script, and with it the knobs the user turned.
     if (keepScript && live_) {
         live_->restart();
@@ -69,12 +74,15 @@ void ViewSession::restartHistory() {
 }
 
 bool ViewSession::scrubTo(long long frame) {
-    if (dragger_.active() || timeline_.empty() || frame == live_->frame()) return false;
+    // A frame left open by substep stepping goes back to its start even at the same frame.
+    const bool open = live_->frameOpen();
+    if (dragger_.active() || timeline_.empty() || (frame == live_->frame() && !open)) return false;
     const LiveSceneSnapshot* snapshot = timeline_.seek(frame);
-    if (snapshot == nullptr || snapshot->frame == live_->frame()) return false;
+    if (snapshot == nullptr || (snapshot->frame == live_->frame() && !open)) return false;
     live_->restore(*snapshot);
     finite_ = live_->world().isFinite();
     columnPlots_.showUpTo(live_->frame());
+    readCorrections();
     return true;
 }
 
@@ -97,10 +105,27 @@ void ViewSession::release() {
     if (held) restartHistory();
 }
 
-bool ViewSession::select(const Ray& ray) {
+bool ViewSession::select(const Ray& ray, double radiansPerPixel) {
+    if (radiansPerPixel > 0.0) {
+        if (const std::optional<ecs::Entity> joint = pickJoint(live_->instance(), ray, radiansPerPixel)) {
+            selectJoint(*joint);
+            return true;
+        }
+    }
     const std::optional<BodyHit> hit = pickBody(live_->instance().registry, ray);
     selected_ = hit ? std::optional(hit->entity) : std::nullopt;
+    selectedJoint_.reset();
     return selected_.has_value();
+}
+
+void ViewSession::selectJoint(ecs::Entity joint) {
+    selectedJoint_ = joint;
+    selected_.reset();
+}
+
+std::optional<JointDetails> ViewSession::jointInspection() {
+    if (!selectedJoint_) return std::nullopt;
+    return inspectJoint(live_->instance(), *selectedJoint_);
 }
 
 std::optional<BodyInspection> ViewSession::inspection() {
@@ -164,8 +189,44 @@ void ViewSession::stepOnce() {
     const auto start = std::chrono::steady_clock::now();
     live_->step();
     lastStepMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    frameEnded();
+}
+
+void ViewSession::stepSubstep() {
+    if (!finite_) return;
+    if (!recordingCorrections_) {
+        live_->physics().recordCorrections(true);
+        recordingCorrections_ = true;
+    }
+    live_->stepSubstep();
+    finite_ = live_->world().isFinite();
+    readCorrections();
+    // The frame's last substep ends it: the frame counts, and the timeline keeps it, as if it
+    // had been stepped whole (the bytes are the same).
+    if (live_->frameOpen() && live_->frameSubstepsDone() >= live_->frameSubsteps()) {
+        live_->finishFrame();
+        frameEnded();
+    }
+}
+
+void ViewSession::stopRecordingCorrections() {
+    if (!recordingCorrections_) return;
+    live_->physics().recordCorrections(false);
+    recordingCorrections_ = false;
+    readCorrections();
+}
+
+void ViewSession::readCorrections() {
+    corrections_ = recordingCorrections_ ? listCorrections(live_->instance()) : std::vector<CorrectionEntry>{};
+    const SubstepCorrections* record = live_->world().corrections();
+    correctionsSubstep_ = record != nullptr ? record->substep() : 0;
+    correctionsSubsteps_ = record != nullptr ? record->frameSubsteps() : 0;
+}
+
+void ViewSession::frameEnded() {
     finite_ = live_->world().isFinite();
     if (finite_) sample();
+    if (recordingCorrections_) readCorrections();
     // Recorded after the step; a step from a scrubbed-back frame drops the later history.
     if (finite_ && live_->canSnapshot()) timeline_.record(live_->snapshot(), live_->description().dt);
 }
@@ -204,6 +265,9 @@ render::RenderScene ViewSession::draw(const render::Camera& camera) {
     if (const std::optional<render::DebugLine> spring = dragger_.line(live_->instance().registry))
         scene.lines.push_back(*spring);
     if (selected_) outlineBody(live_->instance().registry, *selected_, render::Colour(1.0f, 0.85f, 0.1f), scene.lines);
+    // A selected joint is marked in the selection's yellow too.
+    if (selectedJoint_) highlightJoint(live_->instance(), *selectedJoint_, render::Colour(1.0f, 0.85f, 0.1f), scene.lines);
+    drawCorrections(corrections_, live_->world(), scene.lines);
     return scene;
 }
 

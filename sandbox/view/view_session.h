@@ -10,6 +10,8 @@
 #include "view/body_dragger.h"
 #include "view/body_inspector.h"
 #include "view/column_plots.h"
+#include "view/correction_layer.h"
+#include "view/joint_inspector.h"
 #include "view/plot_history.h"
 #include "view/timeline.h"
 
@@ -48,8 +50,26 @@ class ViewSession {
     /// scene's arrow scales stay as the build fixed them).
     void applyDrawingOptions();
 
-    /// One frame of the scene's dt; does nothing once the state turned non-finite.
+    /// One frame of the scene's dt; does nothing once the state turned non-finite. A frame left
+    /// open by stepSubstep is finished instead (the rest of its substeps), as whole-frame
+    /// stepping would have left it.
     void stepOnce();
+    /// One substep of the current frame (beginning it if none is open), with each constraint's
+    /// corrections recorded for corrections(); the frame's last substep also ends the frame and
+    /// keeps it in the timeline. Nothing once the state turned non-finite.
+    void stepSubstep();
+    /// Stops recording corrections (the run plays again) and forgets the last ones.
+    void stopRecordingCorrections();
+    /// The last stepped substep's corrections, largest first (correction_layer.h); empty unless
+    /// substeps are being stepped.
+    const std::vector<CorrectionEntry>& corrections() const { return corrections_; }
+    /// The substep the corrections belong to and the frame's substeps (0, 0 without any).
+    int correctionsSubstep() const { return correctionsSubstep_; }
+    int correctionsSubsteps() const { return correctionsSubsteps_; }
+    /// Whether a frame is open, with its substeps done and in all (live_scene.h).
+    bool frameOpen() const { return live_->frameOpen(); }
+    int frameSubstepsDone() const { return live_->frameSubstepsDone(); }
+    int frameSubsteps() const { return live_->frameSubsteps(); }
 
     /// Grabs the body under `ray` (body_dragger.h): a dynamic one with a spring, a static
     /// non-colliding one directly. False when none is there.
@@ -63,7 +83,14 @@ class ViewSession {
 
     /// Selects the body under `ray` for the inspector (body_inspector.h), or clears the
     /// selection when the ray meets none. True when a body is selected.
-    bool select(const Ray& ray);
+    /// With `radiansPerPixel` (the view's vertical field of view over its height in pixels) a
+    /// ray passing within 12 pixels of a joint's anchor selects that joint instead.
+    bool select(const Ray& ray, double radiansPerPixel = 0.0);
+    /// Selects a joint for the joint inspector (joint_inspector.h), clearing the body's.
+    void selectJoint(ecs::Entity joint);
+    /// The selected joint as it is now; nullopt with none.
+    std::optional<JointDetails> jointInspection();
+    std::optional<ecs::Entity> selectedJoint() const { return selectedJoint_; }
     /// The selected body as it is now; nullopt with none (a restart or load clears it).
     std::optional<BodyInspection> inspection();
 
@@ -129,6 +156,15 @@ class ViewSession {
     std::unique_ptr<SceneDrawing> drawing_;
     BodyDragger dragger_;
     std::optional<ecs::Entity> selected_;  ///< the inspector's body
+    std::optional<ecs::Entity> selectedJoint_;  ///< the joint inspector's joint
+    bool recordingCorrections_ = false;
+    std::vector<CorrectionEntry> corrections_;
+    int correctionsSubstep_ = 0;
+    int correctionsSubsteps_ = 0;
+    /// After a frame ended: its measures sampled and its state kept in the timeline.
+    void frameEnded();
+    /// Reads the world's record of the last substep into corrections().
+    void readCorrections();
     /// Measures the chain's elongation as `substep sweep` does; null without a chain.
     std::unique_ptr<ErrorRecorder> chainMeasure_;
     std::vector<std::pair<std::string, ecs::Entity>> namedJoints_;  ///< of the current build

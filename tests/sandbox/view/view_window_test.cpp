@@ -290,11 +290,79 @@ wait_files 4 'substep_cradle_f*.png'
     EXPECT_TRUE(images[0].rgba == images[3].rgba) << "toggled off, the view is as it was";
 }
 
+TEST_F(ViewWindowTest, SubstepKeysAdvanceTheSubstepCounterAndTheFinishedFrameIsTheWholeFrame) {
+    if (!haveXvfbAndXdotool()) GTEST_SKIP() << "needs xvfb-run and xdotool (tools/install-deps.sh)";
+    // The cradle paused at frame N (its view shot before any substep). Frame N stepped whole (S from N-1) is shot; then, from N-1
+    // again, three substeps by hand (. . Shift+Right): the title counts "substep 3/", the view
+    // draws the corrections' lime arrows; S finishes the frame, and frame N's view is the
+    // whole-frame one pixel for pixel (both with the last substep's arrows, as recording was on).
+    const std::string out = drive("view cradle --size 1000x700", R"sh(
+xdotool key space
+t=$(wait_title 'paused at frame')
+n=$(echo "$t" | sed -n 's/.*paused at frame \([0-9]*\).*/\1/p')
+echo "paused $t"
+sleep 0.5
+xdotool key shift+p
+wait_files 1 'substep_cradle_f*.png'
+xdotool key period
+echo "one $(wait_title "paused at frame $n, substep 1/")"
+xdotool key Left
+wait_title "paused at frame $((n - 1)), t"
+xdotool key s
+echo "whole $(wait_title "paused at frame $n, t")"
+sleep 0.5
+xdotool key shift+p
+wait_files 2 'substep_cradle_f*.png'
+xdotool key Left
+wait_title "paused at frame $((n - 1)), t"
+xdotool key --delay 30 period period shift+Right
+echo "three $(wait_title "paused at frame $((n - 1)), substep 3/")"
+sleep 0.5
+xdotool key shift+p
+wait_files 3 'substep_cradle_f*.png'
+xdotool key s
+echo "finished $(wait_title "paused at frame $n, t")"
+sleep 0.5
+xdotool key shift+p
+wait_files 4 'substep_cradle_f*.png'
+)sh");
+    ASSERT_NE(out.find("DONE"), std::string::npos) << out;
+    std::map<std::string, std::string> said;
+    for (const std::string& line : lines(out)) said[line.substr(0, line.find(' '))] = line;
+    const long long n = pausedFrame(said["paused"]);
+    ASSERT_GT(n, 0) << out;
+    EXPECT_NE(said["one"].find("substep 1/"), std::string::npos) << out;
+    EXPECT_NE(said["three"].find("substep 3/"), std::string::npos) << out;
+    const std::string stem = "substep_cradle_f";
+    const fs::path plain = work() / (stem + std::to_string(n) + ".png");
+    const fs::path whole = work() / (stem + std::to_string(n) + "_2.png");
+    const fs::path middle = work() / (stem + std::to_string(n - 1) + ".png");
+    const fs::path finished = work() / (stem + std::to_string(n) + "_3.png");
+    ASSERT_TRUE(fs::exists(plain) && fs::exists(whole) && fs::exists(middle) && fs::exists(finished)) << out;
+    const render::Image plainImage = render::decodePng(readFile(plain));
+    const render::Image wholeImage = render::decodePng(readFile(whole));
+    const render::Image middleImage = render::decodePng(readFile(middle));
+    const render::Image finishedImage = render::decodePng(readFile(finished));
+    EXPECT_TRUE(wholeImage.rgba == finishedImage.rgba) << "a frame finished after substeps is the whole frame";
+    const auto limePixels = [](const render::Image& image) {
+        std::size_t count = 0;
+        for (int y = 0; y < image.height; ++y) {
+            for (int x = 0; x < image.width; ++x) {
+                const uint8_t* p = image.pixel(x, y);
+                if (p[0] > 90 && p[0] < 210 && p[1] > 200 && p[2] < 80) ++count;
+            }
+        }
+        return count;
+    };
+    EXPECT_GT(limePixels(middleImage), limePixels(plainImage) + 20) << "the corrections' arrows";
+}
+
 TEST_F(ViewWindowTest, HelpListsTheControls) {
     const Result result = substep("view --help");
     EXPECT_EQ(result.exitCode, 0);
     for (const char* expected :
-         {"Controls in the window", "Space", "F1", "Tab", "Ctrl + left drag", "--quality", "broadphase boxes"}) {
+         {"Controls in the window", "Space", "F1", "Tab", "Ctrl + left drag", "--quality", "broadphase boxes",
+          ". or Shift+Right"}) {
         EXPECT_NE(result.out.find(expected), std::string::npos) << expected << "\n" << result.out;
     }
 }
