@@ -4,6 +4,7 @@
 
 #include "physics/collision/narrowphase.h"
 #include "physics/collision/shape_bounds.h"
+#include "physics/joint_block_solve.h"
 #include "physics/joints/joint_frame.h"
 #include "physics/joints/joint_geometry.h"
 #include "physics/joints/joint_solver.h"
@@ -207,6 +208,7 @@ JointId World::createJoint(const JointDef& def) {
     sleep_.wake(joint.body0, bodies_[joint.body0]);
     sleep_.wake(joint.body1, bodies_[joint.body1]);
     jointsChanged_ = true;
+    clustersChanged_ = true;
 
     uint32_t index;
     if (!freeJoints_.empty()) {
@@ -227,6 +229,7 @@ void World::destroyJoint(JointId id) {
     joints_[id.index] = Joint{};
     freeJoints_.push_back(id.index);
     jointsChanged_ = true;
+    clustersChanged_ = true;
 }
 
 void World::step(double dt) {
@@ -509,8 +512,18 @@ void World::solvePositions(double h) {
                       .capPushOut = settings_.velocityPass,
                       .projection = settings_.jointProjection};
     // Joints first, contacts last: a substep ends with the hard inequalities met.
-    for (Joint& joint : joints_)
-        if (joint.alive && !sleeps(joint)) solveJointPositions(joint, ctx);
+    if (blockSolveActive()) {
+        // Joints around light bodies are solved by cluster, each cluster in the place of its
+        // first joint (a cluster sleeps whole, as it is jointed together).
+        for (uint32_t j = 0; j < joints_.size(); ++j) {
+            if (!joints_[j].alive || sleeps(joints_[j])) continue;
+            if (blocks_->clustered(j)) blocks_->solveAt(ctx, joints_, j);
+            else solveJointPositions(joints_[j], ctx);
+        }
+    } else {
+        for (Joint& joint : joints_)
+            if (joint.alive && !sleeps(joint)) solveJointPositions(joint, ctx);
+    }
     for (ContactPair& pair : contactPairs_)
         if (pair.count > 0)
             solveContactPositions(pair, std::span(contacts_).subspan(pair.first, pair.count), ctx);
@@ -521,6 +534,20 @@ void World::solvePositions(double h) {
     // point: the joints' λ then no longer balance the weights they carry.
     if (settings_.solver == SolverType::Jacobi)
         applyJacobiDeltas(bodies_.data(), jacobiDeltas_.data(), bodies_.size());
+}
+
+bool World::blockSolveActive() {
+    if (!settings_.blockSolve || settings_.solver != SolverType::GaussSeidel) return false;
+    if (clustersChanged_) {
+        clustersChanged_ = false;
+        if (!blocks_) blocks_ = std::make_unique<JointBlockSolver>();
+        blocks_->build(bodies_, joints_);
+    }
+    return !blocks_->empty();
+}
+
+size_t World::jointClusterCount() const {
+    return blocks_ && settings_.blockSolve && settings_.solver == SolverType::GaussSeidel ? blocks_->clusterCount() : 0;
 }
 
 void World::deriveVelocities(double h) {

@@ -18,6 +18,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <string>
 
@@ -121,10 +122,13 @@ TEST(RcCar, LinkageHoldsTheWheelsStraightAtSpeed) {
 // 0.1 g arm passes too little of each correction on (below): weightless, with no tyre forces
 // at all, the knuckles swing undamped about the commanded 20° (measured −34° to +33° after 1 s)
 // on a linkage of stiffness about m_arm r²/(4 h²) = 0.03 N·m/rad.
-TEST(RcCar, DISABLED_ServoTurnsTheKnucklesWeightless) {
+TEST(RcCar, ServoTurnsTheKnucklesWeightless) {
     const Vec3 weightless = Vec3::Zero();
     LiveScene scene = makeCar({{"steer", 20.0}}, &weightless);
     run(scene, 1.0);
+    std::printf("[ measured ] weightless knuckles %.3f° %.3f°, tie rods %.3g m\n",
+                joint(scene, "kingpin_fl").readout.coordinate / kDegree,
+                joint(scene, "kingpin_fr").readout.coordinate / kDegree, tieRodError(scene));
     EXPECT_NEAR(joint(scene, "kingpin_fl").readout.coordinate / kDegree, 20.0, 1.0);
     EXPECT_NEAR(joint(scene, "kingpin_fr").readout.coordinate / kDegree, 20.0, 1.0);
     EXPECT_LT(tieRodError(scene), 1e-3);
@@ -137,11 +141,15 @@ TEST(RcCar, DISABLED_ServoTurnsTheKnucklesWeightless) {
 // about m_arm/(4 h²) = 36 N/m at the horn; with a 10 g arm and 10 g rods the knuckles reach 13.3°
 // and 12.4°. Kept here, disabled, as the figure to meet once the solver passes loads through
 // light links.
-TEST(RcCar, DISABLED_ServoTurnsTheFrontWheelsAtSpeedAgainstTheGround) {
+TEST(RcCar, ServoTurnsTheFrontWheelsAtSpeedAgainstTheGround) {
     LiveScene scene = makeCar({{"throttle", 0.5}});
     run(scene, 1.5);
     ASSERT_TRUE(scene.setKnob("steer", 14.0));
     run(scene, 1.0);
+    std::printf("[ measured ] at %.2f m/s: servo %.3f°, knuckles %.3f° %.3f°, tie rods %.3g m\n",
+                body(scene, "chassis").velocity.norm(), joint(scene, "servo").readout.coordinate / kDegree,
+                joint(scene, "kingpin_fl").readout.coordinate / kDegree,
+                joint(scene, "kingpin_fr").readout.coordinate / kDegree, tieRodError(scene));
     EXPECT_GT(body(scene, "chassis").velocity.norm(), 1.5);
     EXPECT_NEAR(joint(scene, "kingpin_fl").readout.coordinate / kDegree, 14.0, 1.0);
     EXPECT_NEAR(joint(scene, "kingpin_fr").readout.coordinate / kDegree, 14.0, 1.0);
