@@ -9,10 +9,14 @@
 /// 6.8 mm at rest with 20 substeps, and a 0.1 g servo arm could not turn 20 g knuckles.
 ///
 /// What: a dynamic body is light when a dynamic body it is jointed to is at least
-/// kLightMassRatio times heavier. The joints touching a light body form a cluster, and clusters
-/// that share a joint merge (union-find over the joint graph, redone only when joints are created
-/// or destroyed). Each substep, each cluster's joint parts are linearised into rows
-/// (joints/joint_rows.h) and solved together:
+/// kLightMassRatio times heavier (a static neighbour does not count: a body hung from the world
+/// alone is projected exactly, and counting it would cluster the top of every chain). The joints
+/// touching a light body form a cluster; clusters that share a joint merge, and a joint between
+/// two dynamic bodies of one cluster joins it (a linkage's heavy body keeps its own hinge, or
+/// the cluster would drag it off that hinge by f h²/m every substep). A light body on a single
+/// joint is projected exactly already and forms no cluster. Clusters are found by union-find
+/// over the joint graph, only when joints are created or destroyed. Each substep, each
+/// cluster's joint parts are linearised into rows (joints/joint_rows.h) and solved together:
 ///
 ///     (J W Jᵀ + α̃) Δλ = c − α̃ λ        (Eq. 4 for every row at once, α̃ = α/h²)
 ///
@@ -22,15 +26,17 @@
 /// are updated, so the force and torque readouts (Eq. 10, Eq. 17) and the velocity pass work as
 /// for projected joints.
 ///
-/// Inequalities (limits, taut ropes) enter only while violated; a row whose λ would pull is
-/// dropped and the system solved again (an active-set loop of at most as many passes as there
-/// are such rows).
+/// Inequalities (limits, ropes) enter when violated or within kLimitMargin of their bound; a
+/// row whose λ would pull is dropped and the system solved again (an active-set loop of at most
+/// as many passes as there are rows).
 ///
-/// The rest of the world is unchanged: joints outside clusters are projected as before (the
-/// clusters follow them, before contacts), a world with no light body pays one flag test per
-/// substep and gives the same bytes as without the block solve. Off under the Jacobi solver and
-/// with WorldSettings::blockSolve = false; a cluster of more than kMaxBlockRows rows stays with
-/// Gauss-Seidel.
+/// The rest of the world is unchanged: joints outside clusters are projected as before, each
+/// cluster in the place of its first joint in the joint order, contacts after them. A world with
+/// no light body gives the same bytes as without the block solve. Off under the Jacobi solver,
+/// in the repair pass and with WorldSettings::blockSolve = false; a cluster of more than
+/// kMaxBlockRows rows stays with Gauss-Seidel. Not caught: a link light only against a load one
+/// joint further on (the criterion is on the neighbours' masses, not on the effective inverse
+/// mass at the anchor).
 
 #include "physics/body.h"
 #include "physics/correction.h"
