@@ -61,8 +61,8 @@ void SubstepCorrections::record(const SolverContext& ctx, ConstraintKind kind, u
 }
 
 void SubstepCorrections::solveRecorded(std::span<Joint> joints, const uint8_t* asleep,
-                                       std::span<ContactPair> pairs, std::span<Contact> contacts,
-                                       SolverContext& ctx) {
+                                       JointBlockSolver* clusters, std::span<ContactPair> pairs,
+                                       std::span<Contact> contacts, SolverContext& ctx) {
     // Each iteration visits the same constraints in the same order, so entry k is the same
     // constraint in every iteration of the substep.
     cursor_ = 0;
@@ -70,8 +70,11 @@ void SubstepCorrections::solveRecorded(std::span<Joint> joints, const uint8_t* a
         Joint& joint = joints[j];
         if (!joint.alive || (asleep != nullptr && (asleep[joint.body0] | asleep[joint.body1]) != 0))
             continue;
+        const bool clustered = clusters != nullptr && clusters->clustered(static_cast<uint32_t>(j));
+        if (clustered && !clusters->leadsCluster(static_cast<uint32_t>(j))) continue;
         const Before before = capture(ctx, joint.body0, joint.body1);
-        solveJointPositions(joint, ctx);
+        if (clustered) clusters->solveAt(ctx, joints, static_cast<uint32_t>(j));
+        else solveJointPositions(joint, ctx);
         record(ctx, ConstraintKind::Joint, static_cast<uint32_t>(j), joint.body0, joint.body1,
                before);
     }

@@ -15,6 +15,7 @@
 #include "physics/body.h"
 #include "physics/contact.h"
 #include "physics/correction.h"
+#include "physics/joint_block_solve.h"
 #include "physics/joints/joint.h"
 
 #include <cstdint>
@@ -55,9 +56,11 @@ class SubstepCorrections {
     void beginSubstep(int substep, int frameSubsteps);
     /// Called by the world in place of its plain loops: one iteration of the rigid position
     /// solve, joints then contact pairs, each projection recorded. `asleep` (per body, may be
-    /// null) skips the joints of sleeping islands as the world does.
-    void solveRecorded(std::span<Joint> joints, const uint8_t* asleep, std::span<ContactPair> pairs,
-                       std::span<Contact> contacts, SolverContext& ctx);
+    /// null) skips the joints of sleeping islands as the world does. `clusters` (may be null)
+    /// solves the joints around light bodies by cluster as the world does; a cluster is one
+    /// projection, recorded under its first joint with that joint's two bodies.
+    void solveRecorded(std::span<Joint> joints, const uint8_t* asleep, JointBlockSolver* clusters,
+                       std::span<ContactPair> pairs, std::span<Contact> contacts, SolverContext& ctx);
 
   private:
     /// Body poses (or Jacobi deltas) before a projection.

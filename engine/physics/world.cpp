@@ -5,6 +5,7 @@
 
 #include "physics/collision/narrowphase.h"
 #include "physics/collision/shape_bounds.h"
+#include "physics/joint_block_solve.h"
 #include "physics/joints/joint_frame.h"
 #include "physics/joints/joint_geometry.h"
 #include "physics/joints/joint_solver.h"
@@ -208,6 +209,7 @@ JointId World::createJoint(const JointDef& def) {
     sleep_.wake(joint.body0, bodies_[joint.body0]);
     sleep_.wake(joint.body1, bodies_[joint.body1]);
     jointsChanged_ = true;
+    clustersChanged_ = true;
 
     uint32_t index;
     if (!freeJoints_.empty()) {
@@ -228,6 +230,7 @@ void World::destroyJoint(JointId id) {
     joints_[id.index] = Joint{};
     freeJoints_.push_back(id.index);
     jointsChanged_ = true;
+    clustersChanged_ = true;
 }
 
 void World::step(double dt) {
@@ -541,13 +544,24 @@ void World::solvePositions(double h) {
                       .deltas = jacobiDeltas_.data(),
                       .capPushOut = settings_.velocityPass,
                       .projection = settings_.jointProjection};
-    // Joints first, contacts last: a substep ends with the hard inequalities met. Recording
-    // each projection's corrections (the viewer's substep stepping) runs the same loops apart.
+    // Joints first, contacts last: a substep ends with the hard inequalities met. Joints around
+    // light bodies are solved by cluster, each cluster in the place of its first joint (a cluster
+    // sleeps whole, as it is jointed together). Recording each projection's corrections (the
+    // viewer's substep stepping) runs the same loops apart.
+    JointBlockSolver* const clusters = blockSolveActive() ? blocks_.get() : nullptr;
     if (corrections_) [[unlikely]] {
-        corrections_->solveRecorded(joints_, sleepFlags_, contactPairs_, contacts_, ctx);
+        corrections_->solveRecorded(joints_, sleepFlags_, clusters, contactPairs_, contacts_, ctx);
     } else {
-        for (Joint& joint : joints_)
-            if (joint.alive && !sleeps(joint)) solveJointPositions(joint, ctx);
+        if (clusters != nullptr) {
+            for (uint32_t j = 0; j < joints_.size(); ++j) {
+                if (!joints_[j].alive || sleeps(joints_[j])) continue;
+                if (clusters->clustered(j)) clusters->solveAt(ctx, joints_, j);
+                else solveJointPositions(joints_[j], ctx);
+            }
+        } else {
+            for (Joint& joint : joints_)
+                if (joint.alive && !sleeps(joint)) solveJointPositions(joint, ctx);
+        }
         for (ContactPair& pair : contactPairs_)
             if (pair.count > 0)
                 solveContactPositions(pair, std::span(contacts_).subspan(pair.first, pair.count), ctx);
@@ -559,6 +573,20 @@ void World::solvePositions(double h) {
     // point: the joints' λ then no longer balance the weights they carry.
     if (settings_.solver == SolverType::Jacobi)
         applyJacobiDeltas(bodies_.data(), jacobiDeltas_.data(), bodies_.size());
+}
+
+bool World::blockSolveActive() {
+    if (!settings_.blockSolve || settings_.solver != SolverType::GaussSeidel) return false;
+    if (clustersChanged_) {
+        clustersChanged_ = false;
+        if (!blocks_) blocks_ = std::make_unique<JointBlockSolver>();
+        blocks_->build(bodies_, joints_);
+    }
+    return !blocks_->empty();
+}
+
+size_t World::jointClusterCount() const {
+    return blocks_ && settings_.blockSolve && settings_.solver == SolverType::GaussSeidel ? blocks_->clusterCount() : 0;
 }
 
 void World::deriveVelocities(double h) {

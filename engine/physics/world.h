@@ -20,6 +20,7 @@
 
 namespace substep {
 
+class JointBlockSolver;
 class SoftSystem;
 class SubstepCorrections;
 class WorkerPool;
@@ -76,6 +77,12 @@ struct WorldSettings {
     /// the wires (0.3 mm without) and spoils the switch's alternation, which is not yet
     /// understood; until then the paper's rule (Eq. 34) is what scenes use.
     bool sweptRestitution = false;
+    /// Joints around light bodies (a dynamic body jointed to one at least 20 times heavier)
+    /// solved together by a direct block solve each substep (joint_block_solve.h), so that a
+    /// light link passes corrections on whole: a 1 g box holding a 1 kg box keeps its hard
+    /// joints closed within 0.1 mm instead of 6.8 mm. Worlds without light links are
+    /// unaffected. Gauss-Seidel only (the Jacobi solver ignores it).
+    bool blockSolve = true;
 };
 
 /// Where the last step's time went (ms), when WorldSettings::measureTime is on.
@@ -210,6 +217,9 @@ public:
     /// Wakes a body's island (a sleeping body), or what touches or is jointed to it (a static
     /// body), as every edit of a body does; nothing when sleeping is off.
     void wakeBody(BodyId id);
+    /// Clusters of joints around light bodies that the block solve handles (0 when it is off or
+    /// no body is light; counted at the last step).
+    size_t jointClusterCount() const;
     /// True while every body's state is finite.
     bool isFinite() const;
 
@@ -308,6 +318,12 @@ private:
     }
     /// Whether sleeping acts in this step (on, and no soft bodies).
     bool sleepingActive() const;
+    /// The clusters of joints around light bodies and their block solve (joint_block_solve.h),
+    /// made when the joints first change; rebuilt when joints are created or destroyed.
+    std::unique_ptr<JointBlockSolver> blocks_;
+    bool clustersChanged_ = true;
+    /// Whether the block solve acts in this step: on, Gauss-Seidel, and some cluster.
+    bool blockSolveActive();
     /// Soft bodies, created with the first one: a world without them runs none of their stages.
     std::unique_ptr<SoftSystem> soft_;
     /// Whether soft bodies take part in this step.

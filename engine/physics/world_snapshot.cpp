@@ -65,6 +65,7 @@ void World::restore(const WorldSnapshot& s) {
     contacts_ = s.contacts_;
     jointExclusions_ = s.jointExclusions_;
     jointsChanged_ = s.jointsChanged_;
+    clustersChanged_ = true;  // the joints may not be the ones the clusters were made of
     collidingBodies_ = s.collidingBodies_;
     nextGeneration_ = s.nextGeneration_;
     lastSubstep_ = s.lastSubstep_;

@@ -9,6 +9,7 @@
 //   λ > 0 and pulls with f = λ/h² (Eq. 10). Coincident anchors give Δr = 0: nothing to correct.
 
 #include "physics/joints/joint_geometry.h"
+#include "physics/joints/joint_rows.h"
 
 namespace substep {
 namespace {
@@ -32,6 +33,23 @@ void solveDistanceJoint(const Joint& joint, DistanceJoint& distance, SolverConte
     const JointAnchors anchors = jointAnchors(joint, ctx.bodies);
     distance.rope.solve(ctx, joint.body0, joint.body1, distanceCorrection(distance, anchors), anchors.r0,
                         anchors.r1, joint.compliance);
+}
+
+void appendDistanceRows(const Joint& joint, DistanceJoint& distance, const SolverContext& ctx, JointRows& rows) {
+    const JointAnchors anchors = jointAnchors(joint, ctx.bodies);
+    if (distance.maxDistance <= 0.0) {
+        Vec3 arm0, arm1;
+        attachmentArms(joint, ctx, arm0, arm1);
+        rows.addPoint(joint, distance.attachment, anchors.p1 - anchors.p0, arm0, arm1, joint.compliance);
+        return;
+    }
+    // The rope only pulls (an inequality row), listed when taut or within kLimitMargin of it
+    // (joint_rows.h says why); slack beyond that, it has no row at all.
+    const Vec3 offset = anchors.p1 - anchors.p0;
+    const double length = offset.norm();
+    if (length < distance.maxDistance - kLimitMargin || !(length > kDirectionEpsilon)) return;
+    rows.addAxis(joint, distance.rope, offset / length, length - distance.maxDistance, anchors.r0, anchors.r1,
+                 joint.compliance, /*inequality=*/true);
 }
 
 JointEvaluation evaluateDistanceJoint(const Joint& joint, const DistanceJoint& distance, const Body* bodies) {

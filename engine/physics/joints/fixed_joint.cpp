@@ -9,6 +9,7 @@
 //   Both are solved together as one 6 x 6 block (applyWeldCorrection says why).
 
 #include "physics/joints/joint_geometry.h"
+#include "physics/joints/joint_rows.h"
 
 namespace substep {
 
@@ -28,6 +29,16 @@ void solveFixedJoint(const Joint& joint, FixedJoint& fixed, SolverContext& ctx) 
                         rotationVector(difference), joint.compliance,
                         fixed.attachment.lambda, fixed.orientation.lambda, fixed.attachment.impulse,
                         fixed.orientation.impulse);
+}
+
+void appendFixedRows(const Joint& joint, FixedJoint& fixed, const SolverContext& ctx, JointRows& rows) {
+    const JointAnchors anchors = jointAnchors(joint, ctx.bodies);
+    const Vec3 rotation = rotationVector(  // Eq. 18, Eq. 19
+        worldFrame1(joint, ctx.bodies) * worldFrame0(joint, ctx.bodies).conjugate());
+    for (int k = 0; k < 3; ++k) rows.addRotation(joint, fixed.orientation, Vec3::Unit(k), rotation[k], 0.0);
+    Vec3 arm0, arm1;
+    attachmentArms(joint, ctx, arm0, arm1);
+    rows.addPoint(joint, fixed.attachment, anchors.p1 - anchors.p0, arm0, arm1, joint.compliance);
 }
 
 JointEvaluation evaluateFixedJoint(const Joint& joint, const FixedJoint&, const Body* bodies) {

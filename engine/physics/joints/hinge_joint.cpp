@@ -18,6 +18,7 @@
 //   Position: the attachment Δx = p1 − p0.
 
 #include "physics/joints/joint_geometry.h"
+#include "physics/joints/joint_rows.h"
 
 namespace substep {
 
@@ -76,6 +77,44 @@ void solveHingeJoint(const Joint& joint, HingeJoint& hinge, SolverContext& ctx) 
                                    hinge.limits.lower, hinge.limits.upper, hinge.limitCompliance);
     }
     hinge.attachment.solve(ctx, joint.body0, joint.body1, joint.anchor0, joint.anchor1, joint.compliance);
+}
+
+void appendHingeRows(const Joint& joint, HingeJoint& hinge, const SolverContext& ctx, JointRows& rows) {
+    const Mat3 f0 = worldFrame0(joint, ctx.bodies).toRotationMatrix();
+    const Mat3 f1 = worldFrame1(joint, ctx.bodies).toRotationMatrix();
+    const Vec3 a0 = f0.col(0);
+    const Vec3 a1 = f1.col(0);
+    {
+        // Eq. 20 over the two directions normal to the hinge axis (as solveHingeJoint).
+        const Vec3 rotation = rotationBetween(a0, a1);
+        Vec3 free = (a0 + a1).norm() > 1e-9 ? Vec3((a0 + a1).normalized()) : a0;
+        if (ctx.projection == JointProjection::Start) {
+            const Vec3 s0 = directionOrientation(ctx, ctx.bodies[joint.body0]) * joint.frame0 * Vec3::UnitX();
+            const Vec3 s1 = directionOrientation(ctx, ctx.bodies[joint.body1]) * joint.frame1 * Vec3::UnitX();
+            if ((s0 + s1).norm() > 1e-9) free = (s0 + s1).normalized();
+        }
+        const Vec3 u = anyPerpendicular(free);
+        const Vec3 v = free.cross(u);
+        rows.addRotation(joint, hinge.alignment, u, rotation.dot(u), 0.0);
+        rows.addRotation(joint, hinge.alignment, v, rotation.dot(v), 0.0);
+    }
+    Vec3 b1;
+    if ((hinge.drive != JointDrive::None || hinge.hasLimits) && normalInHingePlane(a0, f1.col(1), b1)) {
+        if (hinge.drive != JointDrive::None) {
+            // Eq. 21: body 0 turns about a0 by the angle from b_target to b1. The row stays in
+            // the system at the target too, where it holds the angle against the other rows.
+            const Vec3 target = Eigen::AngleAxisd(hinge.target, a0) * f0.col(1);
+            rows.addAngle(joint, hinge.drivePart, a0, signedAngle(a0, target, b1), hinge.driveCompliance,
+                          /*inequality=*/false);
+        }
+        if (hinge.hasLimits)
+            rows.addAngleLimit(joint, hinge.limit, a0, f0.col(1), b1, hinge.limits.lower, hinge.limits.upper,
+                               hinge.limitCompliance);
+    }
+    const JointAnchors anchors = jointAnchors(joint, ctx.bodies);
+    Vec3 arm0, arm1;
+    attachmentArms(joint, ctx, arm0, arm1);
+    rows.addPoint(joint, hinge.attachment, anchors.p1 - anchors.p0, arm0, arm1, joint.compliance);
 }
 
 JointEvaluation evaluateHingeJoint(const Joint& joint, const HingeJoint& hinge, const Body* bodies) {

@@ -46,6 +46,21 @@ void solveHingeJoint(const Joint& joint, HingeJoint& hinge, SolverContext& ctx);
 void solveSphericalJoint(const Joint& joint, SphericalJoint& spherical, SolverContext& ctx);
 void solvePrismaticJoint(const Joint& joint, PrismaticJoint& prismatic, SolverContext& ctx);
 
+struct JointRows;
+// Per-type rows for the block solve (joint_rows.h), from the same geometry as the type's solve.
+void appendDistanceRows(const Joint& joint, DistanceJoint& distance, const SolverContext& ctx, JointRows& rows);
+void appendFixedRows(const Joint& joint, FixedJoint& fixed, const SolverContext& ctx, JointRows& rows);
+void appendHingeRows(const Joint& joint, HingeJoint& hinge, const SolverContext& ctx, JointRows& rows);
+void appendSphericalRows(const Joint& joint, SphericalJoint& spherical, const SolverContext& ctx, JointRows& rows);
+void appendPrismaticRows(const Joint& joint, PrismaticJoint& prismatic, const SolverContext& ctx, JointRows& rows);
+
+/// The lever arms of a joint's attachment for a correction's Jacobian: on the poses
+/// directionOrientation names (the current ones, or the substep's start).
+inline void attachmentArms(const Joint& joint, const SolverContext& ctx, Vec3& arm0, Vec3& arm1) {
+    arm0 = directionOrientation(ctx, ctx.bodies[joint.body0]) * joint.anchor0;
+    arm1 = directionOrientation(ctx, ctx.bodies[joint.body1]) * joint.anchor1;
+}
+
 JointEvaluation evaluateDistanceJoint(const Joint& joint, const DistanceJoint& distance, const Body* bodies);
 JointEvaluation evaluateFixedJoint(const Joint& joint, const FixedJoint& fixed, const Body* bodies);
 JointEvaluation evaluateHingeJoint(const Joint& joint, const HingeJoint& hinge, const Body* bodies);

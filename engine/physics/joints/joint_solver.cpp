@@ -1,6 +1,7 @@
 #include "physics/joints/joint_solver.h"
 
 #include "physics/joints/joint_geometry.h"
+#include "physics/joints/joint_rows.h"
 
 #include <algorithm>
 #include <cmath>
@@ -14,6 +15,16 @@ void solveJointPositions(Joint& joint, SolverContext& ctx) {
         case 2: solveHingeJoint(joint, *std::get_if<HingeJoint>(&joint.model), ctx); break;
         case 3: solveSphericalJoint(joint, *std::get_if<SphericalJoint>(&joint.model), ctx); break;
         case 4: solvePrismaticJoint(joint, *std::get_if<PrismaticJoint>(&joint.model), ctx); break;
+    }
+}
+
+void appendJointRows(Joint& joint, const SolverContext& ctx, JointRows& rows) {
+    switch (joint.model.index()) {
+        case 0: appendDistanceRows(joint, *std::get_if<DistanceJoint>(&joint.model), ctx, rows); break;
+        case 1: appendFixedRows(joint, *std::get_if<FixedJoint>(&joint.model), ctx, rows); break;
+        case 2: appendHingeRows(joint, *std::get_if<HingeJoint>(&joint.model), ctx, rows); break;
+        case 3: appendSphericalRows(joint, *std::get_if<SphericalJoint>(&joint.model), ctx, rows); break;
+        case 4: appendPrismaticRows(joint, *std::get_if<PrismaticJoint>(&joint.model), ctx, rows); break;
     }
 }
 

@@ -10,6 +10,7 @@
 //   and multipliers, so a soft limit and a hard attachment can coexist.
 
 #include "physics/joints/joint_geometry.h"
+#include "physics/joints/joint_rows.h"
 
 namespace substep {
 namespace {
@@ -72,6 +73,32 @@ void solvePrismaticJoint(const Joint& joint, PrismaticJoint& prismatic, SolverCo
         prismatic.drivePart.solve(ctx, joint.body0, joint.body1, s.axis * (s.offset - prismatic.target),
                                   anchors.r0, anchors.r1, prismatic.driveCompliance);
     }
+}
+
+void appendPrismaticRows(const Joint& joint, PrismaticJoint& prismatic, const SolverContext& ctx, JointRows& rows) {
+    const Mat3 f0 = worldFrame0(joint, ctx.bodies).toRotationMatrix();
+    const Vec3 rotation = rotationVector(worldFrame1(joint, ctx.bodies) * worldFrame0(joint, ctx.bodies).conjugate());
+    for (int k = 0; k < 3; ++k) rows.addRotation(joint, prismatic.orientation, Vec3::Unit(k), rotation[k], 0.0);
+    const JointAnchors anchors = slidingAnchors(joint, ctx.bodies);
+    const SlideState s = slideState(joint, ctx.bodies, anchors);
+    // Off the axis: the two directions of body 0's joint frame normal to it.
+    for (int k = 1; k < 3; ++k)
+        rows.addAxis(joint, prismatic.offAxis, f0.col(k), s.offAxis.dot(f0.col(k)), anchors.r0, anchors.r1,
+                     joint.compliance, /*inequality=*/false);
+    if (prismatic.hasLimits) {
+        // The bound the offset is beyond or within kLimitMargin of (joint_rows.h says why).
+        const double belowLower = prismatic.limits.lower - s.offset;
+        const double aboveUpper = s.offset - prismatic.limits.upper;
+        if (belowLower > -kLimitMargin && belowLower >= aboveUpper)
+            rows.addAxis(joint, prismatic.limit, -s.axis, belowLower, anchors.r0, anchors.r1,
+                         prismatic.limitCompliance, /*inequality=*/true);
+        else if (aboveUpper > -kLimitMargin)
+            rows.addAxis(joint, prismatic.limit, s.axis, aboveUpper, anchors.r0, anchors.r1,
+                         prismatic.limitCompliance, /*inequality=*/true);
+    }
+    if (prismatic.drive == JointDrive::Position)  // Eq. 25 with d_target
+        rows.addAxis(joint, prismatic.drivePart, s.axis, s.offset - prismatic.target, anchors.r0, anchors.r1,
+                     prismatic.driveCompliance, /*inequality=*/false);
 }
 
 JointEvaluation evaluatePrismaticJoint(const Joint& joint, const PrismaticJoint& prismatic,

@@ -11,6 +11,7 @@
 //   Position: the attachment Δx = p1 − p0.
 
 #include "physics/joints/joint_geometry.h"
+#include "physics/joints/joint_rows.h"
 
 namespace substep {
 namespace {
@@ -70,6 +71,24 @@ void solveSphericalJoint(const Joint& joint, SphericalJoint& spherical, SolverCo
                                        spherical.twistLimits.upper, spherical.twistCompliance);
     }
     spherical.attachment.solve(ctx, joint.body0, joint.body1, joint.anchor0, joint.anchor1, joint.compliance);
+}
+
+void appendSphericalRows(const Joint& joint, SphericalJoint& spherical, const SolverContext& ctx, JointRows& rows) {
+    if (spherical.hasSwingLimit || spherical.hasTwistLimits) {
+        const Mat3 f0 = worldFrame0(joint, ctx.bodies).toRotationMatrix();
+        const Mat3 f1 = worldFrame1(joint, ctx.bodies).toRotationMatrix();
+        Vec3 n, n0, n1;
+        if (spherical.hasSwingLimit && swingAxis(f0.col(0), f1.col(0), n))
+            rows.addAngleLimit(joint, spherical.swing, n, f0.col(0), f1.col(0), -spherical.swingLimit,
+                               spherical.swingLimit, spherical.swingCompliance);
+        if (spherical.hasTwistLimits && twistFrame(f0, f1, n, n0, n1))
+            rows.addAngleLimit(joint, spherical.twist, n, n0, n1, spherical.twistLimits.lower,
+                               spherical.twistLimits.upper, spherical.twistCompliance);
+    }
+    const JointAnchors anchors = jointAnchors(joint, ctx.bodies);
+    Vec3 arm0, arm1;
+    attachmentArms(joint, ctx, arm0, arm1);
+    rows.addPoint(joint, spherical.attachment, anchors.p1 - anchors.p0, arm0, arm1, joint.compliance);
 }
 
 JointEvaluation evaluateSphericalJoint(const Joint& joint, const SphericalJoint& spherical, const Body* bodies) {
