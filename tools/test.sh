@@ -9,8 +9,8 @@
 #      the loader (every rule, the fuzz seeds and findings), the engine layer, the world,
 #      contacts, corrections and joints, and the sandbox's whole-or-nothing outputs.
 # Both stages fit CI's 20 minutes from a fresh clone on two cores: the release stage about
-# 10-12 minutes, the asan stage about 6 (docs/STABILITY.md, "Continuous integration", has the
-# CPU times and how the wall time was estimated). Without a compiler launcher (CI, a fresh
+# 10-12 minutes, the asan stage about 7 (746 s of CPU to build; docs/STABILITY.md, "Continuous
+# integration", has the measures and how the wall time was estimated). Without a compiler launcher (CI, a fresh
 # clone) both precompile Eigen for the libraries (SUBSTEP_PRECOMPILE_HEADERS); a build folder
 # configured with ccache keeps its settings.
 # SUBSTEP_CI_STAGES picks stages (default "release asan"; "clang" is another name for asan).
