@@ -1,37 +1,51 @@
 #!/usr/bin/env bash
-# Builds Substep and runs every test (the README's test command; CI runs it too):
-#   1. Release: every target, every test but the long ones;
-#   2. ASan/UBSan: the engine's, the loader's and the engine layer's unit tests (the program's
-#      end-to-end tests and the GL ones stay Release-only: under the sanitizers they would take
-#      CI past its 20 minutes on two cores);
-#   3. clang 14 (Debian 12's): the engine libraries and the built-in scenes build (the whole
-#      program with clang as well would take CI past its 20 minutes; build it with
-#      `CXX=clang++ cmake -S . -B build-clang && cmake --build build-clang`).
-# SUBSTEP_CI_STAGES picks stages (default "release clang"). The ASan/UBSan stage is not in the
-# default: built from nothing it takes about 18 minutes on this project's 2-core machine, which
-# with the Release stage's ~10 would take CI past its 20. Run it with
-#   SUBSTEP_CI_STAGES="release asan clang" tools/test.sh     (or SUBSTEP_CI_STAGES=asan)
+# Builds Substep and runs every test (the README's test command; CI runs it through .ci/run).
+# Installs what it needs; safe to run again (each stage reuses its build folder).
+#   1. release (gcc, build/): every target, every test but the long ones (labels stability and
+#      soak), the program's end-to-end, capture and GL tests among them;
+#   2. asan (clang 14, build-asan/): the whole program, `substep`, built once with clang (the
+#      check that the project builds with Debian 12's clang) with AddressSanitizer and
+#      UndefinedBehaviorSanitizer at -O1 without -g, and under it the unit tests that matter:
+#      the loader (every rule, the fuzz seeds and findings), the engine layer, the world,
+#      contacts, corrections and joints, and the sandbox's whole-or-nothing outputs.
+# Both stages fit CI's 20 minutes from a fresh clone on two cores: the release stage about
+# 10-12 minutes, the asan stage about 7 (746 s of CPU to build; docs/STABILITY.md, "Continuous
+# integration", has the measures and how the wall time was estimated). Without a compiler launcher (CI, a fresh
+# clone) both precompile Eigen for the libraries (SUBSTEP_PRECOMPILE_HEADERS); a build folder
+# configured with ccache keeps its settings.
+# SUBSTEP_CI_STAGES picks stages (default "release asan"; "clang" is another name for asan).
 # Long soak and sweep cases carry the CTest labels `stability` and `soak` and run with:
-#   ctest --test-dir build -L stability      ctest --test-dir build -L soak
+#   ctest --test-dir build -L stability      ctest --test-dir build -L soak -j2
 # The fuzzer (label `fuzz`) has its own build: see tests/fuzz/CMakeLists.txt.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-stages=" ${SUBSTEP_CI_STAGES:-release clang} "
+stages=" ${SUBSTEP_CI_STAGES:-release asan} "
+stages="${stages/ clang / asan }"
 jobs="$(nproc)"
 stage() { printf '\n== %s (%s)\n' "$1" "$(date -u +%H:%M:%S)"; }
+
+# ON unless the build folder already compiles through a launcher such as ccache (which caches
+# precompiled-header builds only with extra sloppiness settings).
+precompile() {
+  if grep -qs '^CMAKE_CXX_COMPILER_LAUNCHER:[A-Z]*=.\+' "$1/CMakeCache.txt"; then
+    echo OFF
+  else
+    echo ON
+  fi
+}
 
 tools/install-deps.sh
 
 if [[ $stages == *" release "* ]]; then
-  stage "Release: build and test"
-  cmake --preset release
+  stage "release: build and test"
+  cmake --preset release -DSUBSTEP_PRECOMPILE_HEADERS="$(precompile build)"
   cmake --build --preset release -j "$jobs"
   ctest --preset release -j "$jobs"
 fi
 
 if [[ $stages == *" asan "* ]]; then
-  stage "ASan/UBSan: engine, loader and engine-layer unit tests"
+  stage "asan: the whole program with clang and the sanitizers, the unit tests that matter"
   asan_tests=(
     # engine/scene: the loader (every rule), meshes, building worlds
     scene_loader_test scene_loader_json_test scene_loader_validator_test scene_loader_shapes_test
@@ -47,8 +61,8 @@ if [[ $stages == *" asan "* ]]; then
     # sandbox: whole-or-nothing outputs
     atomic_file_test output_transaction_test csv_writer_test
   )
-  cmake --preset asan
-  cmake --build --preset asan -j "$jobs" --target "${asan_tests[@]}"
+  cmake --preset asan -DSUBSTEP_PRECOMPILE_HEADERS="$(precompile build-asan)"
+  cmake --build --preset asan -j "$jobs" --target substep "${asan_tests[@]}"
   for test in "${asan_tests[@]}"; do
     echo "-- $test"
     if [ "$test" = scene_loader_fuzz_replay ]; then
@@ -57,14 +71,7 @@ if [[ $stages == *" asan "* ]]; then
       "build-asan/tests/$test" --gtest_brief=1
     fi
   done
-fi
-
-if [[ $stages == *" clang "* ]]; then
-  stage "clang: the engine libraries and the built-in scenes"
-  # Build type None: no optimisation flags, since this stage checks that clang compiles the
-  # code; the Release stage above is the one whose programs run.
-  CC=clang CXX=clang++ cmake -S . -B build-clang -G Ninja -DCMAKE_BUILD_TYPE=None \
-    -DSUBSTEP_BUILD_TESTS=OFF -DSUBSTEP_BUILD_BENCHMARKS=OFF
-  cmake --build build-clang -j "$jobs" --target substep_physics substep_scene substep_ecs substep_scenes
+  # The program itself under the sanitizers: a scene file through the loader, world and outputs.
+  build-asan/bin/substep run assets/scenes/soft_bodies.json --frames 10 --csv build-asan/soft_bodies.csv >/dev/null
 fi
 stage "done"

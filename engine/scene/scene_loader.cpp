@@ -64,6 +64,63 @@ struct FileCloser {
     ~FileCloser() { ::close(descriptor); }
 };
 
+/// The keys the top level may hold: the world settings, then the sections in table order.
+std::vector<std::string> topLevelKeys() {
+    std::vector<std::string> allowed = {
+        "substep_scene", "name", "description", "gravity", "dt", "substeps", "iterations", "sleeping",
+        "joint_projection"};
+    for (const SceneSection& section : kSceneSections)
+        allowed.emplace_back(section.key);
+    return allowed;
+}
+
+/// `substep_scene` must be 1.
+void checkVersion(const Validator& v, const Node& version) {
+    if (!version.value.is_number() || version.value != 1) {
+        v.fail(version.path, version.value.is_number()
+                                 ? "unsupported version " + describe(version.value) +
+                                       " (this build reads version 1)"
+                                 : "must be 1, got " + describe(version.value));
+    }
+}
+
+/// The top level's rules checked while the file is parsed, each with the message readScene
+/// gives for it: a top level that is not an object, a wrong version, an unknown key (reported
+/// once the version has been read and found right, as readScene checks the version first).
+/// A large invalid file then fails where the parser meets its first problem.
+class TopLevelChecks final : public ReadingChecks {
+  public:
+    explicit TopLevelChecks(const Validator& v) : v_(v), allowed_(topLevelKeys()) {}
+
+    void documentStart(const Json& container) override {
+        const ObjectReader top(v_, {container, ""}, "a JSON object");
+    }
+
+    void topLevelKey(const std::string& key) override {
+        if (std::find(allowed_.begin(), allowed_.end(), key) != allowed_.end()) return;
+        if (versionRight_) failUnknown(key);
+        if (!firstUnknown_) firstUnknown_ = key;
+    }
+
+    void topLevelValue(const std::string& key, const Json& value) override {
+        if (key != "substep_scene") return;
+        checkVersion(v_, {value, "substep_scene"});
+        versionRight_ = true;
+        if (firstUnknown_) failUnknown(*firstUnknown_);
+    }
+
+  private:
+    [[noreturn]] void failUnknown(const std::string& key) const {
+        const Json empty = Json::object();
+        ObjectReader(v_, {empty, ""}).failUnknown(key, allowed_);
+    }
+
+    const Validator& v_;
+    std::vector<std::string> allowed_;
+    bool versionRight_ = false;
+    std::optional<std::string> firstUnknown_;
+};
+
 /// The top level: version, world settings, then each section present, in kSceneSections order.
 SceneDescription readScene(const Validator& v, const Json& root) {
     const ObjectReader top(v, {root, ""}, "a JSON object");
@@ -73,18 +130,8 @@ SceneDescription readScene(const Validator& v, const Json& root) {
     if (!version) {
         v.fail("substep_scene", "missing: a scene file starts with \"substep_scene\": 1");
     }
-    if (!version->value.is_number() || version->value != 1) {
-        v.fail(version->path, version->value.is_number()
-                                  ? "unsupported version " + describe(version->value) +
-                                        " (this build reads version 1)"
-                                  : "must be 1, got " + describe(version->value));
-    }
-    std::vector<std::string> allowed = {
-        "substep_scene", "name", "description", "gravity", "dt", "substeps", "iterations", "sleeping",
-        "joint_projection"};
-    for (const SceneSection& section : kSceneSections)
-        allowed.emplace_back(section.key);
-    top.allowOnly(allowed);
+    checkVersion(v, *version);
+    top.allowOnly(topLevelKeys());
 
     SceneDescription scene;
     // Documented extension: a title and a description, for people reading the file.
@@ -122,8 +169,10 @@ SceneDescription parseSceneText(std::string_view text, const std::string& fileLa
         throw SceneError(fileLabel, "",
                          "the file is empty (a scene starts with {\"substep_scene\": 1})");
     }
-    const scene_loader::Json root = scene_loader::readJsonDocument(text, fileLabel);
-    SceneDescription scene = scene_loader::readScene(scene_loader::Validator(fileLabel), root);
+    const scene_loader::Validator validator(fileLabel);
+    scene_loader::TopLevelChecks checks(validator);
+    const scene_loader::Json root = scene_loader::readJsonDocument(text, fileLabel, &checks);
+    SceneDescription scene = scene_loader::readScene(validator, root);
     scene.name = std::filesystem::path(fileLabel).stem().string();
     return scene;
 }
@@ -154,7 +203,9 @@ SceneDescription loadSceneFile(const std::string& path) {
         throw SceneError(path, "", "cannot read: larger than 256 MiB, too large for a scene file");
     }
     std::string text;
-    text.resize(static_cast<std::size_t>(info.st_size));
+    // One byte more than fstat said, so that the read meeting the end needs no larger buffer
+    // (growing a 250 MB text by doubling briefly held both copies).
+    text.resize(static_cast<std::size_t>(info.st_size) + 1);
     std::size_t filled = 0;
     // The file may grow while it is read: the cap holds whatever fstat said.
     while (true) {

@@ -15,8 +15,26 @@ namespace substep::scene_loader {
 
 namespace {
 
-constexpr std::size_t kMaxKeys = 1000;  // per JSON object
-constexpr std::size_t kMaxDepth = 64;   // JSON nesting
+constexpr std::size_t kMaxKeys = 1000;       // per JSON object
+constexpr std::size_t kMaxElements = 100000;  // per JSON array: the longest the format has
+constexpr std::size_t kMaxDepth = 64;         // JSON nesting
+// The memory a value takes in the document (nlohmann::ordered_json on 64-bit Linux): its slot,
+// the heap block of an array or object, an object member's key beside its value, the text of
+// a string too long for the small-string buffer.
+constexpr std::size_t kSlotBytes = 16;
+constexpr std::size_t kContainerBytes = 48;
+constexpr std::size_t kKeyBytes = 32;
+constexpr std::size_t kSmallString = 15;
+
+/// `512 MiB`, or bytes below a MiB.
+std::string megabytes(std::size_t bytes) {
+    return bytes >= (std::size_t{1} << 20) ? std::to_string(bytes >> 20) + " MiB"
+                                           : std::to_string(bytes) + " bytes";
+}
+
+std::size_t stringHeapBytes(const std::string& text) {
+    return text.size() > kSmallString ? text.size() + 1 : 0;
+}
 
 bool isIdentifier(std::string_view key) {
     if (key.empty() || std::isdigit(static_cast<unsigned char>(key[0]))) return false;
@@ -52,8 +70,9 @@ class DocumentBuilder {
     using string_t = Json::string_t;
     using binary_t = Json::binary_t;
 
-    DocumentBuilder(Json& root, std::string_view text, const std::string& file)
-        : root_(root), text_(text), file_(file) {}
+    DocumentBuilder(Json& root, std::string_view text, const std::string& file,
+                    ReadingChecks* checks, std::size_t maxBytes)
+        : root_(root), text_(text), file_(file), checks_(checks), maxBytes_(maxBytes) {}
 
     bool null() { return add(Json(nullptr)); }
     bool boolean(bool value) { return add(Json(value)); }
@@ -69,7 +88,10 @@ class DocumentBuilder {
         }
         return add(Json(value));
     }
-    bool string(string_t& value) { return add(Json(std::move(value))); }
+    bool string(string_t& value) {
+        account(stringHeapBytes(value));
+        return add(Json(std::move(value)));
+    }
     bool binary(binary_t&) { return false; }  // JSON text has no binary values
 
     bool start_object(std::size_t) { return open(Json::object()); }
@@ -87,8 +109,10 @@ class DocumentBuilder {
             fail(memberPath(frame.path, key),
                  "duplicate key (it is already given earlier in this object)");
         }
+        account(kKeyBytes + stringHeapBytes(key));
         frame.key = key;
         frame.keyPending = true;
+        if (checks_ != nullptr && stack_.size() == 1) checks_->topLevelKey(key);
         return true;
     }
 
@@ -120,7 +144,28 @@ class DocumentBuilder {
         std::string key;          // objects: the last key read
         bool keyPending = false;  // objects: its value has not been read yet
         std::size_t index = 0;    // arrays: the index of the next element
+        const char* elements = "elements";  // arrays: what the elements are, for messages
     };
+
+    /// What the elements of an array under `key` are called in "has more than N ..." (the
+    /// spline's `points` keep the message their reader gives below the cap).
+    static const char* elementsUnder(const std::string& key) {
+        if (key == "bodies") return "bodies";
+        if (key == "joints") return "joints";
+        if (key == "soft_bodies") return "soft bodies";
+        if (key == "points") return "points";
+        return "elements";
+    }
+
+    /// Adds what a value takes in memory, failing once the document passes its bound.
+    void account(std::size_t bytes) {
+        bytes_ += bytes;
+        if (bytes_ > maxBytes_) {
+            fail("", "too large: the document would take more than " + megabytes(maxBytes_) +
+                         " of memory once read (a 4096 x 4096 heightfield, the largest "
+                         "thing a scene holds, takes 256 MiB)");
+        }
+    }
 
     [[noreturn]] void fail(const std::string& path, const std::string& problem) const {
         throw SceneError(file_, path.empty() ? "top level" : path, problem);
@@ -179,7 +224,15 @@ class DocumentBuilder {
         return false;
     }
 
-    Json* add(Json&& value) {
+    /// Stores a scalar (a complete value) and reports it when it is a top-level member's.
+    bool add(Json&& value) {
+        Json* slot = store(std::move(value));
+        if (stack_.size() == 1) memberDone(*slot);
+        return true;
+    }
+
+    Json* store(Json&& value) {
+        account(kSlotBytes);
         if (stack_.empty()) {
             root_ = std::move(value);
             return &root_;
@@ -190,6 +243,10 @@ class DocumentBuilder {
             slot = std::move(value);
             frame.keyPending = false;
             return &slot;
+        }
+        if (frame.index >= kMaxElements) {
+            fail(frame.path, "has more than " + std::to_string(kMaxElements) + " " +
+                                 frame.elements + " (a sanity bound against absurd values)");
         }
         frame.container->push_back(std::move(value));
         ++frame.index;
@@ -202,20 +259,37 @@ class DocumentBuilder {
                  "nested too deeply (more than " + std::to_string(kMaxDepth) + " levels)");
         }
         std::string path = valuePath();
-        Json* slot = add(std::move(container));
-        stack_.push_back({slot, std::move(path), {}, false, 0});
+        const char* elements = "elements";
+        if (!stack_.empty() && stack_.back().container->is_object()) {
+            elements = elementsUnder(stack_.back().key);
+        }
+        account(kContainerBytes);
+        Json* slot = store(std::move(container));
+        stack_.push_back({slot, std::move(path), {}, false, 0, elements});
+        if (checks_ != nullptr && stack_.size() == 1) checks_->documentStart(*slot);
         return true;
     }
 
     bool close() {
+        const Json* done = stack_.back().container;
         stack_.pop_back();
+        if (stack_.size() == 1) memberDone(*done);
         return true;
+    }
+
+    /// A value directly inside the outermost container is complete.
+    void memberDone(const Json& value) {
+        const Frame& top = stack_.front();
+        if (checks_ != nullptr && top.container->is_object()) checks_->topLevelValue(top.key, value);
     }
 
     Json& root_;
     std::string_view text_;
     const std::string& file_;
+    ReadingChecks* checks_;
+    std::size_t maxBytes_;
     std::vector<Frame> stack_;
+    std::size_t bytes_ = 0;  // what the document takes so far (estimated)
 };
 
 }  // namespace
@@ -287,9 +361,10 @@ std::string joinList(const std::vector<std::string>& items, const char* lastSepa
     return out;
 }
 
-Json readJsonDocument(std::string_view text, const std::string& file) {
+Json readJsonDocument(std::string_view text, const std::string& file, ReadingChecks* checks,
+                      std::size_t maxBytes) {
     Json root;
-    DocumentBuilder builder(root, text, file);
+    DocumentBuilder builder(root, text, file, checks, maxBytes);
     // strict: nothing may follow the document; comments are not JSON.
     Json::sax_parse(text, &builder, Json::input_format_t::json, true, false);
     return root;

@@ -1,7 +1,9 @@
 // Tests engine/scene/scene_loader_json.cpp: syntax errors with line and column, numbers that
-// overflow or underflow, duplicate keys, nesting and object size, each at its JSON path.
+// overflow or underflow, duplicate keys, nesting, object and array size and the document's memory,
+// each at its JSON path, and the top level's checks made while parsing (scene_loader.cpp).
 
 #include "scene/scene_loader.h"
+#include "scene/scene_loader_json.h"
 
 #include "scene_loader_test_support.h"
 
@@ -87,6 +89,76 @@ TEST(SceneLoader, HugeObjectsAreRejected) {
         keys += ", \"k" + std::to_string(i) + "\": 0";
     EXPECT_TRUE(
         failsAt(scene(R"("camera": {"fov": 1)" + keys + "}"), "camera", "has more than 1000 keys"));
+}
+
+/// `count` copies of `element` joined by commas.
+std::string repeated(const std::string& element, std::size_t count) {
+    std::string out;
+    out.reserve(count * (element.size() + 1));
+    for (std::size_t i = 0; i < count; ++i) {
+        if (i > 0) out += ',';
+        out += element;
+    }
+    return out;
+}
+
+// Each case below ends in text the parser never reaches (a syntax error): before the checks
+// were made while parsing, that syntax error was reported, after the whole document was built.
+const std::string kNeverRead = ", \"x\": oops";
+
+TEST(SceneLoader, ArraysPastTheFormatsLongestFailAtTheFirstElementTooMany) {
+    EXPECT_TRUE(failsAt(scene(R"("bodies": [)" + repeated("{}", 100001) + "]" + kNeverRead),
+                        "bodies",
+                        "has more than 100000 bodies (a sanity bound against absurd values)"));
+    EXPECT_TRUE(failsAt(scene(R"("joints": [)" + repeated("3", 100001) + "]" + kNeverRead),
+                        "joints", "has more than 100000 joints"));
+    EXPECT_TRUE(failsAt(scene(R"("description": [[], [)" + repeated("0", 100001) + "]]" + kNeverRead),
+                        "description[1]", "has more than 100000 elements"));
+    // The spline's own message, which its reader gave before the parser had a cap.
+    const std::string points = repeated("[0, 0, 0]", 100001);
+    EXPECT_TRUE(failsAt(
+        withBody(R"("static": true, "shape": {"type": "spline", "radius": 0.1, "points": [)" + points +
+                 "]}"),
+        "bodies[0].shape.points",
+        "has more than 100000 points (a sanity bound against absurd values)"));
+    // 100000 is allowed.
+    EXPECT_TRUE(failsAt(scene(R"("bodies": [)" + repeated("3", 100000) + "]"), "bodies[0]",
+                        "must be a body object, got 3"));
+}
+
+TEST(SceneLoader, DocumentsTooLargeForMemoryFailWhileRead) {
+    // The bound is 512 MiB; a smaller one shows the rule without a file that large. Each value
+    // counts its 16-byte slot, a container its heap block, a member its key.
+    const std::string text = "[" + repeated("[]", 20000) + "]";
+    EXPECT_NO_THROW(scene_loader::readJsonDocument(text, "t.json", nullptr, 2u << 20));
+    try {
+        scene_loader::readJsonDocument(text + kNeverRead, "t.json", nullptr, 1u << 20);
+        FAIL() << "no error";
+    } catch (const SceneError& e) {
+        EXPECT_EQ(std::string(e.what()),
+                  "t.json: top level: too large: the document would take more than 1 MiB of "
+                  "memory once read (a 4096 x 4096 heightfield, the largest thing a scene holds, "
+                  "takes 256 MiB)");
+    }
+    EXPECT_EQ(scene_loader::kMaxDocumentBytes, std::size_t{512} << 20);
+}
+
+TEST(SceneLoader, TopLevelProblemsFailWhereTheParserMeetsThem) {
+    // An unknown key once the version has been read.
+    EXPECT_TRUE(failsAt(R"({"substep_scene": 1, "bodis": [)" + kNeverRead, "bodis",
+                        "unknown key (did you mean \"bodies\"?)"));
+    // An unknown key before the version: reported when the version turns out right...
+    EXPECT_TRUE(failsAt(R"({"bodis": [], "zzz": 1, "substep_scene": 1)" + kNeverRead, "bodis",
+                        "unknown key (did you mean \"bodies\"?)"));
+    // ... and the version's own message when it is wrong, as the version is checked first.
+    EXPECT_TRUE(failsAt(R"({"bodis": [], "substep_scene": 3)" + kNeverRead, "substep_scene",
+                        "unsupported version 3 (this build reads version 1)"));
+    EXPECT_TRUE(failsAt(R"({"substep_scene": "1")" + kNeverRead, "substep_scene",
+                        "must be 1, got the string \"1\""));
+    // A document that is not an object fails at its first bracket.
+    EXPECT_TRUE(failsAt("[1, 2" + kNeverRead, "top level", "must be a JSON object, got an array"));
+    // Without a version the rest is read and the validator reports the missing version.
+    EXPECT_TRUE(failsAt(R"({"bodis": []})", "substep_scene", "missing"));
 }
 
 }  // namespace

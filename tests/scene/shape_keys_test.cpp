@@ -125,6 +125,19 @@ TEST(ShapeKeys, HeightfieldErrors) {
                         "bodies[0].shape.heights[1][1]", "must be a number"));
     EXPECT_TRUE(failsAt(staticShape(kField + R"(, "heights": [[0, 0], [0, 1e7]])"),
                         "bodies[0].shape.heights[1][1]", "<= 1e+06"));
+    // Slopes: at most 1000 between neighbours along x (cells of 2 m here) and along z (cells of
+    // 2 m): a rise of 2000 m is allowed, 2001 m is not, whichever way the neighbour lies.
+    EXPECT_NO_THROW(parseSceneText(
+        staticShape(kField + R"(, "heights": [[0, 2000, 0], [2000, 0, 2000]])"), "t.json"));
+    EXPECT_TRUE(failsAt(staticShape(kField + R"(, "heights": [[0, 2001, 0], [0, 0, 0]])"),
+                        "bodies[0].shape.heights[0][1]",
+                        "differs by 2001 m from bodies[0].shape.heights[0][0], 2 m away: steeper "
+                        "than a slope of 1000 (a sanity bound against absurd values)"));
+    EXPECT_TRUE(failsAt(staticShape(kField + R"(, "heights": [[0, 0, 0], [0, 0, -2001]])"),
+                        "bodies[0].shape.heights[1][2]", "from bodies[0].shape.heights[1][1]"));
+    EXPECT_TRUE(failsAt(staticShape(kField + R"(, "heights": [[0, 0, 0], [2001, 0, 0]])"),
+                        "bodies[0].shape.heights[1][0]",
+                        "from bodies[0].shape.heights[0][0], 2 m away"));
     EXPECT_TRUE(
         failsAt(staticShape(R"("type": "heightfield")" + grid), "bodies[0].shape.size", "missing"));
     EXPECT_TRUE(failsAt(staticShape(R"("type": "heightfield", "size": [1, 0])" + grid),

@@ -1,6 +1,6 @@
-// Soak (CTest label `soak`, not in the default run; issue 19): every built-in scene for 10
-// simulated minutes through the engine layer, as `substep run` steps it (LiveScene, its script
-// included). Checked at every frame: the state stays finite. Energy: a scene nothing drives
+// Soak (CTest label `soak`, not in the default run; issue 19): every built-in scene and every
+// scene file in assets/scenes (soft_bodies.json) for 10 simulated minutes through the engine
+// layer, as `substep run` steps it (LiveScene, its script included). Checked at every frame: the state stays finite. Energy: a scene nothing drives
 // (no script, no joint target or motor) never gains more than 5 % of its energy scale over
 // E(0); a driven one reaches a steady state, gaining no more than one energy scale over the
 // largest energy of its first minute. Memory: the resident size at the end is within 10 % of
@@ -8,6 +8,7 @@
 // quick look (the minute-1 reference then comes at a tenth of it).
 
 #include "error_measures.h"
+#include "scene/scene_loader.h"
 #include "scenes/live_scene.h"
 #include "scenes/scene_registry.h"
 
@@ -18,8 +19,11 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
+#include <ostream>
 #include <string>
+#include <vector>
 
 namespace substep {
 namespace {
@@ -39,20 +43,31 @@ double soakSeconds() {
 }
 
 /// A scene injects energy when a script runs it or a joint is driven towards a target.
-bool isDriven(const SceneEntry& entry, const SceneDescription& description) {
-    if (entry.makeScript != nullptr) return true;
+bool isDriven(const SceneEntry* entry, const SceneDescription& description) {
+    if (entry != nullptr && entry->makeScript != nullptr) return true;
     return std::any_of(description.joints.begin(), description.joints.end(), [](const SceneJoint& joint) {
         return joint.def.targetAngle || joint.def.targetOffset || joint.def.targetVelocity;
     });
 }
 
-class Soak : public ::testing::TestWithParam<const SceneEntry*> {};
+/// A built-in scene (`entry`) or a scene file (`file`).
+struct SoakScene {
+    std::string name;
+    const SceneEntry* entry = nullptr;
+    std::string file;
+};
+
+/// What the test lists show for a case.
+void PrintTo(const SoakScene& scene, std::ostream* out) { *out << scene.name; }
+
+class Soak : public ::testing::TestWithParam<SoakScene> {};
 
 TEST_P(Soak, TenMinutesStayFiniteBoundedAndFlat) {
-    const SceneEntry& entry = *GetParam();
-    LiveScene live(entry.build(), &entry);
+    const SoakScene& scene = GetParam();
+    const SceneEntry* entry = scene.entry;
+    LiveScene live(entry != nullptr ? entry->build() : loadSceneFile(scene.file), entry);
     const bool driven = isDriven(entry, live.description());
-    const double scale = errorReference(&entry, live.instance()).energyScale;
+    const double scale = errorReference(entry, live.instance()).energyScale;
     const double dt = live.description().dt;
     const double seconds = soakSeconds();
     const long long frames = std::llround(seconds / dt);
@@ -64,9 +79,9 @@ TEST_P(Soak, TenMinutesStayFiniteBoundedAndFlat) {
     double residentAtReference = 0.0;
     for (long long frame = 1; frame <= frames; ++frame) {
         live.step();
-        ASSERT_TRUE(live.world().isFinite()) << entry.name << ": non-finite at frame " << frame;
+        ASSERT_TRUE(live.world().isFinite()) << scene.name << ": non-finite at frame " << frame;
         const double energy = live.world().energies().total();
-        ASSERT_TRUE(std::isfinite(energy)) << entry.name << ": energy non-finite at frame " << frame;
+        ASSERT_TRUE(std::isfinite(energy)) << scene.name << ": energy non-finite at frame " << frame;
         if (frame <= referenceFrame) {
             firstMinuteMax = std::max(firstMinuteMax, energy);
             if (!driven) worstGain = std::max(worstGain, energy - initial);
@@ -78,24 +93,28 @@ TEST_P(Soak, TenMinutesStayFiniteBoundedAndFlat) {
     const double residentAtEnd = residentBytes();
     std::printf("[ measured ] %s: %s, %.0f s, energy scale %.4g J, worst gain %.4g J (%.3g scales), "
                 "resident %.1f MB after the first minute, %.1f MB at the end\n",
-                std::string(entry.name).c_str(), driven ? "driven" : "undriven", seconds, scale,
+                scene.name.c_str(), driven ? "driven" : "undriven", seconds, scale,
                 worstGain, worstGain / scale, residentAtReference / 1e6, residentAtEnd / 1e6);
     RecordProperty("worst_gain_scales", std::to_string(worstGain / scale));
     RecordProperty("resident_growth", std::to_string(residentAtEnd / residentAtReference));
-    EXPECT_LE(worstGain, (driven ? 1.0 : 0.05) * scale) << entry.name;
-    EXPECT_LE(residentAtEnd, 1.10 * residentAtReference) << entry.name;
+    EXPECT_LE(worstGain, (driven ? 1.0 : 0.05) * scale) << scene.name;
+    EXPECT_LE(residentAtEnd, 1.10 * residentAtReference) << scene.name;
 }
 
-std::vector<const SceneEntry*> everyScene() {
-    std::vector<const SceneEntry*> entries;
-    for (const SceneEntry& entry : builtinScenes()) entries.push_back(&entry);
-    return entries;
+std::vector<SoakScene> everyScene() {
+    std::vector<SoakScene> scenes;
+    for (const SceneEntry& entry : builtinScenes()) scenes.push_back({std::string(entry.name), &entry, {}});
+    std::vector<std::filesystem::path> files;
+    for (const auto& item : std::filesystem::directory_iterator(SUBSTEP_ASSET_SCENES_DIR)) {
+        if (item.path().extension() == ".json") files.push_back(item.path());
+    }
+    std::sort(files.begin(), files.end());
+    for (const auto& file : files) scenes.push_back({"file_" + file.stem().string(), nullptr, file.string()});
+    return scenes;
 }
 
-INSTANTIATE_TEST_SUITE_P(BuiltinScenes, Soak, ::testing::ValuesIn(everyScene()),
-                         [](const ::testing::TestParamInfo<const SceneEntry*>& info) {
-                             return std::string(info.param->name);
-                         });
+INSTANTIATE_TEST_SUITE_P(Scenes, Soak, ::testing::ValuesIn(everyScene()),
+                         [](const ::testing::TestParamInfo<SoakScene>& info) { return info.param.name; });
 
 }  // namespace
 }  // namespace substep

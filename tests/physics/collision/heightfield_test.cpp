@@ -1,9 +1,10 @@
 // Tests engine/physics/collision/heightfield.cpp: the grid's geometry, its triangles, crease
-// flags, bounds and the validation of its input.
+// flags, bounds, the work of its queries whatever the heights, and the validation of its input.
 
 #include "physics/collision/heightfield.h"
 
 #include "physics/collision/mesh_collider.h"
+#include "physics/world.h"
 
 #include <gtest/gtest.h>
 
@@ -111,6 +112,63 @@ TEST(Heightfield, VisitsOnlyCellsUnderTheBox) {
     field->forTrianglesIn({Vec3(-0.5, 0.1, -0.5), Vec3(0.5, 1, 0.5)},
                           [&](const ContactTriangle&) { ++visited; });
     EXPECT_EQ(visited, 0);
+}
+
+/// rows x rows heights drawn from [-amplitude, amplitude] over a square of `size` metres.
+std::shared_ptr<const HeightfieldData> spikes(int rows, double amplitude, double size) {
+    std::mt19937 random(7);
+    std::uniform_real_distribution<double> height(-amplitude, amplitude);
+    std::vector<double> heights(static_cast<std::size_t>(rows) * rows);
+    for (double& h : heights) h = height(random);
+    return makeHeightfield(rows, rows, std::move(heights), size, size);
+}
+
+// Issue 19: heights of ±1e6 m once made a frame take minutes. A query's work is the cells under
+// the box in x-z, whatever the heights: at most 2 triangles for each of the
+// (floor(extent / cell) + 2)² cells a box can touch; none when the box is above every height.
+TEST(Heightfield, QueriesVisitTheCellsUnderTheBoxWhateverTheHeights) {
+    const int rows = 513;
+    const double size = 100.0;
+    const double cell = size / (rows - 1);
+    for (const double amplitude : {1.0, 1e6}) {
+        const auto field = spikes(rows, amplitude, size);
+        for (const double extent : {0.05, 1.0, 3.0}) {
+            const int reach = static_cast<int>(std::floor(extent / cell)) + 2;
+            for (const Vec3& centre : {Vec3(0, 0, 0), Vec3(10.3, 0, -20.7), Vec3(-49.9, 0, 49.9),
+                                       Vec3(0, -3 * amplitude - 2, 0), Vec3(3, 3 * amplitude + 2, 7)}) {
+                int visited = 0;
+                const Vec3 half = Vec3::Constant(0.5 * extent);
+                field->forTrianglesIn({centre - half, centre + half},
+                                      [&](const ContactTriangle&) { ++visited; });
+                EXPECT_LE(visited, 2 * reach * reach)
+                    << "amplitude " << amplitude << ", extent " << extent << " at " << centre.transpose();
+                if (centre.y() - half.y() > amplitude) {
+                    EXPECT_EQ(visited, 0);
+                }
+                // Below every height (inside the solid) every cell under the box is visited.
+                if (centre.y() + half.y() < -amplitude) {
+                    const int inside = static_cast<int>(std::floor(extent / cell));
+                    EXPECT_GE(visited, 2 * inside * inside);
+                }
+            }
+        }
+    }
+}
+
+// The same spikes under a sphere, a box and a cylinder in a world: each frame's contact work is
+// a few triangles per body (the contacts found, at most 8 points a pair), and the state stays
+// finite although the slopes of 1e7 launch the bodies (the loader refuses slopes above 1000).
+TEST(Heightfield, FramesOnSpikesOfAMillionMetresStayFiniteAndSmall) {
+    World world;
+    world.createBody({.shape = heightfieldShape(spikes(513, 1e6, 100.0)), .type = BodyType::Static});
+    world.createBody({.shape = sphereShape(0.5), .mass = 1, .position = {0, 2, 0}});
+    world.createBody({.shape = boxShape(Vec3(1, 1, 1)), .mass = 1, .position = {3, 2, 0}});
+    world.createBody({.shape = cylinderShape(0.5, 1), .mass = 1, .position = {-3, 2, 0}});
+    for (int frame = 0; frame < 5; ++frame) {
+        world.step(1.0 / 60.0);
+        ASSERT_TRUE(world.isFinite()) << "frame " << frame;
+        EXPECT_LE(world.contacts().size(), 3u * 8u) << "frame " << frame;
+    }
 }
 
 TEST(Heightfield, RejectsBadInput) {
