@@ -303,32 +303,51 @@ void SoftSystem::damp(double dt) {
     // v̄ + ω × (x − c) (mass-weighted with the particles' masses, ω = I⁻¹ L), by 1 − exp(−k dt):
     // deformation rates decay at k whatever their direction, rigid motion is untouched, and
     // each element's momentum and angular momentum are kept.
+    double lastRate = 0.0, fraction = 0.0;  // a body's elements share their rate: one exp
     for (size_t e = 0; e < elements_.size(); ++e) {
         const double k = elementDamping_[e];
         if (!(k > 0.0)) continue;
+        if (k != lastRate) lastRate = k, fraction = 1.0 - std::exp(-k * dt);
         const HexElement& element = elements_[e];
+        // The corners gathered once: positions, velocities, masses.
+        std::array<Vec3, 8> r, v;
+        std::array<double, 8> m;
         double mass = 0.0;
         Vec3 centre = Vec3::Zero(), momentum = Vec3::Zero();
-        for (uint32_t i : element) {
-            mass += mass_[i];
-            centre += mass_[i] * x_[i];
-            momentum += mass_[i] * v_[i];
+        for (int j = 0; j < 8; ++j) {
+            const uint32_t i = element[j];
+            m[j] = mass_[i], r[j] = x_[i], v[j] = v_[i];
+            mass += m[j];
+            centre += m[j] * r[j];
+            momentum += m[j] * v[j];
         }
         centre /= mass;
         const Vec3 velocity = momentum / mass;
         Vec3 angularMomentum = Vec3::Zero();
-        Mat3 inertia = Mat3::Zero();
-        for (uint32_t i : element) {
-            const Vec3 r = x_[i] - centre;
-            angularMomentum += mass_[i] * r.cross(v_[i] - velocity);
-            inertia += mass_[i] * (r.squaredNorm() * Mat3::Identity() - r * r.transpose());
+        double sxx = 0, syy = 0, szz = 0, sxy = 0, sxz = 0, syz = 0;  // Σ m r rᵀ
+        for (int j = 0; j < 8; ++j) {
+            r[j] -= centre;
+            const Vec3 mr = m[j] * r[j];
+            angularMomentum += mr.cross(v[j] - velocity);
+            sxx += mr.x() * r[j].x(), syy += mr.y() * r[j].y(), szz += mr.z() * r[j].z();
+            sxy += mr.x() * r[j].y(), sxz += mr.x() * r[j].z(), syz += mr.y() * r[j].z();
         }
+        const double spread = sxx + syy + szz;  // Σ m |r|²
+        // I = Σ m (|r|² 1 − r rᵀ), inverted by its adjugate (symmetric).
+        const double i00 = spread - sxx, i11 = spread - syy, i22 = spread - szz;
+        const double i01 = -sxy, i02 = -sxz, i12 = -syz;
+        const double a00 = i11 * i22 - i12 * i12, a01 = i02 * i12 - i01 * i22, a02 = i01 * i12 - i02 * i11;
+        const double a11 = i00 * i22 - i02 * i02, a12 = i01 * i02 - i00 * i12, a22 = i00 * i11 - i01 * i01;
+        const double det = i00 * a00 + i01 * a01 + i02 * a02;
         // A collapsed element has no well-defined spin: damp towards its mean velocity only.
         Vec3 omega = Vec3::Zero();
-        const double trace = inertia.trace();
-        if (std::abs(inertia.determinant()) > 1e-9 * trace * trace * trace) omega = inertia.inverse() * angularMomentum;
-        const double fraction = 1.0 - std::exp(-k * dt);
-        for (uint32_t i : element) v_[i] += fraction * (velocity + omega.cross(x_[i] - centre) - v_[i]);
+        const double trace = i00 + i11 + i22;
+        if (std::abs(det) > 1e-9 * trace * trace * trace) {
+            const Vec3& l = angularMomentum;
+            omega = Vec3(a00 * l.x() + a01 * l.y() + a02 * l.z(), a01 * l.x() + a11 * l.y() + a12 * l.z(),
+                         a02 * l.x() + a12 * l.y() + a22 * l.z()) / det;
+        }
+        for (int j = 0; j < 8; ++j) v_[element[j]] = v[j] + fraction * (velocity + omega.cross(r[j]) - v[j]);
     }
 }
 
