@@ -1,5 +1,6 @@
 #include "physics/soft/element_batch.h"
 
+#include "physics/soft/lanes.h"
 #include "physics/soft/shape_matching.h"
 
 #include <algorithm>
@@ -9,16 +10,8 @@
 namespace substep {
 namespace {
 
-constexpr int kLanes = kBatchLanes;
-
-/// kLanes doubles operated on together (a GCC vector type: one AVX register, or two SSE2 ones).
-using Lanes = double __attribute__((vector_size(kLanes * sizeof(double))));
-
-// Loads through memory (vectors are not passed by value: a different ABI with and
-// without AVX).
-[[gnu::always_inline]] inline void load(Lanes& v, const double* p) {
-    std::memcpy(&v, p, sizeof v);
-}
+using namespace simd;
+static_assert(kLanes == kBatchLanes);
 
 /// A lane's Newton step turned more than this (rad²) or met a matrix that is not positive
 /// definite: the lane's rotation is finished by extractRotation (as its second iteration would
@@ -31,32 +24,7 @@ constexpr double kLaneTurn2 = 1e-6;
         v[l] = std::sqrt(v[l]);
 }
 
-static_assert(sizeof(Vec3) == 3 * sizeof(double), "particles are read as packed doubles");
 static_assert(sizeof(Quat) == 4 * sizeof(double), "rotations are read as packed (x, y, z, w)");
-
-/// The lane indices of a shuffle (__builtin_shuffle: 0-3 the first vector's, 4-7 the second's).
-using LaneIndex = long long __attribute__((vector_size(kLanes * sizeof(long long))));
-
-/// Four consecutive particles' 12 coordinates (x0 y0 z0 x1 | y1 z1 x2 y2 | z2 x3 y3 z3) into
-/// x, y and z lanes.
-[[gnu::always_inline]] inline void loadCorner(const double* p, Lanes& x, Lanes& y, Lanes& z) {
-    Lanes v0, v1, v2;
-    load(v0, p), load(v1, p + 4), load(v2, p + 8);
-    x = __builtin_shuffle(__builtin_shuffle(v0, v1, LaneIndex{0, 3, 6, 0}), v2, LaneIndex{0, 1, 2, 5});
-    y = __builtin_shuffle(__builtin_shuffle(v0, v1, LaneIndex{1, 4, 7, 0}), v2, LaneIndex{0, 1, 2, 6});
-    z = __builtin_shuffle(__builtin_shuffle(v0, v1, LaneIndex{2, 5, 0, 0}), v2, LaneIndex{0, 1, 4, 7});
-}
-
-/// The inverse of loadCorner.
-[[gnu::always_inline]] inline void storeCorner(double* p, const Lanes& x, const Lanes& y, const Lanes& z) {
-    const Lanes xy01 = __builtin_shuffle(x, y, LaneIndex{0, 4, 1, 5});  // x0 y0 x1 y1
-    const Lanes xy23 = __builtin_shuffle(x, y, LaneIndex{2, 6, 3, 7});  // x2 y2 x3 y3
-    const Lanes yz12 = __builtin_shuffle(y, z, LaneIndex{1, 5, 2, 6});  // y1 z1 y2 z2
-    const Lanes v0 = __builtin_shuffle(xy01, z, LaneIndex{0, 1, 4, 2});
-    const Lanes v1 = __builtin_shuffle(yz12, xy23, LaneIndex{0, 1, 4, 5});
-    const Lanes v2 = __builtin_shuffle(__builtin_shuffle(xy23, z, LaneIndex{2, 3, 6, 7}), LaneIndex{2, 0, 1, 3});
-    std::memcpy(p, &v0, sizeof v0), std::memcpy(p + 4, &v1, sizeof v1), std::memcpy(p + 8, &v2, sizeof v2);
-}
 
 /// Four consecutive quaternions, stored (x, y, z, w) each, into lanes: a 4 x 4 transpose.
 [[gnu::always_inline]] inline void loadRotations(const double* p, Lanes& w, Lanes& x, Lanes& y, Lanes& z) {
@@ -88,7 +56,8 @@ using LaneIndex = long long __attribute__((vector_size(kLanes * sizeof(long long
 }
 
 /// Projects one batch, every lane's arithmetic in vector registers: the corners gathered once
-/// from the particle array into lanes (the batch holds their indices), the rest offsets,
+/// from the particle array into lanes (the batch holds their indices; a contiguous batch loads
+/// them as rows and transposes them), the rest offsets,
 /// inverse masses, ℓ² and α_e read from the batch, one warm-started Newton step of the rotation
 /// extraction, the deviations and the XPBD update (Eq. 4), and the corners scattered back.
 template <bool Contiguous>
@@ -102,7 +71,7 @@ template <bool Contiguous>
     Lanes w, qx, qy, qz, lambda, spread, alpha;
     if constexpr (Contiguous) {
         for (int j = 0; j < 8; ++j)
-            loadCorner(pos + 3 * size_t(batch.particle[j][0]), px[j], py[j], pz[j]);
+            loadPoints(pos + 3 * size_t(batch.particle[j][0]), px[j], py[j], pz[j]);
         loadRotations(arrays.rotations[first].coeffs().data(), w, qx, qy, qz);
         load(lambda, &arrays.lambda[first]);
     } else {
@@ -260,7 +229,7 @@ template <bool Contiguous>
     if constexpr (Contiguous) {
         std::memcpy(&arrays.lambda[first], &lambda, sizeof lambda);
         for (int j = 0; j < 8; ++j)
-            storeCorner(pos + 3 * size_t(batch.particle[j][0]), px[j], py[j], pz[j]);
+            storePoints(pos + 3 * size_t(batch.particle[j][0]), px[j], py[j], pz[j]);
         return;
     }
     for (int l = 0; l < lanes; ++l)

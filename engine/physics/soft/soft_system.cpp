@@ -208,30 +208,24 @@ void SoftSystem::integrate(double h, const Vec3& gravity) {
     const Vec3 gravityStep = h * gravity;
     for (SoftBodyData& body : bodies_) {
         if (!body.alive) continue;
-        const uint32_t first = body.firstParticle, end = first + body.particleCount;
+        const uint32_t first = body.firstParticle;
         const RigidModeMoments moments =
-            rigidModeMoments(&x_[first], &v_[first], &mass_[first], body.particleCount);
+            rigidModeMoments(x_.data() + first, v_.data() + first, mass_.data() + first, body.particleCount);
         const Vec3 spin = momentumKeepingSpin(moments.inertia, moments.angularMomentum, h);
         body.turn = Quat::Identity();
         // A turn under 1e-7 rad per substep (the chord's loss, (h ω)², is below rounding) or
         // not finite: straight lines.
         if (!(h * h * spin.squaredNorm() >= 1e-14) || !spin.allFinite()) {
-            for (uint32_t i = first; i < end; ++i) {
-                xPrev_[i] = x_[i];
-                v_[i] += gravityStep;
-                x_[i] += h * v_[i];
-            }
+            predictOnArc(x_.data() + first, xPrev_.data() + first, v_.data() + first, body.particleCount, gravityStep,
+                         h, Mat3::Zero(), moments.centre);
             continue;
         }
         integrateRotation(body.turn, h * spin);
         const Vec3 linearSpin = moments.inertia.inverse() * moments.angularMomentum;
         const Mat3 arc =
             body.turn.toRotationMatrix() - Mat3::Identity() - h * crossMatrix(linearSpin);
-        for (uint32_t i = first; i < end; ++i) {
-            xPrev_[i] = x_[i];
-            v_[i] += gravityStep;
-            x_[i] += h * v_[i] + arc * (xPrev_[i] - moments.centre);
-        }
+        predictOnArc(x_.data() + first, xPrev_.data() + first, v_.data() + first, body.particleCount, gravityStep, h,
+                     arc, moments.centre);
         // The elements turn with the body: their rotations' warm start.
         for (uint32_t e = body.firstElement; e < body.firstElement + body.elementCount; ++e)
             rotations_[e] = body.turn * rotations_[e];
@@ -260,37 +254,25 @@ void SoftSystem::deriveVelocities(double h) {
     const double invH = 1.0 / h;
     for (SoftBodyData& body : bodies_) {
         if (!body.alive) continue;
-        const uint32_t first = body.firstParticle, end = first + body.particleCount;
+        const uint32_t first = body.firstParticle;
         Mat3 correction = Mat3::Zero();
         Mat3 turnBack = Mat3::Zero();
         Vec3 centre = Vec3::Zero(), centrePrev = Vec3::Zero();
-        if (!body.turn.vec().isZero(0.0)) {
+        if (!body.turn.vec().isZero(0.0) && body.particleCount > 0) {
             const Vec3 origin = xPrev_[first];
-            Vec3 first1 = Vec3::Zero(), first0 = Vec3::Zero();
-            Mat3 cross = Mat3::Zero();
-            double mass = 0.0, spread = 0.0;
-            for (uint32_t i = first; i < end; ++i) {
-                const Vec3 p = x_[i] - origin, q = xPrev_[i] - origin;
-                first1 += mass_[i] * p;
-                first0 += mass_[i] * q;
-                cross.noalias() += mass_[i] * p * q.transpose();
-                spread += mass_[i] * q.squaredNorm();
-                mass += mass_[i];
-            }
-            const Vec3 d1 = first1 / mass, d0 = first0 / mass;
+            const TurnSums sums = turnSums(x_.data() + first, xPrev_.data() + first, mass_.data() + first, body.particleCount, origin);
+            const double mass = sums.mass;
+            const Vec3 d1 = sums.first / mass, d0 = sums.firstPrev / mass;
             centre = origin + d1;
             centrePrev = origin + d0;
-            const Mat3 covariance = cross - mass * d1 * d0.transpose();  // Σ m r r_prevᵀ
-            const Mat3 r = extractRotation(covariance, spread - mass * d0.squaredNorm(), body.turn);
+            const Mat3 covariance = sums.cross - mass * d1 * d0.transpose();  // Σ m r r_prevᵀ
+            const Mat3 r = extractRotation(covariance, sums.spread - mass * d0.squaredNorm(), body.turn);
             const Vec3 spin = angularVelocityBetween(Quat::Identity(), body.turn, invH);
             correction = crossMatrix(spin);
             turnBack = (r - Mat3::Identity()) * invH;
         }
-        for (uint32_t i = first; i < end; ++i) {
-            vPrev_[i] = v_[i];
-            v_[i] = (x_[i] - xPrev_[i]) * invH + correction * (x_[i] - centre) -
-                    turnBack * (xPrev_[i] - centrePrev);
-        }
+        deriveOnArc(x_.data() + first, xPrev_.data() + first, v_.data() + first, vPrev_.data() + first, body.particleCount,
+                    invH, correction, centre, turnBack, centrePrev);
     }
 }
 
