@@ -1,5 +1,6 @@
 #include "physics/soft/element_batch.h"
 
+#include "physics/soft/lanes.h"
 #include "physics/soft/shape_matching.h"
 
 #include <algorithm>
@@ -9,16 +10,8 @@
 namespace substep {
 namespace {
 
-constexpr int kLanes = kBatchLanes;
-
-/// kLanes doubles operated on together (a GCC vector type: one AVX register, or two SSE2 ones).
-using Lanes = double __attribute__((vector_size(kLanes * sizeof(double))));
-
-// Loads through memory (vectors are not passed by value: a different ABI with and
-// without AVX).
-[[gnu::always_inline]] inline void load(Lanes& v, const double* p) {
-    std::memcpy(&v, p, sizeof v);
-}
+using namespace simd;
+static_assert(kLanes == kBatchLanes);
 
 /// A lane's Newton step turned more than this (rad²) or met a matrix that is not positive
 /// definite: the lane's rotation is finished by extractRotation (as its second iteration would
@@ -31,33 +24,71 @@ constexpr double kLaneTurn2 = 1e-6;
         v[l] = std::sqrt(v[l]);
 }
 
-static_assert(sizeof(Vec3) == 3 * sizeof(double), "particles are read as packed doubles");
+static_assert(sizeof(Quat) == 4 * sizeof(double), "rotations are read as packed (x, y, z, w)");
+
+/// Four consecutive quaternions, stored (x, y, z, w) each, into lanes: a 4 x 4 transpose.
+[[gnu::always_inline]] inline void loadRotations(const double* p, Lanes& w, Lanes& x, Lanes& y, Lanes& z) {
+    Lanes q0, q1, q2, q3;
+    load(q0, p), load(q1, p + 4), load(q2, p + 8), load(q3, p + 12);
+    const Lanes lo01 = __builtin_shuffle(q0, q1, LaneIndex{0, 4, 1, 5});  // x0 x1 y0 y1
+    const Lanes lo23 = __builtin_shuffle(q2, q3, LaneIndex{0, 4, 1, 5});
+    const Lanes hi01 = __builtin_shuffle(q0, q1, LaneIndex{2, 6, 3, 7});  // z0 z1 w0 w1
+    const Lanes hi23 = __builtin_shuffle(q2, q3, LaneIndex{2, 6, 3, 7});
+    x = __builtin_shuffle(lo01, lo23, LaneIndex{0, 1, 4, 5});
+    y = __builtin_shuffle(lo01, lo23, LaneIndex{2, 3, 6, 7});
+    z = __builtin_shuffle(hi01, hi23, LaneIndex{0, 1, 4, 5});
+    w = __builtin_shuffle(hi01, hi23, LaneIndex{2, 3, 6, 7});
+}
+
+/// The inverse of loadRotations.
+[[gnu::always_inline]] inline void storeRotations(double* p, const Lanes& w, const Lanes& x, const Lanes& y,
+                                                  const Lanes& z) {
+    const Lanes xy01 = __builtin_shuffle(x, y, LaneIndex{0, 4, 1, 5});  // x0 y0 x1 y1
+    const Lanes xy23 = __builtin_shuffle(x, y, LaneIndex{2, 6, 3, 7});
+    const Lanes zw01 = __builtin_shuffle(z, w, LaneIndex{0, 4, 1, 5});
+    const Lanes zw23 = __builtin_shuffle(z, w, LaneIndex{2, 6, 3, 7});
+    const Lanes q0 = __builtin_shuffle(xy01, zw01, LaneIndex{0, 1, 4, 5});
+    const Lanes q1 = __builtin_shuffle(xy01, zw01, LaneIndex{2, 3, 6, 7});
+    const Lanes q2 = __builtin_shuffle(xy23, zw23, LaneIndex{0, 1, 4, 5});
+    const Lanes q3 = __builtin_shuffle(xy23, zw23, LaneIndex{2, 3, 6, 7});
+    std::memcpy(p, &q0, sizeof q0), std::memcpy(p + 4, &q1, sizeof q1);
+    std::memcpy(p + 8, &q2, sizeof q2), std::memcpy(p + 12, &q3, sizeof q3);
+}
 
 /// Projects one batch, every lane's arithmetic in vector registers: the corners gathered once
-/// from the particle array into lanes (the batch holds their indices), the rest offsets,
+/// from the particle array into lanes (the batch holds their indices; a contiguous batch loads
+/// them as rows and transposes them), the rest offsets,
 /// inverse masses, ℓ² and α_e read from the batch, one warm-started Newton step of the rotation
 /// extraction, the deviations and the XPBD update (Eq. 4), and the corners scattered back.
+template <bool Contiguous>
 [[gnu::always_inline]] inline void solveBatch(const ElementBatch& batch,
                                               const ElementArrays& arrays, double invH2) {
     const uint32_t first = batch.firstElement;
     const int lanes = static_cast<int>(batch.lanes);
     double* const pos = arrays.positions.data()->data();
-    int lane[kLanes];  // the element of each lane; lanes past `lanes` repeat lane 0
-    for (int l = 0; l < kLanes; ++l)
-        lane[l] = l < lanes ? l : 0;
 
     Lanes px[8], py[8], pz[8];
-    for (int j = 0; j < 8; ++j)
-        for (int l = 0; l < kLanes; ++l) {
-            const double* p = pos + 3 * size_t(batch.particle[j][l]);
-            px[j][l] = p[0], py[j][l] = p[1], pz[j][l] = p[2];
-        }
-    const Quat* rotations = arrays.rotations.data() + first;
     Lanes w, qx, qy, qz, lambda, spread, alpha;
-    for (int l = 0; l < kLanes; ++l) {
-        const Quat& rotation = rotations[lane[l]];
-        w[l] = rotation.w(), qx[l] = rotation.x(), qy[l] = rotation.y(), qz[l] = rotation.z();
-        lambda[l] = arrays.lambda[first + static_cast<uint32_t>(lane[l])];
+    if constexpr (Contiguous) {
+        for (int j = 0; j < 8; ++j)
+            loadPoints(pos + 3 * size_t(batch.particle[j][0]), px[j], py[j], pz[j]);
+        loadRotations(arrays.rotations[first].coeffs().data(), w, qx, qy, qz);
+        load(lambda, &arrays.lambda[first]);
+    } else {
+        int lane[kLanes];  // the element of each lane; lanes past `lanes` repeat lane 0
+        for (int l = 0; l < kLanes; ++l)
+            lane[l] = l < lanes ? l : 0;
+        for (int j = 0; j < 8; ++j)
+            for (int l = 0; l < kLanes; ++l) {
+                const double* p = pos + 3 * size_t(batch.particle[j][l]);
+                px[j][l] = p[0], py[j][l] = p[1], pz[j][l] = p[2];
+            }
+        const Quat* rotations = arrays.rotations.data() + first;
+        for (int l = 0; l < kLanes; ++l) {
+            const Quat& rotation = rotations[lane[l]];
+            w[l] = rotation.w(), qx[l] = rotation.x(), qy[l] = rotation.y(), qz[l] = rotation.z();
+            lambda[l] = arrays.lambda[first + static_cast<uint32_t>(lane[l])];
+        }
     }
     load(spread, batch.scale2), load(alpha, batch.compliance);
     alpha *= invH2;
@@ -138,10 +169,12 @@ static_assert(sizeof(Vec3) == 3 * sizeof(double), "particles are read as packed 
         r10 = 2 * (qx * qy + w * qz), r11 = 1 - 2 * (qx * qx + qz * qz), r12 = 2 * (qy * qz - w * qx);
         r20 = 2 * (qx * qz - w * qy), r21 = 2 * (qy * qz + w * qx), r22 = 1 - 2 * (qx * qx + qy * qy);
     }
+    // A lane handed over kept its warm start in (w, qx, qy, qz): extractRotation starts from it.
+    if constexpr (Contiguous) storeRotations(arrays.rotations[first].coeffs().data(), w, qx, qy, qz);
     for (int l = 0; l < lanes; ++l) {
         const uint32_t e = first + static_cast<uint32_t>(l);
         if (handOver[l] == 0.0) {
-            arrays.rotations[e] = Quat(w[l], qx[l], qy[l], qz[l]);
+            if constexpr (!Contiguous) arrays.rotations[e] = Quat(w[l], qx[l], qy[l], qz[l]);
             continue;
         }
         // The rare lane: the whole extraction from its warm start, as the scalar sweep does it.
@@ -193,6 +226,12 @@ static_assert(sizeof(Vec3) == 3 * sizeof(double), "particles are read as packed 
         px[j] += move * dx[j], py[j] += move * dy[j], pz[j] += move * dz[j];
     }
 
+    if constexpr (Contiguous) {
+        std::memcpy(&arrays.lambda[first], &lambda, sizeof lambda);
+        for (int j = 0; j < 8; ++j)
+            storePoints(pos + 3 * size_t(batch.particle[j][0]), px[j], py[j], pz[j]);
+        return;
+    }
     for (int l = 0; l < lanes; ++l)
         arrays.lambda[first + static_cast<uint32_t>(l)] = lambda[l];
     if (!batch.volume) {
@@ -276,15 +315,20 @@ void appendBatches(const ElementArrays& arrays, std::span<const uint32_t> wave, 
             batch.compliance[l] = arrays.compliance[element];
             batch.volume = batch.volume || arrays.volumeCompliance[element] >= 0.0;
         }
+        batch.contiguous = batch.lanes == kLanes && !batch.volume;
+        for (int j = 0; j < 8; ++j)
+            for (int l = 1; l < kLanes; ++l)
+                batch.contiguous = batch.contiguous && batch.particle[j][l] == batch.particle[j][0] + l;
         batches.push_back(batch);
         e += batch.lanes;
     }
 }
 
-[[gnu::target_clones("arch=x86-64-v3", "default")]] void solveElementBatches(
+[[gnu::target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")]] void solveElementBatches(
     std::span<const ElementBatch> batches, const ElementArrays& arrays, double invH2) {
     for (const ElementBatch& batch : batches)
-        solveBatch(batch, arrays, invH2);
+        batch.contiguous ? solveBatch<true>(batch, arrays, invH2)
+                         : solveBatch<false>(batch, arrays, invH2);
 }
 
 }  // namespace substep

@@ -38,6 +38,10 @@ struct ElementBatch {
     uint32_t firstElement = 0;
     uint32_t lanes = 0;
     bool volume = false;  ///< a lane has the volume constraint
+    /// Four lanes without the volume constraint, each corner's particles consecutive (lane l's
+    /// is lane 0's + l, as a tyre's are): the kernel loads corners and rotations as rows and
+    /// transposes them in registers instead of gathering them value by value.
+    bool contiguous = false;
 };
 
 /// The state the kernel reads and writes, the SoftSystem's arrays.

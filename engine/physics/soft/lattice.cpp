@@ -45,18 +45,27 @@ Lattice buildTyreLattice(double outerRadius, double innerRadius, double width,
     const int around = std::max(cells[0], 3), radial = std::max(cells[1], 1), across = std::max(cells[2], 1);
     // Directions (around, radial, across) = (e_θ, e_r, y) are right-handed for the point
     // (r cos θ, y, r sin θ): e_θ × e_r = y.
+    // Particles of a ring stored even positions around first, then the odd ones: the cells
+    // that the sweep projects side by side (two apart around, below) then have their corners
+    // at consecutive particles, so the batch kernel loads them instead of gathering them
+    // (element_batch.h).
+    const int evens = (around + 1) / 2;
     const auto index = [&](int a, int r, int c) {
-        return static_cast<uint32_t>((a % around) + around * (r + (radial + 1) * c));
+        a %= around;
+        const int slot = a % 2 == 0 ? a / 2 : evens + a / 2;
+        return static_cast<uint32_t>(slot + around * (r + (radial + 1) * c));
     };
+    lattice.positions.resize(static_cast<size_t>(around * (radial + 1) * (across + 1)));
+    lattice.inner.resize(lattice.positions.size());
     for (int c = 0; c <= across; ++c)
         for (int r = 0; r <= radial; ++r)
             for (int a = 0; a < around; ++a) {
                 const double theta = 2.0 * M_PI * a / around;
                 const double radius = innerRadius + (outerRadius - innerRadius) * r / radial;
-                lattice.positions.emplace_back(radius * std::cos(theta),
-                                               width * (double(c) / across - 0.5),
-                                               radius * std::sin(theta));
-                lattice.inner.push_back(r == 0 ? 1 : 0);
+                lattice.positions[index(a, r, c)] = Vec3(radius * std::cos(theta),
+                                                          width * (double(c) / across - 0.5),
+                                                          radius * std::sin(theta));
+                lattice.inner[index(a, r, c)] = r == 0 ? 1 : 0;
             }
     // The sweep order (element_batch.h): the even cells around first, then the odd ones, each
     // across, then out, then around. A ring swept around in one direction would chain every

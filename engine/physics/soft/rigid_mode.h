@@ -8,7 +8,8 @@
 /// substep (12 % over 5 s at 5.5 rad/s and 20 substeps). So the prediction turns each particle
 /// about the body's centre of mass by the body's spin, and the velocity derivation puts the
 /// spin back from the best-fit rotation between the start and the end of the substep
-/// (rigid_mode.h's functions; SoftSystem::integrate and ::deriveVelocities use them). A rigid
+/// (rigid_mode.h's functions; SoftSystem::integrate and ::deriveVelocities use them; the
+/// passes over the particles run four particles at a time in vector lanes, rigid_mode.cpp). A rigid
 /// motion is then integrated exactly, as the paper integrates a rigid body's rotation
 /// (Algorithm 2), and the deformation on top of it as before.
 
@@ -30,30 +31,31 @@ struct RigidModeMoments {
 
 /// The moments of `count` particles, summed about the first particle's position (so the sums
 /// do not cancel far from the origin) and moved to the centre of mass.
-inline RigidModeMoments rigidModeMoments(const Vec3* x, const Vec3* v, const double* m,
-                                         uint32_t count) {
-    RigidModeMoments out;
-    if (count == 0) return out;
-    const Vec3 origin = x[0];
-    Vec3 first = Vec3::Zero(), momentum = Vec3::Zero(), angular = Vec3::Zero();
-    Mat3 second = Mat3::Zero();
-    for (uint32_t i = 0; i < count; ++i) {
-        const Vec3 p = x[i] - origin;
-        first += m[i] * p;
-        momentum += m[i] * v[i];
-        angular += m[i] * p.cross(v[i]);
-        second.noalias() += m[i] * p * p.transpose();
-        out.mass += m[i];
-    }
-    if (!(out.mass > 0.0)) return out;
-    const Vec3 d = first / out.mass;  // centre − origin
-    out.centre = origin + d;
-    out.velocity = momentum / out.mass;
-    out.angularMomentum = angular - d.cross(momentum);
-    const Mat3 centred = second - out.mass * d * d.transpose();  // Σ m r rᵀ about the centre
-    out.inertia = centred.trace() * Mat3::Identity() - centred;
-    return out;
-}
+RigidModeMoments rigidModeMoments(const Vec3* x, const Vec3* v, const double* m, uint32_t count);
+
+/// The prediction of Algorithm 2 for `count` particles with the rigid mode's arc
+/// (SoftSystem::integrate): x_prev = x, v += gravityStep, x += h v + arc (x_prev − centre).
+/// arc = 0 moves them on straight lines.
+void predictOnArc(Vec3* x, Vec3* xPrev, Vec3* v, uint32_t count, const Vec3& gravityStep,
+                  double h, const Mat3& arc, const Vec3& centre);
+
+/// The sums the best-fit turn from x_prev to x needs (SoftSystem::deriveVelocities), over
+/// positions relative to `origin`: p = x − origin, q = x_prev − origin.
+struct TurnSums {
+    double mass = 0.0;
+    Vec3 first = Vec3::Zero();      ///< Σ m p
+    Vec3 firstPrev = Vec3::Zero();  ///< Σ m q
+    Mat3 cross = Mat3::Zero();      ///< Σ m p qᵀ
+    double spread = 0.0;            ///< Σ m |q|²
+};
+TurnSums turnSums(const Vec3* x, const Vec3* xPrev, const double* m, uint32_t count,
+                  const Vec3& origin);
+
+/// The velocity derivation with the rigid turn on its arc (SoftSystem::deriveVelocities):
+/// v_prev = v, v = (x − x_prev) invH + spin (x − centre) − turnBack (x_prev − centrePrev).
+void deriveOnArc(const Vec3* x, const Vec3* xPrev, Vec3* v, Vec3* vPrev, uint32_t count,
+                 double invH, const Mat3& spin, const Vec3& centre, const Mat3& turnBack,
+                 const Vec3& centrePrev);
 
 /// The spin ω whose turn by h ω keeps the angular momentum L of a body of inertia I: the
 /// inertia turns with the body, so L after the turn is Rot(h ω) I ω, and ω solves

@@ -48,12 +48,22 @@ inline Vec3 previousPoint(const Body& b, const Vec3& local) {
     return b.xPrev + (b.rotates() ? Vec3(b.qPrev * local) : local);
 }
 
-/// Eq. 4 for an attachment of violation c, multiplier lambda (updated) and compliance term
-/// α̃ = α / h², between masses of inverse sum wSum: the multiplier's change.
-inline double attachmentStep(double& lambda, double alphaTilde, double c, double wSum) {
-    const double deltaLambda = (c - alphaTilde * lambda) / (wSum + alphaTilde);  // Eq. 4
+/// Eq. 4 for an attachment whose particle is `delta` short of the body's point (c = |delta|,
+/// c2 = c²), multiplier lambda (updated) and compliance term α̃ = α / h², between generalised
+/// inverse masses w + w_body = wLinear + angular / c² (Eqs. 2-3: `angular` is
+/// (r × delta)ᵀ I⁻¹ (r × delta), 0 when wLinear holds the whole sum). Returns the impulse
+/// Δλ n = Δλ delta / c. Written over c² (Δλ = c² (c − α̃ λ) / ((wLinear + α̃) c² + angular)),
+/// a hard attachment's impulse waits for one division and no square root: the rim's run of
+/// attachments is a chain, each correction moving the body the next one starts from.
+inline Vec3 attachmentImpulse(double& lambda, double alphaTilde, const Vec3& delta, double c2,
+                              double wLinear, double angular) {
+    const double denominator = (wLinear + alphaTilde) * c2 + angular;
+    const double c = std::sqrt(c2);
+    const double deltaLambda = c2 * (c - alphaTilde * lambda) / denominator;  // Eq. 4
+    const double factor =
+        alphaTilde == 0.0 ? c2 / denominator : (c2 - alphaTilde * lambda * c) / denominator;
     lambda += deltaLambda;
-    return deltaLambda;
+    return factor * delta;
 }
 
 }  // namespace
@@ -100,7 +110,7 @@ void SoftSystem::solveAttachments(SolverContext& ctx) {
             const Vec3 n = delta / c;
             const double w = invMass_[a.particle];
             const double wb = bodyInverseMass(b, r, n);
-            const Vec3 p = attachmentStep(a.lambda, a.compliance * ctx.invH2, c, w + wb) * n;
+            const Vec3 p = attachmentImpulse(a.lambda, a.compliance * ctx.invH2, delta, c * c, w + wb, 0.0);
             x_[a.particle] += w * p;                                                    // Eq. 6
             if (wb > 0.0) applyImpulse(ctx, a.body, 0, -p, r.cross(-p), Vec3::Zero());  // Eqs. 7-9
         }
@@ -132,13 +142,13 @@ void SoftSystem::solveAttachments(SolverContext& ctx) {
             const Vec3 r0 = rotation * a.local;
             const Vec3 r = r0 + turned.cross(r0);
             const Vec3 delta = position + r - x_[a.particle];
-            const double c = delta.norm();
-            if (!(c > kDirectionEpsilon)) continue;
-            const Vec3 n = delta / c;
+            const double c2 = delta.squaredNorm();
+            if (!(c2 > kDirectionEpsilon * kDirectionEpsilon)) continue;
             const double w = invMass_[a.particle];
-            const Vec3 rn = r.cross(n);
-            const double wb = inverseMass + rn.dot(inverseInertia * rn);  // Eqs. 2-3
-            const Vec3 p = attachmentStep(a.lambda, a.compliance * ctx.invH2, c, w + wb) * n;
+            const Vec3 rd = r.cross(delta);
+            const double angular = rd.dot(inverseInertia * rd);  // Eqs. 2-3, times c²
+            const Vec3 p = attachmentImpulse(a.lambda, a.compliance * ctx.invH2, delta, c2,
+                                             w + inverseMass, angular);
             x_[a.particle] += w * p;                // Eq. 6
             position -= inverseMass * p;            // Eq. 7, the body receiving −p
             turned -= inverseInertia * r.cross(p);  // Eq. 8

@@ -208,30 +208,24 @@ void SoftSystem::integrate(double h, const Vec3& gravity) {
     const Vec3 gravityStep = h * gravity;
     for (SoftBodyData& body : bodies_) {
         if (!body.alive) continue;
-        const uint32_t first = body.firstParticle, end = first + body.particleCount;
+        const uint32_t first = body.firstParticle;
         const RigidModeMoments moments =
-            rigidModeMoments(&x_[first], &v_[first], &mass_[first], body.particleCount);
+            rigidModeMoments(x_.data() + first, v_.data() + first, mass_.data() + first, body.particleCount);
         const Vec3 spin = momentumKeepingSpin(moments.inertia, moments.angularMomentum, h);
         body.turn = Quat::Identity();
         // A turn under 1e-7 rad per substep (the chord's loss, (h ω)², is below rounding) or
         // not finite: straight lines.
         if (!(h * h * spin.squaredNorm() >= 1e-14) || !spin.allFinite()) {
-            for (uint32_t i = first; i < end; ++i) {
-                xPrev_[i] = x_[i];
-                v_[i] += gravityStep;
-                x_[i] += h * v_[i];
-            }
+            predictOnArc(x_.data() + first, xPrev_.data() + first, v_.data() + first, body.particleCount, gravityStep,
+                         h, Mat3::Zero(), moments.centre);
             continue;
         }
         integrateRotation(body.turn, h * spin);
         const Vec3 linearSpin = moments.inertia.inverse() * moments.angularMomentum;
         const Mat3 arc =
             body.turn.toRotationMatrix() - Mat3::Identity() - h * crossMatrix(linearSpin);
-        for (uint32_t i = first; i < end; ++i) {
-            xPrev_[i] = x_[i];
-            v_[i] += gravityStep;
-            x_[i] += h * v_[i] + arc * (xPrev_[i] - moments.centre);
-        }
+        predictOnArc(x_.data() + first, xPrev_.data() + first, v_.data() + first, body.particleCount, gravityStep, h,
+                     arc, moments.centre);
         // The elements turn with the body: their rotations' warm start.
         for (uint32_t e = body.firstElement; e < body.firstElement + body.elementCount; ++e)
             rotations_[e] = body.turn * rotations_[e];
@@ -260,37 +254,25 @@ void SoftSystem::deriveVelocities(double h) {
     const double invH = 1.0 / h;
     for (SoftBodyData& body : bodies_) {
         if (!body.alive) continue;
-        const uint32_t first = body.firstParticle, end = first + body.particleCount;
+        const uint32_t first = body.firstParticle;
         Mat3 correction = Mat3::Zero();
         Mat3 turnBack = Mat3::Zero();
         Vec3 centre = Vec3::Zero(), centrePrev = Vec3::Zero();
-        if (!body.turn.vec().isZero(0.0)) {
+        if (!body.turn.vec().isZero(0.0) && body.particleCount > 0) {
             const Vec3 origin = xPrev_[first];
-            Vec3 first1 = Vec3::Zero(), first0 = Vec3::Zero();
-            Mat3 cross = Mat3::Zero();
-            double mass = 0.0, spread = 0.0;
-            for (uint32_t i = first; i < end; ++i) {
-                const Vec3 p = x_[i] - origin, q = xPrev_[i] - origin;
-                first1 += mass_[i] * p;
-                first0 += mass_[i] * q;
-                cross.noalias() += mass_[i] * p * q.transpose();
-                spread += mass_[i] * q.squaredNorm();
-                mass += mass_[i];
-            }
-            const Vec3 d1 = first1 / mass, d0 = first0 / mass;
+            const TurnSums sums = turnSums(x_.data() + first, xPrev_.data() + first, mass_.data() + first, body.particleCount, origin);
+            const double mass = sums.mass;
+            const Vec3 d1 = sums.first / mass, d0 = sums.firstPrev / mass;
             centre = origin + d1;
             centrePrev = origin + d0;
-            const Mat3 covariance = cross - mass * d1 * d0.transpose();  // Σ m r r_prevᵀ
-            const Mat3 r = extractRotation(covariance, spread - mass * d0.squaredNorm(), body.turn);
+            const Mat3 covariance = sums.cross - mass * d1 * d0.transpose();  // Σ m r r_prevᵀ
+            const Mat3 r = extractRotation(covariance, sums.spread - mass * d0.squaredNorm(), body.turn);
             const Vec3 spin = angularVelocityBetween(Quat::Identity(), body.turn, invH);
             correction = crossMatrix(spin);
             turnBack = (r - Mat3::Identity()) * invH;
         }
-        for (uint32_t i = first; i < end; ++i) {
-            vPrev_[i] = v_[i];
-            v_[i] = (x_[i] - xPrev_[i]) * invH + correction * (x_[i] - centre) -
-                    turnBack * (xPrev_[i] - centrePrev);
-        }
+        deriveOnArc(x_.data() + first, xPrev_.data() + first, v_.data() + first, vPrev_.data() + first, body.particleCount,
+                    invH, correction, centre, turnBack, centrePrev);
     }
 }
 
@@ -303,32 +285,51 @@ void SoftSystem::damp(double dt) {
     // v̄ + ω × (x − c) (mass-weighted with the particles' masses, ω = I⁻¹ L), by 1 − exp(−k dt):
     // deformation rates decay at k whatever their direction, rigid motion is untouched, and
     // each element's momentum and angular momentum are kept.
+    double lastRate = 0.0, fraction = 0.0;  // a body's elements share their rate: one exp
     for (size_t e = 0; e < elements_.size(); ++e) {
         const double k = elementDamping_[e];
         if (!(k > 0.0)) continue;
+        if (k != lastRate) lastRate = k, fraction = 1.0 - std::exp(-k * dt);
         const HexElement& element = elements_[e];
+        // The corners gathered once: positions, velocities, masses.
+        std::array<Vec3, 8> r, v;
+        std::array<double, 8> m;
         double mass = 0.0;
         Vec3 centre = Vec3::Zero(), momentum = Vec3::Zero();
-        for (uint32_t i : element) {
-            mass += mass_[i];
-            centre += mass_[i] * x_[i];
-            momentum += mass_[i] * v_[i];
+        for (int j = 0; j < 8; ++j) {
+            const uint32_t i = element[j];
+            m[j] = mass_[i], r[j] = x_[i], v[j] = v_[i];
+            mass += m[j];
+            centre += m[j] * r[j];
+            momentum += m[j] * v[j];
         }
         centre /= mass;
         const Vec3 velocity = momentum / mass;
         Vec3 angularMomentum = Vec3::Zero();
-        Mat3 inertia = Mat3::Zero();
-        for (uint32_t i : element) {
-            const Vec3 r = x_[i] - centre;
-            angularMomentum += mass_[i] * r.cross(v_[i] - velocity);
-            inertia += mass_[i] * (r.squaredNorm() * Mat3::Identity() - r * r.transpose());
+        double sxx = 0, syy = 0, szz = 0, sxy = 0, sxz = 0, syz = 0;  // Σ m r rᵀ
+        for (int j = 0; j < 8; ++j) {
+            r[j] -= centre;
+            const Vec3 mr = m[j] * r[j];
+            angularMomentum += mr.cross(v[j] - velocity);
+            sxx += mr.x() * r[j].x(), syy += mr.y() * r[j].y(), szz += mr.z() * r[j].z();
+            sxy += mr.x() * r[j].y(), sxz += mr.x() * r[j].z(), syz += mr.y() * r[j].z();
         }
+        const double spread = sxx + syy + szz;  // Σ m |r|²
+        // I = Σ m (|r|² 1 − r rᵀ), inverted by its adjugate (symmetric).
+        const double i00 = spread - sxx, i11 = spread - syy, i22 = spread - szz;
+        const double i01 = -sxy, i02 = -sxz, i12 = -syz;
+        const double a00 = i11 * i22 - i12 * i12, a01 = i02 * i12 - i01 * i22, a02 = i01 * i12 - i02 * i11;
+        const double a11 = i00 * i22 - i02 * i02, a12 = i01 * i02 - i00 * i12, a22 = i00 * i11 - i01 * i01;
+        const double det = i00 * a00 + i01 * a01 + i02 * a02;
         // A collapsed element has no well-defined spin: damp towards its mean velocity only.
         Vec3 omega = Vec3::Zero();
-        const double trace = inertia.trace();
-        if (std::abs(inertia.determinant()) > 1e-9 * trace * trace * trace) omega = inertia.inverse() * angularMomentum;
-        const double fraction = 1.0 - std::exp(-k * dt);
-        for (uint32_t i : element) v_[i] += fraction * (velocity + omega.cross(x_[i] - centre) - v_[i]);
+        const double trace = i00 + i11 + i22;
+        if (std::abs(det) > 1e-9 * trace * trace * trace) {
+            const Vec3& l = angularMomentum;
+            omega = Vec3(a00 * l.x() + a01 * l.y() + a02 * l.z(), a01 * l.x() + a11 * l.y() + a12 * l.z(),
+                         a02 * l.x() + a12 * l.y() + a22 * l.z()) / det;
+        }
+        for (int j = 0; j < 8; ++j) v_[element[j]] = v[j] + fraction * (velocity + omega.cross(r[j]) - v[j]);
     }
 }
 

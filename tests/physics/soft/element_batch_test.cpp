@@ -2,7 +2,7 @@
 // element's wave is later than those of the earlier elements it touches, and a sweep of batches
 // gives what projecting the elements one after the other in the lattice's order with the scalar
 // functions of shape_matching.h gives, on deformed, turned and flat elements, rigid and soft,
-// with and without the volume constraint.
+// with and without the volume constraint, through the contiguous loads (a tyre's batches) and the gathers.
 #include "physics/soft/element_batch.h"
 #include "physics/soft/shape_matching.h"
 
@@ -54,7 +54,7 @@ struct Elements {
     std::vector<Quat> rotations;
     std::vector<double> scale2, compliance, volumeCompliance, lambda, volumeLambda, invMass;
 
-    Elements(const Lattice& lattice, bool byWave) : x(lattice.positions) {
+    Elements(const Lattice& lattice, bool byWave, bool someKeepVolume = true) : x(lattice.positions) {
         const std::vector<uint32_t> waves = elementWaves(lattice.elements, x.size());
         std::vector<size_t> order(lattice.elements.size());
         for (size_t k = 0; k < order.size(); ++k)
@@ -86,7 +86,7 @@ struct Elements {
             rotations.push_back(Quat::Identity());
             scale2.push_back(l2);
             compliance.push_back(k % 3 == 0 ? 0.0 : 1e-7 * double(k % 3));  // rigid and soft
-            volumeCompliance.push_back(k % 4 == 1 ? 1e-6 : -1.0);  // some keep their volume
+            volumeCompliance.push_back(someKeepVolume && k % 4 == 1 ? 1e-6 : -1.0);
             lambda.push_back(0.0);
             volumeLambda.push_back(0.0);
         }
@@ -135,11 +135,13 @@ void scalarSweep(Elements& s, double invH2) {
     }
 }
 
-TEST(ElementBatch, BatchesProjectLikeOneElementAfterTheOther) {
+/// Deforms the lattice, runs five sweeps of batches and of the scalar functions, and checks
+/// that they agree and moved the particles; returns the share of contiguous batches.
+double expectBatchesProjectLikeTheScalarSweep(const Lattice& lattice, bool someKeepVolume) {
     const double invH2 = 1200.0 * 1200.0;
-    for (const Lattice& lattice : lattices()) {
-        Elements batched(lattice, true);
-        Elements scalar(lattice, false);
+    {
+        Elements batched(lattice, true, someKeepVolume);
+        Elements scalar(lattice, false, someKeepVolume);
         // Deform: a turn of 0.3 rad (beyond one Newton step) on a sheared, squashed lattice,
         // a wobble per particle, and one element flattened to a plane.
         const Mat3 turn =
@@ -167,7 +169,7 @@ TEST(ElementBatch, BatchesProjectLikeOneElementAfterTheOther) {
         }
         double largest = 0.0;
         for (size_t i = 0; i < batched.x.size(); ++i) {
-            ASSERT_TRUE(batched.x[i].allFinite());
+            EXPECT_TRUE(batched.x[i].allFinite());
             largest = std::max(largest, (batched.x[i] - scalar.x[i]).norm());
         }
         EXPECT_LT(largest, 1e-9 * size) << lattice.elements.size() << " elements";
@@ -176,7 +178,30 @@ TEST(ElementBatch, BatchesProjectLikeOneElementAfterTheOther) {
         for (size_t i = 0; i < start.size(); ++i)
             moved = std::max(moved, (batched.x[i] - start[i]).norm());
         EXPECT_GT(moved, 1e-3 * size);
+        const auto contiguous = std::count_if(batches.begin(), batches.end(),
+                                              [](const ElementBatch& b) { return b.contiguous; });
+        return double(contiguous) / double(batches.size());
     }
+}
+
+TEST(ElementBatch, BatchesProjectLikeOneElementAfterTheOther) {
+    for (const Lattice& lattice : lattices())
+        expectBatchesProjectLikeTheScalarSweep(lattice, true);
+}
+
+TEST(ElementBatch, ContiguousBatchesProjectLikeOneElementAfterTheOther) {
+    // Without volume constraints, a tyre's batches of four load their corners as rows (the
+    // lattice stores each ring's even cells' particles, then the odd ones'); they must give
+    // the scalar sweep's result too.
+    for (const Lattice& lattice : lattices())
+        expectBatchesProjectLikeTheScalarSweep(lattice, false);
+    // The car's tyre: all but the batches at the ends of a ring (22 cells of a parity per
+    // ring: five batches of four and one of two shared with the next ring) are contiguous.
+    const double share =
+        expectBatchesProjectLikeTheScalarSweep(buildTyreLattice(0.3, 0.2, 0.15, {44, 5, 5}), false);
+    EXPECT_GT(share, 0.75);
+    // Any tyre with more than eight cells around has some.
+    EXPECT_GT(expectBatchesProjectLikeTheScalarSweep(buildTyreLattice(0.3, 0.2, 0.1, {9, 2, 1}), false), 0.0);
 }
 
 }  // namespace

@@ -1,9 +1,12 @@
-// Tests engine/physics/soft/rigid_mode.h: a particle set's moments against the closed forms of
-// point masses, and the momentum-keeping spin against its defining equation Rot(h ω) I ω = L.
+// Tests engine/physics/soft/rigid_mode.h and rigid_mode.cpp: a particle set's moments against the
+// closed forms of point masses, the momentum-keeping spin against its defining equation
+// Rot(h ω) I ω = L, and the passes in vector lanes against their formulas particle by particle,
+// for every count of particles left over after the blocks of four.
 #include "physics/soft/rigid_mode.h"
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <vector>
 
 namespace substep {
@@ -58,6 +61,99 @@ TEST(RigidMode, NoSpinForParticlesOnALine) {
     const Mat3 line = Vec3(0.0, 2.0, 2.0).asDiagonal();
     EXPECT_EQ(momentumKeepingSpin(line, Vec3(1, 1, 1), 1e-3), Vec3::Zero());
     EXPECT_EQ(momentumKeepingSpin(Mat3::Zero(), Vec3(1, 1, 1), 1e-3), Vec3::Zero());
+}
+
+/// Particles of uneven masses at uneven positions and velocities, 300 m from the origin.
+struct Particles {
+    std::vector<Vec3> x, xPrev, v, vPrev;
+    std::vector<double> m;
+    explicit Particles(int count) {
+        for (int i = 0; i < count; ++i) {
+            const double k = i + 1;
+            x.push_back(Vec3(300, -20, 7) + 0.1 * Vec3(std::sin(k), std::cos(2 * k), std::sin(3 * k)));
+            xPrev.push_back(x.back() + 1e-3 * Vec3(std::cos(5 * k), std::sin(7 * k), 0.5));
+            v.push_back(Vec3(std::sin(11 * k), 2 * std::cos(13 * k), -1.0));
+            vPrev.push_back(Vec3::Zero());
+            m.push_back(0.5 + 0.25 * (i % 3));
+        }
+    }
+};
+
+double distance(const Mat3& a, const Mat3& b) { return (a - b).norm(); }
+
+TEST(RigidMode, PassesInLanesMatchTheirFormulasForEveryRemainder) {
+    const Mat3 arc = 1e-3 * Quat(Eigen::AngleAxisd(0.7, Vec3(1, -2, 3).normalized())).toRotationMatrix();
+    const Mat3 spin = crossMatrix(Vec3(0.3, -4.0, 2.0));
+    const Mat3 turnBack = 2.0 * arc;
+    const Vec3 gravityStep(0, -0.01, 0), centre(300, -20, 7.01), centrePrev(300.001, -20, 7);
+    const double h = 1e-3;
+    for (int count = 1; count <= 9; ++count) {
+        // Moments and turn sums: the sums written out (each up to rounding, 1e-12 relative).
+        const Particles p(count);
+        const RigidModeMoments moments = rigidModeMoments(p.x.data(), p.v.data(), p.m.data(), count);
+        double mass = 0.0;
+        Vec3 first = Vec3::Zero(), momentum = Vec3::Zero();
+        for (int i = 0; i < count; ++i)
+            mass += p.m[i], first += p.m[i] * p.x[i], momentum += p.m[i] * p.v[i];
+        const Vec3 c = first / mass;
+        Vec3 angular = Vec3::Zero();
+        Mat3 inertia = Mat3::Zero();
+        for (int i = 0; i < count; ++i) {
+            const Vec3 r = p.x[i] - c;
+            angular += p.m[i] * r.cross(p.v[i]);
+            inertia += p.m[i] * (r.squaredNorm() * Mat3::Identity() - r * r.transpose());
+        }
+        EXPECT_NEAR(moments.mass, mass, 1e-14) << count;
+        EXPECT_LT((moments.centre - c).norm(), 1e-12) << count;
+        EXPECT_LT((moments.velocity - momentum / mass).norm(), 1e-14) << count;
+        EXPECT_LT((moments.angularMomentum - angular).norm(), 1e-11 * (1 + angular.norm())) << count;
+        EXPECT_LT(distance(moments.inertia, inertia), 1e-11 * (1e-6 + inertia.norm())) << count;
+
+        const Vec3 origin = p.xPrev[0];
+        const TurnSums sums = turnSums(p.x.data(), p.xPrev.data(), p.m.data(), count, origin);
+        TurnSums expected;
+        for (int i = 0; i < count; ++i) {
+            const Vec3 a = p.x[i] - origin, b = p.xPrev[i] - origin;
+            expected.mass += p.m[i];
+            expected.first += p.m[i] * a;
+            expected.firstPrev += p.m[i] * b;
+            expected.cross += p.m[i] * a * b.transpose();
+            expected.spread += p.m[i] * b.squaredNorm();
+        }
+        EXPECT_NEAR(sums.mass, expected.mass, 1e-14) << count;
+        EXPECT_LT((sums.first - expected.first).norm(), 1e-14) << count;
+        EXPECT_LT((sums.firstPrev - expected.firstPrev).norm(), 1e-14) << count;
+        EXPECT_LT(distance(sums.cross, expected.cross), 1e-14) << count;
+        EXPECT_NEAR(sums.spread, expected.spread, 1e-14) << count;
+
+        // Prediction and velocities: each particle's formula, to rounding (1e-15 m at 300 m
+        // from the origin is below its last bit); particles past `count` are never written.
+        Particles lanes(count + 1), scalar(count + 1);
+        predictOnArc(lanes.x.data(), lanes.xPrev.data(), lanes.v.data(), count, gravityStep, h, arc, centre);
+        for (int i = 0; i < count; ++i) {
+            scalar.xPrev[i] = scalar.x[i];
+            scalar.v[i] += gravityStep;
+            scalar.x[i] += h * scalar.v[i] + arc * (scalar.xPrev[i] - centre);
+        }
+        for (int i = 0; i <= count; ++i) {
+            EXPECT_LT((lanes.x[i] - scalar.x[i]).norm(), 1e-12) << count << " " << i;
+            EXPECT_LT((lanes.v[i] - scalar.v[i]).norm(), 1e-15) << count << " " << i;
+            EXPECT_EQ(lanes.xPrev[i], scalar.xPrev[i]) << count << " " << i;
+        }
+        const double invH = 1.0 / h;
+        deriveOnArc(lanes.x.data(), lanes.xPrev.data(), lanes.v.data(), lanes.vPrev.data(), count, invH, spin,
+                    centre, turnBack, centrePrev);
+        for (int i = 0; i < count; ++i) {
+            scalar.vPrev[i] = scalar.v[i];
+            scalar.v[i] = (scalar.x[i] - scalar.xPrev[i]) * invH + spin * (scalar.x[i] - centre) -
+                          turnBack * (scalar.xPrev[i] - centrePrev);
+        }
+        for (int i = 0; i <= count; ++i) {
+            EXPECT_LT((lanes.v[i] - scalar.v[i]).norm(), 1e-9) << count << " " << i;  // x/h: 1e-12 m / 1e-3 s
+            EXPECT_EQ(lanes.vPrev[i], scalar.vPrev[i]) << count << " " << i;
+        }
+        EXPECT_EQ(lanes.x[count], Particles(count + 1).x[count]);  // untouched
+    }
 }
 
 }  // namespace
