@@ -29,6 +29,7 @@
 #include "physics/contact.h"
 #include "physics/math.h"
 
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -40,11 +41,26 @@ struct BodyVelocity {
     Vec3 omega = Vec3::Zero();
 };
 
-/// Sets Contact::restitutionImpulse of every contact that pushed this substep (λ_n > 0) in a
-/// pair with restitution: the sum of the collision impulses it took in the sweeps (0 if none).
-/// Does nothing when no such contact pushed. `scratch` is reused across calls.
-void findRestitutionImpulses(std::span<const ContactPair> pairs, std::span<Contact> contacts,
+/// Storage the sweeps reuse from substep to substep (grown, never shrunk: no allocation once a
+/// world has settled). A body's entry in `velocities` is valid only while its `stamp` equals
+/// the current call's, so a call touches only the bodies a collision reaches.
+struct RestitutionScratch {
+    std::vector<BodyVelocity> velocities;  ///< per body: its velocities in the sweeps
+    std::vector<uint32_t> stamp;           ///< per body: the call that last set its entry
+    std::vector<int> changedIn;            ///< per body: the sweep its velocities last changed in
+    std::vector<uint32_t> pairs;           ///< the pairs the sweeps visit
+    std::vector<uint32_t> collidedIn;      ///< per body: the last call a collision reached it in
+    uint32_t call = 0;                     ///< this call's stamp
+    uint32_t lastCollision = 0;            ///< the last call with a collision (0: none yet)
+};
+
+/// Sets Contact::restitutionImpulse of every contact of a one-point pair with restitution that
+/// pushed this substep (λ_n > 0) and took part in a collision: the sum of its collision
+/// impulses. Returns whether any contact collided; when none approached faster than resting
+/// (2 |g| h, the paper's jitter guard) it returns false after one look at the pushing contacts,
+/// every restitutionImpulse stays 0 and the velocity pass is exactly the paper's.
+bool findRestitutionImpulses(std::span<const ContactPair> pairs, std::span<Contact> contacts,
                              const Body* bodies, size_t bodyCount, double h, double gravity,
-                             std::vector<BodyVelocity>& scratch);
+                             RestitutionScratch& scratch);
 
 }  // namespace substep

@@ -70,10 +70,10 @@ struct WorldSettings {
     JointProjection jointProjection = JointProjection::Paper;
     /// Restitution by sweeps of two-body collisions before the velocity pass
     /// (contact_restitution.h), so that an impact passes through a row of touching bodies
-    /// whatever their order. Off by default: in rolling_balls it lets marbles sink 1.5 mm into
-    /// the wires (0.3 mm without) and spoils the switch's alternation, which is not yet
-    /// understood; until then the paper's rule (Eq. 34) is what scenes use.
-    bool sweptRestitution = false;
+    /// whatever order they are listed in. Off: the paper's rule alone (Eq. 34), the scene
+    /// file's `"restitution": "paper"`. A substep in which no contact with restitution
+    /// approached faster than resting runs the paper's velocity pass either way.
+    bool sweptRestitution = true;
 };
 
 /// Where the last step's time went (ms), when WorldSettings::measureTime is on.
@@ -236,7 +236,7 @@ private:
     std::vector<double> reaches_;  ///< per body: its shape's reach (0: in no pair this frame)
     std::vector<Pose> poses_;      ///< per body: its shape's pose this substep
     std::vector<Contact> contacts_;
-    std::vector<BodyVelocity> restitutionVelocities_;  ///< scratch of the restitution sweeps
+    RestitutionScratch restitutionScratch_;  ///< reused by the restitution sweeps
     std::size_t droppedContactPairs_ = 0;
     /// Body pairs joined by a joint that does not let them collide, sorted; rebuilt when the
     /// joints change.
