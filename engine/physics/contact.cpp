@@ -408,35 +408,12 @@ inline void changePointVelocity(Body& b0, Body& b1, const PointResponse& s0, con
     }
 }
 
-/// The velocity pass for a pair with one point (Eq. 29, Eq. 30, Eq. 33, Eq. 34): restitution,
-/// then dynamic friction with the impulse clamped (ERRATA item 2). Fused: each change is
-/// applied along its unit direction with the generalised inverse mass computed once (the
-/// general Eq. 33 normalises the change and computes w again).
-void solveSinglePointVelocities(const ContactPair& pair, const Contact& c, Body& b0, Body& b1,
-                                double h, double gravity, bool swept) {
-    const Vec3& n = c.normal;
-    const Vec3 r0 = b0.q * c.local0;
-    const Vec3 r1 = b1.q * c.local1;
-    const Vec3 v = pointVelocity(b0.v, b0.omega, r0) - pointVelocity(b1.v, b1.omega, r1);  // Eq. 29
-    const double vn = v.dot(n);                                                               // Eq. 29
-    // v̄_n: Eq. 29 on the velocities before this substep's derivation (paper before Eq. 34).
-    const double vnBefore =
-        (pointVelocity(b0.vPrev, b0.omegaPrev, r0) - pointVelocity(b1.vPrev, b1.omegaPrev, r1)).dot(n);
-    double change = 0.0;
-    if (swept && (c.restitutionImpulse > 0.0 || (pair.restitution > 0.0 && !(-vnBefore > kRestingSpeed)))) {
-        // A collision (contact_restitution.h), or a push without approach (another contact's
-        // push carried through, or the overlap it left): the push's impulse λ_n / h is
-        // replaced by the collision's (none), so an impact passes through touching bodies in
-        // any order.
-        change = (c.restitutionImpulse - c.lambdaNormal / h) *
-                 (b0.positionalInverseMass(r0, n) + b1.positionalInverseMass(r1, n));
-    } else {
-        const double e = std::abs(vnBefore) <= 2.0 * gravity * h ? 0.0 : pair.restitution;
-        change = std::max(-e * vnBefore, 0.0) - vn;  // Eq. 34
-    }
-    if (std::abs(change) > kRestingSpeed)
-        changePointVelocity(b0, b1, pointResponse(b0, r0, n), pointResponse(b1, r1, n), n, change);  // Eq. 33
+/// Dynamic friction of a one-point pair (Eq. 29, Eq. 30, Eq. 33), with the impulse clamped
+/// (ERRATA item 2), after its normal velocity was set.
+void applySinglePointFriction(const ContactPair& pair, const Contact& c, Body& b0, Body& b1,
+                              const Vec3& r0, const Vec3& r1, double h) {
     if (!(pair.dynamicFriction > 0.0)) return;
+    const Vec3& n = c.normal;
     const Vec3 vAfter = pointVelocity(b0.v, b0.omega, r0) - pointVelocity(b1.v, b1.omega, r1);
     const Vec3 slip = vAfter - vAfter.dot(n) * n;  // Eq. 29: v_t
     const double slipSpeed = slip.norm();
@@ -448,6 +425,27 @@ void solveSinglePointVelocities(const ContactPair& pair, const Contact& c, Body&
     // changes the slip speed by at most that times w1 + w2; applied by Eq. 33.
     const double maxChange = pair.dynamicFriction * c.lambdaNormal / h * (s0.w + s1.w);
     changePointVelocity(b0, b1, s0, s1, t, -std::min(maxChange, slipSpeed));
+}
+
+/// The velocity pass for a pair with one point (Eq. 29, Eq. 30, Eq. 33, Eq. 34): restitution,
+/// then dynamic friction with the impulse clamped (ERRATA item 2). Fused: each change is
+/// applied along its unit direction with the generalised inverse mass computed once (the
+/// general Eq. 33 normalises the change and computes w again).
+void solveSinglePointVelocities(const ContactPair& pair, const Contact& c, Body& b0, Body& b1,
+                                double h, double gravity) {
+    const Vec3& n = c.normal;
+    const Vec3 r0 = b0.q * c.local0;
+    const Vec3 r1 = b1.q * c.local1;
+    const Vec3 v = pointVelocity(b0.v, b0.omega, r0) - pointVelocity(b1.v, b1.omega, r1);  // Eq. 29
+    const double vn = v.dot(n);                                                               // Eq. 29
+    // v̄_n: Eq. 29 on the velocities before this substep's derivation (paper before Eq. 34).
+    const double vnBefore =
+        (pointVelocity(b0.vPrev, b0.omegaPrev, r0) - pointVelocity(b1.vPrev, b1.omegaPrev, r1)).dot(n);
+    const double e = std::abs(vnBefore) <= 2.0 * gravity * h ? 0.0 : pair.restitution;
+    const double change = std::max(-e * vnBefore, 0.0) - vn;  // Eq. 34
+    if (std::abs(change) > kRestingSpeed)
+        changePointVelocity(b0, b1, pointResponse(b0, r0, n), pointResponse(b1, r1, n), n, change);  // Eq. 33
+    applySinglePointFriction(pair, c, b0, b1, r0, r1, h);
 }
 
 }  // namespace
@@ -547,13 +545,47 @@ void solveContactPositions(ContactPair& pair, std::span<Contact> contacts, Solve
     }
 }
 
+void solveCollisionVelocities(const ContactPair& pair, const Contact& c, Body* bodies, double h) {
+    Body& b0 = bodies[pair.body0];
+    Body& b1 = bodies[pair.body1];
+    const Vec3& n = c.normal;
+    const Vec3 r0 = b0.q * c.local0;
+    const Vec3 r1 = b1.q * c.local1;
+    const PointResponse s0 = pointResponse(b0, r0, n);  // Eq. 2
+    const PointResponse s1 = pointResponse(b1, r1, n);  // Eq. 3
+    // An impulse p changes the normal velocity by p w (Eq. 33 the other way round).
+    const double change = (c.restitutionImpulse - c.lambdaNormal / h) * (s0.w + s1.w);
+    if (std::abs(change) > kRestingSpeed) changePointVelocity(b0, b1, s0, s1, n, change);
+    applySinglePointFriction(pair, c, b0, b1, r0, r1, h);
+}
+
+namespace {
+
+/// After the collision pass: the approach a point of a one-point pair has left (its push's
+/// velocity removed, a support under gravity approaches by g h) is removed, Eq. 34 with e = 0;
+/// a point that separates is left alone.
+void removeApproach(const Contact& c, Body& b0, Body& b1) {
+    const Vec3& n = c.normal;
+    const Vec3 r0 = b0.q * c.local0;
+    const Vec3 r1 = b1.q * c.local1;
+    const double vn = (pointVelocity(b0.v, b0.omega, r0) - pointVelocity(b1.v, b1.omega, r1)).dot(n);  // Eq. 29
+    if (-vn > kRestingSpeed) changePointVelocity(b0, b1, pointResponse(b0, r0, n), pointResponse(b1, r1, n), n, -vn);
+}
+
+}  // namespace
+
 void solveContactVelocities(const ContactPair& pair, std::span<const Contact> contacts,
-                            Body* bodies, double h, double gravity, bool swept) {
+                            Body* bodies, double h, double gravity) {
     Body& b0 = bodies[pair.body0];
     Body& b1 = bodies[pair.body1];
     const int points = static_cast<int>(std::min<size_t>(contacts.size(), kMaxPatchPoints));
     if (points == 1) {
-        if (contacts[0].lambdaNormal > 0.0) solveSinglePointVelocities(pair, contacts[0], b0, b1, h, gravity, swept);
+        const Contact& c = contacts[0];
+        if (c.collisionPass) {
+            removeApproach(c, b0, b1);
+        } else if (c.lambdaNormal > 0.0) {
+            solveSinglePointVelocities(pair, c, b0, b1, h, gravity);
+        }
         return;
     }
     const auto pushed = [](const Contact& c) { return c.lambdaNormal > 0.0; };

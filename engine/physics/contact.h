@@ -45,9 +45,12 @@ struct Contact {
     Vec3 normal = Vec3::UnitY(); ///< world, from body 1 towards body 0
     double lambdaNormal = 0.0;   ///< this substep's normal multiplier
     uint32_t feature = 0;        ///< the narrowphase's feature id
+    /// Whether this substep's velocity pass gives this point (of a one-point pair) its
+    /// collision impulse in place of its push's λ_n / h: it collided in the restitution sweeps
+    /// or touches a body a collision reached (contact_restitution.h).
+    bool collisionPass = false;
     /// The collision impulse (N s, along the normal, on body 0) this point took in the
-    /// substep's restitution sweeps (contact_restitution.h); a one-point pair's velocity pass
-    /// gives it in place of its push's λ_n / h.
+    /// substep's restitution sweeps (contact_restitution.h); 0 if none.
     double restitutionImpulse = 0.0;
 };
 
@@ -87,13 +90,19 @@ double contactDepth(const Contact& contact, const Body& b0, const Body& b1);
 void solveContactPositions(ContactPair& pair, std::span<Contact> contacts, SolverContext& ctx);
 
 /// Velocity pass of one pair (paper 3.6, Eqs. 29-34): restitution e v̄_n (e = 0 below
-/// 2|g|h, the jitter guard) replaces the normal velocity PBD derived (a one-point pair that
-/// collided or pushed without approaching: contact_restitution.h's impulse replaces the
-/// push's), and dynamic friction
+/// 2|g|h, the jitter guard) replaces the normal velocity PBD derived, and dynamic friction
 /// removes slip with an impulse of at most h μ_d |f_n| (Eq. 30 with ERRATA item 2's units).
-/// Only points that pushed this substep (λ_n > 0) take part. `swept`: the collisions of
-/// contact_restitution.h were found this substep (WorldSettings::sweptRestitution).
+/// Only points that pushed this substep (λ_n > 0) take part. A one-point pair's point that
+/// took solveCollisionVelocities (Contact::collisionPass) only has an approach left removed
+/// (Eq. 34 with e = 0, never pulling).
 void solveContactVelocities(const ContactPair& pair, std::span<const Contact> contacts,
-                            Body* bodies, double h, double gravity, bool swept);
+                            Body* bodies, double h, double gravity);
+
+/// The collision pass of a one-point pair's point (Contact::collisionPass,
+/// contact_restitution.h): the push's impulse λ_n / h, which the derivation put into the
+/// velocities, is replaced by the collision impulse (0 if it did not collide), then dynamic
+/// friction as in solveContactVelocities. These changes add up in any order, so every such
+/// point takes this before solveContactVelocities, where Eq. 34 sets velocities.
+void solveCollisionVelocities(const ContactPair& pair, const Contact& contact, Body* bodies, double h);
 
 }  // namespace substep

@@ -19,7 +19,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <stdexcept>
 #include <string>
 
@@ -609,14 +608,19 @@ void World::solveVelocities(double h) {
             if (joint.alive && !sleeps(joint)) solveJointVelocities(joint, bodies_.data(), h);
     const double gravity = settings_.gravity.norm();
     // Collisions first, on the velocities before the derivation, so that an impact passes
-    // through touching bodies whatever their order (contact_restitution.h).
-    if (settings_.sweptRestitution)
-        findRestitutionImpulses(contactPairs_, contacts_, bodies_.data(), bodies_.size(), h, gravity,
-                                restitutionVelocities_);
+    // through touching bodies whatever their order (contact_restitution.h). Their impulses add
+    // up in any order, so they all go in before Eq. 34 sets the other contacts' velocities.
+    const bool collided = settings_.sweptRestitution &&
+                          findRestitutionImpulses(contactPairs_, contacts_, bodies_.data(), bodies_.size(), h,
+                                                  gravity, restitutionScratch_);
+    if (collided)
+        for (const ContactPair& pair : contactPairs_)
+            if (pair.count == 1 && contacts_[pair.first].collisionPass)
+                solveCollisionVelocities(pair, contacts_[pair.first], bodies_.data(), h);
     for (const ContactPair& pair : contactPairs_)
         if (pair.count > 0)
             solveContactVelocities(pair, std::span(contacts_).subspan(pair.first, pair.count),
-                                   bodies_.data(), h, gravity, settings_.sweptRestitution);
+                                   bodies_.data(), h, gravity);
 }
 
 JointReadout World::jointReadout(JointId id) const {

@@ -19,7 +19,9 @@ std::size_t WorldSnapshot::bytes() const {
     return sizeof(*this) + heapBytes(bodies_) + heapBytes(freeBodies_) + heapBytes(joints_) +
            heapBytes(freeJoints_) + heapBytes(contactPairs_) + heapBytes(previousPairs_) +
            heapBytes(reaches_) + heapBytes(poses_) + heapBytes(contacts_) +
-           heapBytes(jointExclusions_) + bodies_.size() * perBodyExtra +
+           heapBytes(jointExclusions_) + heapBytes(restitution_.velocities) + heapBytes(restitution_.stamp) +
+           heapBytes(restitution_.changedIn) + heapBytes(restitution_.collidedIn) + heapBytes(restitution_.pairs) +
+           bodies_.size() * perBodyExtra +
            (soft_ ? soft_->elementCount() * 256 : 0);
 }
 
@@ -43,6 +45,7 @@ WorldSnapshot World::snapshot() const {
     s.anyDamping_ = anyDamping_;
     s.repairPending_ = repairPending_;
     s.sleep_ = sleep_;
+    s.restitution_ = restitutionScratch_;
     if (soft_) s.soft_ = *soft_;
     return s;
 }
@@ -72,6 +75,7 @@ void World::restore(const WorldSnapshot& s) {
     anyDamping_ = s.anyDamping_;
     repairPending_ = s.repairPending_;
     sleep_ = s.sleep_;
+    restitutionScratch_ = s.restitution_;
     if (s.soft_) {
         if (soft_)
             *soft_ = *s.soft_;

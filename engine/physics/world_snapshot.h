@@ -47,6 +47,9 @@ class WorldSnapshot {
     bool anyDamping_ = false;
     bool repairPending_ = false;
     SleepIslands sleep_;  ///< rest times, asleep flags and islands (WorldSettings::sleeping)
+    /// Which bodies a collision reached lately (contact_restitution.h): the next substeps'
+    /// velocity pass depends on it.
+    RestitutionScratch restitution_;
     std::optional<SoftSystem> soft_;  ///< empty when the world had no soft system
 };
 

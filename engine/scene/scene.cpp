@@ -43,7 +43,8 @@ SceneInstance buildScene(const SceneDescription& description) {
                                                .substeps = description.substeps,
                                                .iterations = description.iterations,
                                                .sleeping = description.sleeping,
-                                               .jointProjection = description.jointProjection}));
+                                               .jointProjection = description.jointProjection,
+                                               .sweptRestitution = description.sweptRestitution}));
     ecs::Registry& registry = instance.registry;
 
     // One entity per body, in order; named ones are remembered for joints.

@@ -57,6 +57,8 @@ struct SceneDescription {
     bool sleeping = false;  ///< islands at rest stop being simulated (WorldSettings::sleeping)
     /// WorldSettings::jointProjection (the file's `joint_projection`).
     JointProjection jointProjection = WorldSettings{}.jointProjection;
+    /// WorldSettings::sweptRestitution (the file's `restitution`: "swept" or "paper").
+    bool sweptRestitution = WorldSettings{}.sweptRestitution;
     std::vector<SceneBody> bodies;
     std::vector<SceneJoint> joints;
     std::vector<SceneSoftBody> softBodies;

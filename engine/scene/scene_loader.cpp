@@ -68,7 +68,7 @@ struct FileCloser {
 std::vector<std::string> topLevelKeys() {
     std::vector<std::string> allowed = {
         "substep_scene", "name", "description", "gravity", "dt", "substeps", "iterations", "sleeping",
-        "joint_projection"};
+        "joint_projection", "restitution"};
     for (const SceneSection& section : kSceneSections)
         allowed.emplace_back(section.key);
     return allowed;
@@ -151,6 +151,14 @@ SceneDescription readScene(const Validator& v, const Json& root) {
         const std::optional<JointProjection> projection = jointProjectionFromName(name);
         if (!projection) v.fail(p->path, "expected \"paper\" or \"start\", got \"" + name + "\"");
         scene.jointProjection = *projection;
+    }
+    // Extension: restitution by sweeps of two-body collisions, or the paper's Eq. 34 alone
+    // (WorldSettings::sweptRestitution).
+    if (auto r = top.get("restitution")) {
+        const std::string name = v.string(*r);
+        if (name != "swept" && name != "paper")
+            v.fail(r->path, "expected \"swept\" or \"paper\", got \"" + name + "\"");
+        scene.sweptRestitution = name == "swept";
     }
 
     SceneReading reading{v, scene, {}, {}};

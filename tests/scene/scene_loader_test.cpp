@@ -253,7 +253,7 @@ TEST(SceneLoader, TopLevelKeysAreListedInOrder) {
     // The world settings, then the section readers' keys in their table's order.
     EXPECT_TRUE(failsAt(scene(R"("zzz": 1)"), "zzz",
                         "unknown key (expected substep_scene, name, description, gravity, dt, "
-                        "substeps, iterations, sleeping, joint_projection, bodies, joints, soft_bodies or "
+                        "substeps, iterations, sleeping, joint_projection, restitution, bodies, joints, soft_bodies or "
                         "camera)"));
 }
 
@@ -276,6 +276,20 @@ TEST(SceneLoader, JointProjectionIsPaperOrStart) {
     EXPECT_TRUE(failsAt(scene(R"("joint_projection": "Start")"), "joint_projection",
                         "expected \"paper\" or \"start\", got \"Start\""));
     EXPECT_TRUE(failsAt(scene(R"("joint_projection": 1)"), "joint_projection", "must be a string, got 1"));
+}
+
+TEST(SceneLoader, RestitutionIsThePapersByDefaultOrSwept) {
+    EXPECT_FALSE(parseSceneText(scene(""), "s.json").sweptRestitution);
+    EXPECT_TRUE(parseSceneText(scene(R"("restitution": "swept")"), "s.json").sweptRestitution);
+    EXPECT_FALSE(parseSceneText(scene(R"("restitution": "paper")"), "s.json").sweptRestitution);
+    EXPECT_TRUE(failsAt(scene(R"("restitution": "Paper")"), "restitution",
+                        "expected \"swept\" or \"paper\", got \"Paper\""));
+    // A coefficient belongs on a body; at the top it is an error, not a silent default.
+    EXPECT_TRUE(failsAt(scene(R"("restitution": 0.5)"), "restitution", "must be a string, got 0.5"));
+    // The world built from the scene uses what the file chose.
+    EXPECT_FALSE(buildScene(parseSceneText(scene(R"("restitution": "paper")"), "t.json")).world().settings().sweptRestitution);
+    EXPECT_TRUE(buildScene(parseSceneText(scene(R"("restitution": "swept")"), "t.json")).world().settings().sweptRestitution);
+    EXPECT_FALSE(buildScene(parseSceneText(scene(""), "t.json")).world().settings().sweptRestitution);
 }
 
 TEST(SceneLoader, SectionsAreReadInTheirOrderNotTheFiles) {
