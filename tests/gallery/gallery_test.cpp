@@ -34,7 +34,7 @@ std::vector<std::string> sceneNames() {
 }
 
 INSTANTIATE_TEST_SUITE_P(Builtin, GalleryScene, testing::ValuesIn(sceneNames()),
-                         [](const testing::TestParamInfo<std::string>& info) { return info.param; });
+                         [](const testing::TestParamInfo<std::string>& paramInfo) { return paramInfo.param; });
 
 }  // namespace
 }  // namespace substep

@@ -121,8 +121,8 @@ std::vector<std::string> sceneNames() {
 }
 
 INSTANTIATE_TEST_SUITE_P(Builtin, LiveSceneSubsteps, testing::ValuesIn(sceneNames()),
-                         [](const testing::TestParamInfo<std::string>& info) {
-                             return info.param;
+                         [](const testing::TestParamInfo<std::string>& paramInfo) {
+                             return paramInfo.param;
                          });
 
 }  // namespace

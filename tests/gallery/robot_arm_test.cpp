@@ -135,7 +135,7 @@ TEST_P(RobotArmReach, GripperMeetsAReachableTargetWithinAMillimetre) {
 INSTANTIATE_TEST_SUITE_P(Poses, RobotArmReach,
                          testing::Values(ArmPose{0.3, -0.4, -1.6}, ArmPose{-1.2, -0.9, -1.0}, ArmPose{1.4, 0.3, -2.2},
                                          ArmPose{-0.6, -1.1, -0.6}, ArmPose{0.9, -0.6, -1.0}),
-                         [](const testing::TestParamInfo<ArmPose>& info) { return "pose" + std::to_string(info.index); });
+                         [](const testing::TestParamInfo<ArmPose>& paramInfo) { return "pose" + std::to_string(paramInfo.index); });
 
 TEST_F(RobotArm, JointLimitsHoldWhereverTheTargetGoes) {
     // The default path leaves the reach and the yaw range and comes back.

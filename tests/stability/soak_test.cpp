@@ -114,7 +114,7 @@ std::vector<SoakScene> everyScene() {
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, Soak, ::testing::ValuesIn(everyScene()),
-                         [](const ::testing::TestParamInfo<SoakScene>& info) { return info.param.name; });
+                         [](const ::testing::TestParamInfo<SoakScene>& paramInfo) { return paramInfo.param.name; });
 
 }  // namespace
 }  // namespace substep
