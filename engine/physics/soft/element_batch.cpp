@@ -30,27 +30,27 @@ static_assert(sizeof(Quat) == 4 * sizeof(double), "rotations are read as packed 
 [[gnu::always_inline]] inline void loadRotations(const double* p, Lanes& w, Lanes& x, Lanes& y, Lanes& z) {
     Lanes q0, q1, q2, q3;
     load(q0, p), load(q1, p + 4), load(q2, p + 8), load(q3, p + 12);
-    const Lanes lo01 = __builtin_shuffle(q0, q1, LaneIndex{0, 4, 1, 5});  // x0 x1 y0 y1
-    const Lanes lo23 = __builtin_shuffle(q2, q3, LaneIndex{0, 4, 1, 5});
-    const Lanes hi01 = __builtin_shuffle(q0, q1, LaneIndex{2, 6, 3, 7});  // z0 z1 w0 w1
-    const Lanes hi23 = __builtin_shuffle(q2, q3, LaneIndex{2, 6, 3, 7});
-    x = __builtin_shuffle(lo01, lo23, LaneIndex{0, 1, 4, 5});
-    y = __builtin_shuffle(lo01, lo23, LaneIndex{2, 3, 6, 7});
-    z = __builtin_shuffle(hi01, hi23, LaneIndex{0, 1, 4, 5});
-    w = __builtin_shuffle(hi01, hi23, LaneIndex{2, 3, 6, 7});
+    const Lanes lo01 = __builtin_shufflevector(q0, q1, 0, 4, 1, 5);  // x0 x1 y0 y1
+    const Lanes lo23 = __builtin_shufflevector(q2, q3, 0, 4, 1, 5);
+    const Lanes hi01 = __builtin_shufflevector(q0, q1, 2, 6, 3, 7);  // z0 z1 w0 w1
+    const Lanes hi23 = __builtin_shufflevector(q2, q3, 2, 6, 3, 7);
+    x = __builtin_shufflevector(lo01, lo23, 0, 1, 4, 5);
+    y = __builtin_shufflevector(lo01, lo23, 2, 3, 6, 7);
+    z = __builtin_shufflevector(hi01, hi23, 0, 1, 4, 5);
+    w = __builtin_shufflevector(hi01, hi23, 2, 3, 6, 7);
 }
 
 /// The inverse of loadRotations.
 [[gnu::always_inline]] inline void storeRotations(double* p, const Lanes& w, const Lanes& x, const Lanes& y,
                                                   const Lanes& z) {
-    const Lanes xy01 = __builtin_shuffle(x, y, LaneIndex{0, 4, 1, 5});  // x0 y0 x1 y1
-    const Lanes xy23 = __builtin_shuffle(x, y, LaneIndex{2, 6, 3, 7});
-    const Lanes zw01 = __builtin_shuffle(z, w, LaneIndex{0, 4, 1, 5});
-    const Lanes zw23 = __builtin_shuffle(z, w, LaneIndex{2, 6, 3, 7});
-    const Lanes q0 = __builtin_shuffle(xy01, zw01, LaneIndex{0, 1, 4, 5});
-    const Lanes q1 = __builtin_shuffle(xy01, zw01, LaneIndex{2, 3, 6, 7});
-    const Lanes q2 = __builtin_shuffle(xy23, zw23, LaneIndex{0, 1, 4, 5});
-    const Lanes q3 = __builtin_shuffle(xy23, zw23, LaneIndex{2, 3, 6, 7});
+    const Lanes xy01 = __builtin_shufflevector(x, y, 0, 4, 1, 5);  // x0 y0 x1 y1
+    const Lanes xy23 = __builtin_shufflevector(x, y, 2, 6, 3, 7);
+    const Lanes zw01 = __builtin_shufflevector(z, w, 0, 4, 1, 5);
+    const Lanes zw23 = __builtin_shufflevector(z, w, 2, 6, 3, 7);
+    const Lanes q0 = __builtin_shufflevector(xy01, zw01, 0, 1, 4, 5);
+    const Lanes q1 = __builtin_shufflevector(xy01, zw01, 2, 3, 6, 7);
+    const Lanes q2 = __builtin_shufflevector(xy23, zw23, 0, 1, 4, 5);
+    const Lanes q3 = __builtin_shufflevector(xy23, zw23, 2, 3, 6, 7);
     std::memcpy(p, &q0, sizeof q0), std::memcpy(p + 4, &q1, sizeof q1);
     std::memcpy(p + 8, &q2, sizeof q2), std::memcpy(p + 12, &q3, sizeof q3);
 }
