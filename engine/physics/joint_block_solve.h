@@ -69,13 +69,13 @@ public:
     size_t clusterCount() const { return clusters_.size(); }
     /// Whether joint `index` is solved in a cluster (its Gauss-Seidel projection is skipped).
     bool clustered(uint32_t index) const { return index < clusterOf_.size() && clusterOf_[index] != kNoCluster; }
-    /// In the world's pass over the joints, at clustered joint `index`: one block solve of its
-    /// cluster when it is the cluster's first joint, so that a cluster takes the place of its
-    /// first joint in the Gauss-Seidel order; nothing at its other joints.
     /// Whether clustered joint `index` is its cluster's first, where solveAt solves the cluster.
     bool leadsCluster(uint32_t index) const {
         return clusterJoints_[clusters_[clusterOf_[index]].firstJoint] == index;
     }
+    /// In the world's pass over the joints, at clustered joint `index`: one block solve of its
+    /// cluster when it is the cluster's first joint, so that a cluster takes the place of its
+    /// first joint in the Gauss-Seidel order; nothing at its other joints.
     void solveAt(SolverContext& ctx, std::span<Joint> joints, uint32_t index) {
         if (leadsCluster(index)) solveCluster(ctx, joints, clusters_[clusterOf_[index]]);
     }
