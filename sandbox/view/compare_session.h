@@ -72,8 +72,10 @@ class CompareSession {
     void advance(double wallSeconds);
     /// One frame of the scene's dt in every run (a run whose state turned non-finite stays put).
     void stepOnce();
-    /// Pauses and steps every run by one substep of its current frame, drawing what each
-    /// constraint corrected (ViewSession::stepSubstep). Playing again stops the recording.
+    /// Pauses and steps one substep, drawing what each constraint corrected
+    /// (ViewSession::stepSubstep). In compare mode the run with the most substeps per frame
+    /// steps one, and each other run the substeps that end by then, so the runs stay at the same
+    /// moment and end each frame together. Playing again stops the recording.
     void stepSubstep();
     /// Pauses and moves every run by `frames` through its timeline (timeline.h): back through
     /// the kept states, forward through them and, past the newest, by new steps.
