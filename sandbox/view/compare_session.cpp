@@ -159,8 +159,10 @@ void CompareSession::stepSubstep() {
         if (!run(index).finite()) continue;
         if (lead == runs_.size() || substepsOfFrame(run(index)) > substepsOfFrame(run(lead))) lead = index;
     }
+    steppedLastSubstep_.assign(runs_.size(), false);
     if (lead == runs_.size()) return;
     run(lead).stepSubstep();
+    steppedLastSubstep_[lead] = true;
     const long long frame = run(lead).frame();
     const long long leadSubsteps = substepsOfFrame(run(lead));
     const long long leadDone = substepsDone(run(lead));
@@ -179,6 +181,7 @@ void CompareSession::stepSubstep() {
             const long long before = other.frame() * 100000 + substepsDone(other);
             other.stepSubstep();
             if (other.frame() * 100000 + substepsDone(other) == before) break;  // it could not step
+            steppedLastSubstep_[index] = true;
         }
     }
 }

@@ -278,9 +278,13 @@ void drawCorrectionList(CompareSession& session) {
         const ViewSession& run = session.run(index);
         if (run.correctionsSubstep() == 0) continue;
         ImGui::Separator();
-        if (session.comparing())
+        if (session.comparing()) {
             ImGui::TextColored(ImVec4(0.7f, 0.85f, 1.0f, 1.0f), "%s run (%d x %d)", index == 0 ? "left" : "right",
                                run.controls().substeps, run.controls().iterations);
+            if (!session.steppedLastSubstep(index))
+                ImGui::TextWrapped("not stepped: its next substep ends after the other run's; its last one's "
+                                   "corrections:");
+        }
         drawRunCorrections(run);
     }
 }

@@ -170,6 +170,8 @@ TEST_P(CompareSubsteps, OneSubstepKeepsBothRunsAtTheSameMoment) {
             const int substeps = index == 0 ? left : right;
             // The substeps that end by the finest run's moment press / most.
             const int done = press * substeps / most;
+            const int doneBefore = (press - 1) * substeps / most;
+            EXPECT_EQ(session.steppedLastSubstep(index), done != doneBefore) << "run " << index << ", press " << press;
             if (press < most) {
                 EXPECT_EQ(run.frame(), 5) << "run " << index << ", press " << press;
                 EXPECT_EQ(run.frameOpen() ? run.frameSubstepsDone() : 0, done)
