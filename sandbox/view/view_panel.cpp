@@ -255,7 +255,9 @@ void drawRunCorrections(const ViewSession& run) {
         listEntries(entries, 12);
     }
     if (!run.softCorrections().empty()) {
-        ImGui::TextDisabled("particles: lime elements, sand attachments, blue contacts, pink bounce and friction");
+        ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+        ImGui::TextWrapped("particles: lime elements, sand attachments, blue contacts, pink bounce and friction");
+        ImGui::PopStyleColor();
         for (const SoftStageEntry& entry : run.softCorrections()) {
             const render::Colour colour = softStageColour(entry.stage);
             ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(colour.x(), colour.y(), colour.z(), 1.0f));
