@@ -310,7 +310,12 @@ bool World::substep() {
     if (soft) soft_->deriveVelocities(h);
     lap(stepTimes_.integrate);
     if (settings_.velocityPass && (anyDamping_ || !contacts_.empty())) solveVelocities(h);
-    if (soft && settings_.velocityPass) soft_->solveVelocities(bodies_.data(), h, settings_.gravity.norm());
+    if (soft && settings_.velocityPass) {
+        if (corrections_) [[unlikely]]
+            corrections_->solveSoftVelocitiesRecorded(*soft_, bodies_.data(), bodies_.size(), h, settings_.gravity.norm());
+        else
+            soft_->solveVelocities(bodies_.data(), h, settings_.gravity.norm());
+    }
     lap(stepTimes_.velocities);
     ++frame_.done;
     return true;
@@ -566,7 +571,10 @@ void World::solvePositions(double h) {
                 solveContactPositions(pair, std::span(contacts_).subspan(pair.first, pair.count), ctx);
     }
     // Soft bodies after the rigid ones: elements, attachments, then their contacts.
-    if (hasSoftBodies()) soft_->solvePositions(ctx);
+    if (hasSoftBodies()) {
+        if (corrections_) [[unlikely]] corrections_->solveSoftRecorded(*soft_, bodies_.size(), ctx);
+        else soft_->solvePositions(ctx);
+    }
     // Jacobi: every constraint saw the iteration's starting state; the gathered corrections
     // are summed. Averaging them, or splitting a body's mass among its joints, shifts the fixed
     // point: the joints' λ then no longer balance the weights they carry.
@@ -603,24 +611,50 @@ void World::deriveVelocities(double h) {
 }
 
 void World::solveVelocities(double h) {
-    if (anyDamping_)
-        for (const Joint& joint : joints_)
-            if (joint.alive && !sleeps(joint)) solveJointVelocities(joint, bodies_.data(), h);
-    const double gravity = settings_.gravity.norm();
-    // Collisions first, on the velocities before the derivation, so that an impact passes
-    // through touching bodies whatever their order (contact_restitution.h). Their impulses add
-    // up in any order, so they all go in before Eq. 34 sets the other contacts' velocities.
-    const bool collided = settings_.sweptRestitution &&
-                          findRestitutionImpulses(contactPairs_, contacts_, bodies_.data(), bodies_.size(), h,
-                                                  gravity, restitutionScratch_);
-    if (collided)
-        for (const ContactPair& pair : contactPairs_)
-            if (pair.count == 1 && contacts_[pair.first].collisionPass)
-                solveCollisionVelocities(pair, contacts_[pair.first], bodies_.data(), h);
-    for (const ContactPair& pair : contactPairs_)
-        if (pair.count > 0)
-            solveContactVelocities(pair, std::span(contacts_).subspan(pair.first, pair.count),
-                                   bodies_.data(), h, gravity);
+    // `around(kind, index, body0, body1, solve)` runs one constraint's velocity solve: plainly,
+    // or while recording (the viewer's substep stepping) with its velocity change kept. The
+    // pass is written once and compiled twice, so the plain one pays nothing for it.
+    const auto pass = [&](const auto& around) {
+        if (anyDamping_)
+            for (uint32_t j = 0; j < joints_.size(); ++j) {
+                const Joint& joint = joints_[j];
+                if (joint.alive && !sleeps(joint))
+                    around(ConstraintKind::Joint, j, joint.body0, joint.body1,
+                           [&] { solveJointVelocities(joint, bodies_.data(), h); });
+            }
+        const double gravity = settings_.gravity.norm();
+        // Collisions first, on the velocities before the derivation, so that an impact passes
+        // through touching bodies whatever their order (contact_restitution.h). Their impulses add
+        // up in any order, so they all go in before Eq. 34 sets the other contacts' velocities.
+        const bool collided = settings_.sweptRestitution &&
+                              findRestitutionImpulses(contactPairs_, contacts_, bodies_.data(), bodies_.size(), h,
+                                                      gravity, restitutionScratch_);
+        if (collided)
+            for (uint32_t p = 0; p < contactPairs_.size(); ++p) {
+                const ContactPair& pair = contactPairs_[p];
+                if (pair.count == 1 && contacts_[pair.first].collisionPass)
+                    around(ConstraintKind::Contact, p, pair.body0, pair.body1,
+                           [&] { solveCollisionVelocities(pair, contacts_[pair.first], bodies_.data(), h); });
+            }
+        for (uint32_t p = 0; p < contactPairs_.size(); ++p) {
+            const ContactPair& pair = contactPairs_[p];
+            if (pair.count > 0)
+                around(ConstraintKind::Contact, p, pair.body0, pair.body1, [&] {
+                    solveContactVelocities(pair, std::span(contacts_).subspan(pair.first, pair.count),
+                                           bodies_.data(), h, gravity);
+                });
+        }
+    };
+    if (corrections_) [[unlikely]] {
+        pass([&](ConstraintKind kind, uint32_t index, uint32_t body0, uint32_t body1, const auto& solve) {
+            const SubstepCorrections::VelocitiesBefore before =
+                SubstepCorrections::captureVelocities(bodies_.data(), body0, body1);
+            solve();
+            corrections_->recordVelocities(bodies_.data(), kind, index, body0, body1, before);
+        });
+    } else {
+        pass([](ConstraintKind, uint32_t, uint32_t, uint32_t, const auto& solve) { solve(); });
+    }
 }
 
 JointReadout World::jointReadout(JointId id) const {

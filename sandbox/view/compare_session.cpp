@@ -134,10 +134,56 @@ void CompareSession::stepOnce() {
     if (!anyFinite) playback_.playing = false;
 }
 
+namespace {
+
+/// The substeps of the frame a run is in, or of the next one it begins.
+int substepsOfFrame(const ViewSession& run) {
+    return run.frameOpen() ? run.frameSubsteps() : std::max(run.world().settings().substeps, 1);
+}
+
+/// Where a run is within its frame: substeps done (0 between frames).
+int substepsDone(const ViewSession& run) { return run.frameOpen() ? run.frameSubstepsDone() : 0; }
+
+}  // namespace
+
 void CompareSession::stepSubstep() {
     playback_.playing = false;
     pendingSeconds_ = 0.0;
-    for (const std::unique_ptr<ViewSession>& each : runs_) each->stepSubstep();
+    // The run with the most substeps per frame (the shortest h) leads and steps one substep;
+    // every other run steps each of its substeps once the lead has reached that substep's end.
+    // The runs then show the same moment (or the last substep each finished before it), and
+    // reach every frame's end together: 20 x 1 against 1 x 20 steps the right run's one
+    // substep with the left's twentieth.
+    std::size_t lead = runs_.size();
+    for (std::size_t index = 0; index < runs_.size(); ++index) {
+        if (!run(index).finite()) continue;
+        if (lead == runs_.size() || substepsOfFrame(run(index)) > substepsOfFrame(run(lead))) lead = index;
+    }
+    steppedLastSubstep_.assign(runs_.size(), false);
+    if (lead == runs_.size()) return;
+    run(lead).stepSubstep();
+    steppedLastSubstep_[lead] = true;
+    const long long frame = run(lead).frame();
+    const long long leadSubsteps = substepsOfFrame(run(lead));
+    const long long leadDone = substepsDone(run(lead));
+    for (std::size_t index = 0; index < runs_.size(); ++index) {
+        if (index == lead) continue;
+        ViewSession& other = run(index);
+        // Bounded: a frame has at most the solver's largest substep count.
+        for (int guard = 0; guard < 100000 && other.finite(); ++guard) {
+            if (other.frame() > frame) break;
+            if (other.frame() == frame) {
+                const long long substeps = substepsOfFrame(other);
+                // Its next substep ends at (done + 1) / substeps of the frame; the lead is at
+                // leadDone / leadSubsteps.
+                if ((substepsDone(other) + 1) * leadSubsteps > leadDone * substeps) break;
+            }
+            const long long before = other.frame() * 100000 + substepsDone(other);
+            other.stepSubstep();
+            if (other.frame() * 100000 + substepsDone(other) == before) break;  // it could not step
+            steppedLastSubstep_[index] = true;
+        }
+    }
 }
 
 void CompareSession::scrubBy(long long frames) {

@@ -72,9 +72,16 @@ class CompareSession {
     void advance(double wallSeconds);
     /// One frame of the scene's dt in every run (a run whose state turned non-finite stays put).
     void stepOnce();
-    /// Pauses and steps every run by one substep of its current frame, drawing what each
-    /// constraint corrected (ViewSession::stepSubstep). Playing again stops the recording.
+    /// Pauses and steps one substep, drawing what each constraint corrected
+    /// (ViewSession::stepSubstep). In compare mode the run with the most substeps per frame
+    /// steps one, and each other run the substeps that end by then, so the runs stay at the same
+    /// moment and end each frame together. Playing again stops the recording.
     void stepSubstep();
+    /// Whether run `index` stepped a substep at the last stepSubstep (in compare mode a run
+    /// with fewer substeps waits for the moment its next one ends).
+    bool steppedLastSubstep(std::size_t index) const {
+        return index < steppedLastSubstep_.size() && steppedLastSubstep_[index];
+    }
     /// Pauses and moves every run by `frames` through its timeline (timeline.h): back through
     /// the kept states, forward through them and, past the newest, by new steps.
     void scrubBy(long long frames);
@@ -127,6 +134,7 @@ class CompareSession {
     CompareSplits splits_ = kPaperCompareSplits;
     std::vector<std::unique_ptr<ViewSession>> runs_;
     double pendingSeconds_ = 0.0;  ///< simulated time owed to real time, less than one dt
+    std::vector<bool> steppedLastSubstep_;  ///< per run, at the last stepSubstep
 };
 
 }  // namespace substep::view

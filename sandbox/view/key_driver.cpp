@@ -38,22 +38,20 @@ bool anyHeld(const std::string& keys) {
     return false;
 }
 
-bool listed(const std::string& keys, int key) {
-    std::istringstream names(keys);
-    std::string name;
-    while (names >> name)
-        if (keyCode(name) == key) return true;
-    return false;
-}
-
 }  // namespace
 
-bool KeyDriver::binds(CompareSession& session, int key) const {
+std::vector<int> KeyDriver::boundKeys(CompareSession& session) const {
+    std::vector<int> keys;
     const SceneScript* script = session.first().script();
-    if (script == nullptr) return false;
+    if (script == nullptr) return keys;
     for (const SceneKeyAxis& axis : script->keyAxes())
-        if (listed(axis.positiveKeys, key) || listed(axis.negativeKeys, key)) return true;
-    return false;
+        for (const std::string* names : {&axis.positiveKeys, &axis.negativeKeys}) {
+            std::istringstream words(*names);
+            std::string name;
+            while (words >> name)
+                if (const int code = keyCode(name); code != GLFW_KEY_UNKNOWN) keys.push_back(code);
+        }
+    return keys;
 }
 
 void KeyDriver::update(CompareSession& session) {
@@ -62,6 +60,9 @@ void KeyDriver::update(CompareSession& session) {
         applied_.clear();
         return;
     }
+    // Paused, the keys are the window's: nothing is driven, nothing let go (a knob put back to
+    // rest now would start a new history at the paused frame).
+    if (!session.playback().playing) return;
     const std::span<const SceneKeyAxis> axes = script->keyAxes();
     applied_.resize(axes.size(), std::numeric_limits<double>::quiet_NaN());
     const bool keyboard = !ImGui::GetIO().WantCaptureKeyboard;

@@ -297,7 +297,10 @@ ViewAppResult runViewApp(SceneSource source, const ViewAppOptions& options) {
             session.advance(wallSeconds);
         }
 
-        const KeyActions keys = keyActions(events, io.WantTextInput);
+        // Keys the scene drives with (the RC car's WASD and arrows) drive it while it plays and
+        // are the window's while it is paused (view_controls.h).
+        const std::vector<int> drivenKeys = keyDriver.boundKeys(session);
+        const KeyActions keys = keyActions(events, io.WantTextInput, session.playback().playing, drivenKeys);
         PanelRequests requests;
         if (keys.toggleUi % 2 != 0) {
             panelShown = !panelShown;
@@ -310,19 +313,11 @@ ViewAppResult runViewApp(SceneSource source, const ViewAppOptions& options) {
         if (helpShown) drawHelpOverlay(area);
         if (keys.togglePlay % 2 != 0) session.playback().playing = !session.playback().playing;
         requests.restart |= keys.restart;
-        // S steps a frame and Left/Right scrub the timeline, unless the scene drives knobs
-        // with them (the RC car's WASD and arrows).
-        if (!keyDriver.binds(session, GLFW_KEY_S))
-            for (int step = 0; step < keys.steps; ++step) session.stepOnce();
-        if (keys.scrub != 0 && !keyDriver.binds(session, GLFW_KEY_LEFT)) session.scrubBy(keys.scrub);
+        for (int step = 0; step < keys.steps; ++step) session.stepOnce();
+        if (keys.scrub != 0) session.scrubBy(keys.scrub);
         for (int substep = 0; substep < keys.substeps; ++substep) session.stepSubstep();
         keyDriver.update(session);
-        // B, M and V toggle the bodies' debug layers, unless the scene drives knobs with them.
-        KeyActions layerKeys = keys;
-        if (keyDriver.binds(session, GLFW_KEY_B)) layerKeys.toggleBounds = 0;
-        if (keyDriver.binds(session, GLFW_KEY_M)) layerKeys.toggleCentresOfMass = 0;
-        if (keyDriver.binds(session, GLFW_KEY_V)) layerKeys.toggleVelocities = 0;
-        if (toggleLayersByKey(layerKeys, session.first().controls().drawing)) session.applyDrawingOptions();
+        if (toggleLayersByKey(keys, session.first().controls().drawing)) session.applyDrawingOptions();
         if (keys.resetCamera || keys.restart) camera = OrbitCamera(session.startCamera());
 
         if (requests.loadScene) {

@@ -2,6 +2,7 @@
 
 #include <GLFW/glfw3.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 
@@ -9,7 +10,7 @@ namespace substep::view {
 
 namespace {
 
-constexpr std::array<ControlHelp, 19> kControls{{
+constexpr std::array<ControlHelp, 20> kControls{{
     {"Space", "play / pause"},
     {"S", "step one frame (hold to repeat); mid-frame, finish the frame"},
     {". or Shift+Right", "pause; one substep, what each constraint corrected drawn and listed"},
@@ -29,6 +30,7 @@ constexpr std::array<ControlHelp, 19> kControls{{
     {"right / middle drag", "pan"},
     {"wheel", "zoom"},
     {"panel: quality", "light / medium / full rendering (light on software GL)"},
+    {"scene's keys", "rc_car: WASD / arrows drive while playing; paused, S, arrows, Shift+Right are the above"},
 }};
 
 }  // namespace
@@ -45,11 +47,14 @@ std::string controlsHelpText() {
     return text;
 }
 
-KeyActions keyActions(std::span<const InputEvent> events, bool textInput) {
+KeyActions keyActions(std::span<const InputEvent> events, bool textInput, bool playing,
+                      std::span<const int> drivenKeys) {
     KeyActions actions;
     for (const InputEvent& event : events) {
         if (event.kind != InputEvent::Kind::Key || event.action == GLFW_RELEASE) continue;
         const bool repeat = event.action == GLFW_REPEAT;
+        // A key the scene drives with belongs to the driving while the run plays.
+        if (playing && std::find(drivenKeys.begin(), drivenKeys.end(), event.code) != drivenKeys.end()) continue;
         switch (event.code) {
             case GLFW_KEY_F1:
                 if (!repeat) ++actions.toggleHelp;
@@ -62,18 +67,28 @@ KeyActions keyActions(std::span<const InputEvent> events, bool textInput) {
         if (textInput) continue;
         switch (event.code) {
             case GLFW_KEY_SPACE:
-                if (!repeat) ++actions.togglePlay;
+                if (!repeat) {
+                    ++actions.togglePlay;
+                    playing = !playing;
+                }
                 break;
             case GLFW_KEY_S: ++actions.steps; break;
-            case GLFW_KEY_LEFT: --actions.scrub; break;
+            case GLFW_KEY_LEFT:
+                --actions.scrub;
+                playing = false;
+                break;
             case GLFW_KEY_RIGHT:
                 if (event.mods & GLFW_MOD_SHIFT) {
                     ++actions.substeps;
                 } else {
                     ++actions.scrub;
                 }
+                playing = false;
                 break;
-            case GLFW_KEY_PERIOD: ++actions.substeps; break;
+            case GLFW_KEY_PERIOD:
+                ++actions.substeps;
+                playing = false;
+                break;
             case GLFW_KEY_R:
                 if (!repeat) actions.restart = true;
                 break;

@@ -41,7 +41,15 @@ struct KeyActions {
 
 /// The actions asked by the key presses (and repeats, for stepping) in `events`.
 /// With `textInput` (a text box has the keyboard) only F1 counts.
-KeyActions keyActions(std::span<const InputEvent> events, bool textInput);
+///
+/// `drivenKeys` are the GLFW keys the scene binds to knobs (the RC car's WASD and arrows,
+/// key_driver.h). While the run plays they drive it and ask nothing of the window; while it is
+/// paused they are the window's keys (S steps, Left/Right scrub, Shift+Right steps a substep)
+/// and drive nothing. `playing` is whether the run plays before the first event; the events
+/// change it in their order (Space toggles it, a substep or a scrub pauses), so a Space then a
+/// Shift+Right queued in one slow frame pauses and steps a substep.
+KeyActions keyActions(std::span<const InputEvent> events, bool textInput, bool playing = false,
+                      std::span<const int> drivenKeys = {});
 
 /// The mouse modifier that grabs a body (Ctrl): a left drag with it held pulls the body under the
 /// cursor and does nothing where there is none; without it a left drag orbits.

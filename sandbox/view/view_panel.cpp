@@ -231,30 +231,64 @@ void drawJointInspector(CompareSession& session) {
                            unitName);
 }
 
-/// The corrections of the last substep stepped by hand (correction_layer.h), largest first; the
-/// view draws them as arrows.
-void drawCorrectionList(CompareSession& session) {
-    const ViewSession& run = session.first();
-    if (run.correctionsSubstep() == 0) return;
-    ImGui::Separator();
+/// Up to `listed` lines of `entries` (each with describe()), the first in orange.
+template <typename Entry>
+void listEntries(const std::vector<Entry>& entries, std::size_t listed) {
+    for (std::size_t i = 0; i < entries.size() && i < listed; ++i) {
+        if (i == 0) ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.6f, 0.2f, 1.0f));
+        ImGui::TextWrapped("%s", entries[i].describe().c_str());
+        if (i == 0) ImGui::PopStyleColor();
+    }
+    if (entries.size() > listed) ImGui::TextDisabled("... %zu in all", entries.size());
+}
+
+/// One run's corrections of the last substep stepped by hand (correction_layer.h), largest
+/// first: the position solve's, the soft bodies' stages, the velocity pass's. The view draws
+/// them as arrows.
+void drawRunCorrections(const ViewSession& run) {
     ImGui::Text("substep %d/%d corrections", run.correctionsSubstep(), run.correctionsSubsteps());
     const std::vector<CorrectionEntry>& entries = run.corrections();
-    if (entries.empty()) {
+    if (entries.empty() && run.softCorrections().empty()) {
         ImGui::TextDisabled("no constraint moved a body");
-        return;
+    } else {
+        ImGui::TextDisabled("arrows: lime moves, white turns (scaled)");
+        listEntries(entries, 12);
     }
-    ImGui::TextDisabled("arrows: lime moves, white turns (scaled)");
-    constexpr std::size_t kListed = 12;
-    for (std::size_t i = 0; i < entries.size() && i < kListed; ++i) {
-        if (i == 0) {
-            ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.6f, 0.2f, 1.0f));
-            ImGui::TextWrapped("%s", entries[i].describe().c_str());
+    if (!run.softCorrections().empty()) {
+        ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+        ImGui::TextWrapped("particles: lime elements, sand attachments, blue contacts, pink bounce and friction");
+        ImGui::PopStyleColor();
+        for (const SoftStageEntry& entry : run.softCorrections()) {
+            const render::Colour colour = softStageColour(entry.stage);
+            ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(colour.x(), colour.y(), colour.z(), 1.0f));
+            ImGui::TextWrapped("%s", entry.describe().c_str());
             ImGui::PopStyleColor();
-        } else {
-            ImGui::TextWrapped("%s", entries[i].describe().c_str());
         }
     }
-    if (entries.size() > kListed) ImGui::TextDisabled("... %zu in all", entries.size());
+    ImGui::TextUnformatted("velocity pass (Eqs. 29-35)");
+    if (run.velocityChanges().empty()) {
+        ImGui::TextDisabled("no damping, bounce or friction changed a velocity");
+    } else {
+        ImGui::TextDisabled("arrows: pink velocity changes (scaled)");
+        listEntries(run.velocityChanges(), 8);
+    }
+}
+
+/// The corrections of every run; in compare mode each under its side's name.
+void drawCorrectionList(CompareSession& session) {
+    for (std::size_t index = 0; index < session.runCount(); ++index) {
+        const ViewSession& run = session.run(index);
+        if (run.correctionsSubstep() == 0) continue;
+        ImGui::Separator();
+        if (session.comparing()) {
+            ImGui::TextColored(ImVec4(0.7f, 0.85f, 1.0f, 1.0f), "%s run (%d x %d)", index == 0 ? "left" : "right",
+                               run.controls().substeps, run.controls().iterations);
+            if (!session.steppedLastSubstep(index))
+                ImGui::TextWrapped("not stepped: its next substep ends after the other run's; its last one's "
+                                   "corrections:");
+        }
+        drawRunCorrections(run);
+    }
 }
 
 /// The timeline (timeline.h): a slider over the kept frames, one frame back and forward.

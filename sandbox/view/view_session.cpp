@@ -40,6 +40,8 @@ void ViewSession::rebuild(bool keepScript) {
     // A new world records nothing until substeps are stepped again.
     recordingCorrections_ = false;
     corrections_.clear();
+    velocityChanges_.clear();
+    softCorrections_.clear();
     correctionsSubstep_ = correctionsSubsteps_ = 0;
     // A restart keeps the script, and with it the knobs the user turned.
     if (keepScript && live_) {
@@ -218,6 +220,8 @@ void ViewSession::stopRecordingCorrections() {
 
 void ViewSession::readCorrections() {
     corrections_ = recordingCorrections_ ? listCorrections(live_->instance()) : std::vector<CorrectionEntry>{};
+    velocityChanges_ = recordingCorrections_ ? listVelocityChanges(live_->instance()) : std::vector<VelocityEntry>{};
+    softCorrections_ = recordingCorrections_ ? listSoftCorrections(live_->instance()) : std::vector<SoftStageEntry>{};
     const SubstepCorrections* record = live_->world().corrections();
     correctionsSubstep_ = record != nullptr ? record->substep() : 0;
     correctionsSubsteps_ = record != nullptr ? record->frameSubsteps() : 0;
@@ -268,6 +272,8 @@ render::RenderScene ViewSession::draw(const render::Camera& camera) {
     // A selected joint is marked in the selection's yellow too.
     if (selectedJoint_) highlightJoint(live_->instance(), *selectedJoint_, render::Colour(1.0f, 0.85f, 0.1f), scene.lines);
     drawCorrections(corrections_, live_->world(), scene.lines);
+    drawVelocityChanges(velocityChanges_, live_->world(), scene.lines);
+    drawSoftCorrections(softCorrections_, live_->world(), scene.lines);
     return scene;
 }
 

@@ -63,6 +63,10 @@ class ViewSession {
     /// The last stepped substep's corrections, largest first (correction_layer.h); empty unless
     /// substeps are being stepped.
     const std::vector<CorrectionEntry>& corrections() const { return corrections_; }
+    /// The same substep's velocity pass, largest first (correction_layer.h).
+    const std::vector<VelocityEntry>& velocityChanges() const { return velocityChanges_; }
+    /// The same substep's soft-body stages, each soft body's share (correction_layer.h).
+    const std::vector<SoftStageEntry>& softCorrections() const { return softCorrections_; }
     /// The substep the corrections belong to and the frame's substeps (0, 0 without any).
     int correctionsSubstep() const { return correctionsSubstep_; }
     int correctionsSubsteps() const { return correctionsSubsteps_; }
@@ -159,6 +163,8 @@ class ViewSession {
     std::optional<ecs::Entity> selectedJoint_;  ///< the joint inspector's joint
     bool recordingCorrections_ = false;
     std::vector<CorrectionEntry> corrections_;
+    std::vector<VelocityEntry> velocityChanges_;
+    std::vector<SoftStageEntry> softCorrections_;
     int correctionsSubstep_ = 0;
     int correctionsSubsteps_ = 0;
     /// After a frame ended: its measures sampled and its state kept in the timeline.

@@ -52,6 +52,10 @@ public:
     void findContacts(std::span<const Body> bodies, double margin);
     /// Elements, then attachments, then contacts (hard inequalities last).
     void solvePositions(SolverContext& ctx);
+    /// solvePositions' last two stages alone (what the world calls while recording each
+    /// stage's corrections, substep_corrections.h).
+    void solveAttachments(SolverContext& ctx);
+    void solveContacts(SolverContext& ctx);
     void deriveVelocities(double h);
     /// The contacts' restitution and dynamic friction.
     void solveVelocities(Body* bodies, double h, double gravity);
@@ -72,6 +76,10 @@ public:
     int activeContactCount() const;
     /// Deepest current overlap of a particle contact (m).
     double maxPenetration(std::span<const Body> bodies) const;
+    /// Every particle's position and velocity, the soft bodies' particles one after the other
+    /// (positions(id) is a part of it).
+    std::span<const Vec3> particlePositions() const { return x_; }
+    std::span<const Vec3> particleVelocities() const { return v_; }
     /// Element count over all soft bodies.
     size_t elementCount() const { return elements_.size(); }
 
@@ -121,8 +129,6 @@ private:
         double lambdaTangent = 0.0;
     };
 
-    void solveAttachments(SolverContext& ctx);
-    void solveContacts(SolverContext& ctx);
     void solveContactVelocities(Body* bodies, double h, double gravity);
     /// The element arrays as the batch kernel reads them.
     ElementArrays elementArrays();

@@ -98,6 +98,35 @@ TEST(ViewControlsTest, CtrlGrabsAndNothingElseDoes) {
     EXPECT_FALSE(grabsBody(GLFW_MOD_ALT));
 }
 
+TEST(ViewControlsTest, DrivenKeysDriveWhilePlayingAndAreTheWindowsWhilePaused) {
+    // The RC car binds WASD and the arrows: playing, they steer and ask nothing of the window
+    // (Shift+Right used to steer and step a substep at once); paused, they step and scrub.
+    const std::vector<int> driven{GLFW_KEY_W, GLFW_KEY_A, GLFW_KEY_S, GLFW_KEY_D,
+                                  GLFW_KEY_UP, GLFW_KEY_DOWN, GLFW_KEY_LEFT, GLFW_KEY_RIGHT};
+    const std::vector shiftRight{key(GLFW_KEY_RIGHT, GLFW_PRESS, GLFW_MOD_SHIFT)};
+    EXPECT_EQ(keyActions(shiftRight, false, true, driven).substeps, 0);
+    EXPECT_EQ(keyActions(shiftRight, false, false, driven).substeps, 1);
+    EXPECT_EQ(keyActions(shiftRight, false, true).substeps, 1) << "no scene keys: the window's";
+    const std::vector arrows{key(GLFW_KEY_LEFT), key(GLFW_KEY_S), key(GLFW_KEY_LEFT, GLFW_REPEAT)};
+    const KeyActions playing = keyActions(arrows, false, true, driven);
+    EXPECT_EQ(playing.scrub, 0);
+    EXPECT_EQ(playing.steps, 0);
+    const KeyActions paused = keyActions(arrows, false, false, driven);
+    EXPECT_EQ(paused.scrub, -2);
+    EXPECT_EQ(paused.steps, 1);
+    // The period is no driving key: it pauses and steps a substep while playing, and the
+    // arrows after it in the same frame are then the window's.
+    const std::vector periodThenRight{key(GLFW_KEY_PERIOD), key(GLFW_KEY_RIGHT, GLFW_PRESS, GLFW_MOD_SHIFT)};
+    EXPECT_EQ(keyActions(periodThenRight, false, true, driven).substeps, 2);
+    // Space then Shift+Right queued in one slow frame: paused first, so a substep.
+    const std::vector spaceThenRight{key(GLFW_KEY_SPACE), key(GLFW_KEY_RIGHT, GLFW_PRESS, GLFW_MOD_SHIFT)};
+    const KeyActions both = keyActions(spaceThenRight, false, true, driven);
+    EXPECT_EQ(both.togglePlay, 1);
+    EXPECT_EQ(both.substeps, 1);
+    // And the other way round: resumed first, the arrow steers.
+    EXPECT_EQ(keyActions(spaceThenRight, false, false, driven).substeps, 0);
+}
+
 TEST(ViewControlsTest, TheHelpTextListsEveryControl) {
     const std::string text = controlsHelpText();
     ASSERT_FALSE(viewControls().empty());

@@ -357,6 +357,65 @@ wait_files 4 'substep_cradle_f*.png'
     EXPECT_GT(limePixels(middleImage), limePixels(plainImage) + 20) << "the corrections' arrows";
 }
 
+TEST_F(ViewWindowTest, TheCarsKeysSteerWhilePlayingAndStepSubstepsWhilePaused) {
+    if (!haveXvfbAndXdotool()) GTEST_SKIP() << "needs xvfb-run and xdotool (tools/install-deps.sh)";
+    // rc_car binds WASD and the arrows to its throttle and steering. Paused, Shift+Right steps a
+    // substep (the title counts it) and Left scrubs back a frame, as in any scene; the view then
+    // draws the tyres' particle corrections and the velocity pass's changes. Playing,
+    // Shift+Right steers and leaves the run playing (it used to steer and step a substep).
+    const std::string out = drive("view rc_car --size 1000x700", R"sh(
+sleep 1
+xdotool key space
+t=$(wait_title 'paused at frame')
+n=$(echo "$t" | sed -n 's/.*paused at frame \([0-9]*\).*/\1/p')
+echo "paused $t"
+sleep 0.5
+xdotool key shift+p
+wait_files 1 'substep_rc_car_f*.png'
+xdotool key shift+Right
+echo "substep $(wait_title "paused at frame $n, substep 1/")"
+sleep 0.5
+xdotool key shift+p
+wait_files 2 'substep_rc_car_f*.png'
+xdotool key Left
+echo "back $(wait_title "paused at frame $((n - 1)), t")"
+xdotool key space
+wait_title ''
+xdotool keydown shift+Right
+sleep 1
+xdotool keyup shift+Right
+sleep 0.5
+echo "playing $(title)"
+)sh");
+    ASSERT_NE(out.find("DONE"), std::string::npos) << out;
+    std::map<std::string, std::string> said;
+    for (const std::string& line : lines(out)) said[line.substr(0, line.find(' '))] = line;
+    const long long n = pausedFrame(said["paused"]);
+    ASSERT_GT(n, 0) << out;
+    EXPECT_NE(said["substep"].find("substep 1/"), std::string::npos) << out;
+    EXPECT_EQ(pausedFrame(said["back"]), n - 1) << out;
+    EXPECT_EQ(said["playing"].find("paused"), std::string::npos) << "Shift+Right steered, no substep: " << out;
+    const fs::path plain = work() / ("substep_rc_car_f" + std::to_string(n) + ".png");
+    const fs::path stepped = work() / ("substep_rc_car_f" + std::to_string(n) + "_2.png");
+    ASSERT_TRUE(fs::exists(plain) && fs::exists(stepped)) << out;
+    // Lime (the elements' particle arrows) and pink (the velocity pass's: the tyres' bounce
+    // off the ground, the suspension's damping).
+    const auto correctionPixels = [](const render::Image& image) {
+        std::size_t count = 0;
+        for (int y = 0; y < image.height; ++y)
+            for (int x = 0; x < image.width; ++x) {
+                const uint8_t* p = image.pixel(x, y);
+                const bool lime = p[0] > 90 && p[0] < 210 && p[1] > 200 && p[2] < 80;
+                const bool pink = p[0] > 200 && p[1] > 60 && p[1] < 170 && p[2] > 140 && p[2] < 230;
+                count += lime || pink;
+            }
+        return count;
+    };
+    const std::size_t before = correctionPixels(render::decodePng(readFile(plain)));
+    const std::size_t after = correctionPixels(render::decodePng(readFile(stepped)));
+    EXPECT_GT(after, before + 200) << "the tyres' and the velocity pass's arrows: " << before << " -> " << after;
+}
+
 TEST_F(ViewWindowTest, HelpListsTheControls) {
     const Result result = substep("view --help");
     EXPECT_EQ(result.exitCode, 0);
