@@ -297,10 +297,10 @@ TEST(SleepIslandsTest, SeparateIslandsSleepApart) {
     EXPECT_NEAR(a.v.z(), 1.25, 0.1);
 }
 
-/// The rest rule on its own: a ball turning in place at 0.5 rad/s (ten times sleep.angularSpeed,
-/// its surface at 0.05 m/s... below: radius 0.08 m, 0.04 m/s) while held by three bodies rests
-/// and its island sleeps after sleep.time; the same ball touching two bodies (a groove, a pair of
-/// rails: it can roll) or a box touching three stays awake.
+/// The rest rule on its own: a ball (radius 0.08 m) turning in place at 0.5 rad/s, ten times
+/// sleep.angularSpeed, while held by three bodies rests and its island sleeps after sleep.time;
+/// the same ball touching one or two bodies (the ground, a groove, a pair of rails: it can roll)
+/// or a box touching three stays awake; a held ball whose centre moves at sleep.speed too.
 TEST(SleepIslandsTest, BallHeldByThreeBodiesRestsWhileTurningInPlace) {
     const SleepSettings settings;
     struct Case {
