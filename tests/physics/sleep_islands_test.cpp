@@ -122,9 +122,11 @@ TEST(SleepIslandsTest, IslandWakesBeforeItIsHitAndTakesTheElasticImpulse) {
         for (int frame = 0; frame < framesOf(1.5); ++frame) {
             world.step(kDt);
             ASSERT_FALSE(sleepingMeetsAwake(world)) << speed << " frame " << frame;
-            for (const ContactPair& pair : world.contactPairs())
-                if (pair.count > 0 && std::minmax(pair.body0, pair.body1) == std::minmax(box.index, ball.index))
+            for (const ContactPair& pair : world.contactPairs()) {
+                if (pair.count > 0 && std::minmax(pair.body0, pair.body1) == std::minmax(box.index, ball.index)) {
                     EXPECT_FALSE(world.isAsleep(box)) << "hit while asleep, frame " << frame;
+                }
+            }
         }
         // Equal masses, e = 1: the ball stops and the box leaves at its speed.
         EXPECT_NEAR(world.body(box).v.x(), speed, 0.02 * speed)
