@@ -27,6 +27,8 @@ struct BenchSettings {
     double seconds = kBenchDefaultSeconds;
     int repeats = static_cast<int>(kBenchDefaultRepeats);
     int threads = 1;
+    double warmUp = kBenchWarmUpSeconds;
+    bool sleeping = false;
 };
 
 BenchSettings checkOptions(const BenchOptions& options) {
@@ -34,6 +36,9 @@ BenchSettings checkOptions(const BenchOptions& options) {
     if (!options.seconds.empty())
         settings.seconds = parsePositiveReal("--seconds", options.seconds, kBenchMaxSeconds);
     settings.threads = parseThreads(options.threads);
+    if (!options.warmUp.empty())
+        settings.warmUp = parseRealWithin("--warm-up", options.warmUp, 0.0, kBenchMaxSeconds);
+    settings.sleeping = options.sleeping;
     if (!options.repeats.empty()) {
         settings.repeats =
             static_cast<int>(parseInteger("--repeats", options.repeats, 1, kBenchMaxRepeats));
@@ -54,6 +59,7 @@ struct BenchResult {
     std::vector<double> repeatMsPerFrame;  ///< each repeat's mean over its timed frames
     double medianMsPerFrame = 0.0;
     double contactsPerFrame = 0.0;  ///< mean contact points pushing at the end of a timed frame
+    double sleepingPerFrame = 0.0;  ///< mean sleeping bodies at the end of a timed frame
     bool finite = true;
 };
 
@@ -79,7 +85,7 @@ std::vector<BenchScene> resolveScenes(const BenchOptions& options, const BenchSe
         if (scene.source.builtin) scene.paperMsPerFrame = findBuiltinScene(name)->paperMsPerFrame;
         const double dt = scene.source.description.dt;
         // At least one frame each, so a --seconds shorter than dt still measures something.
-        const double warmUp = std::max(1.0, std::round(kBenchWarmUpSeconds / dt));
+        const double warmUp = std::max(1.0, std::round(settings.warmUp / dt));
         const double timed = std::max(1.0, std::round(settings.seconds / dt));
         if (!(warmUp + timed <= static_cast<double>(kMaxBenchFrames))) {
             throw UsageError(name + ": --seconds " + std::to_string(settings.seconds) + " at dt " +
@@ -114,14 +120,16 @@ BenchResult measure(const BenchScene& scene, const BenchSettings& settings) {
     for (int repeat = 0; repeat < settings.repeats && result.finite; ++repeat) {
         LiveScene live = startLabelledScene(scene.source);
         const World& world = live.world();
-        if (settings.threads != 1) {
+        if (settings.threads != 1 || settings.sleeping) {
             ecs::PhysicsSystem physics = live.physics();
-            WorldSettings threaded = physics.settings();
-            threaded.threads = settings.threads;
-            physics.setSettings(threaded);
+            WorldSettings changed = physics.settings();
+            changed.threads = settings.threads;
+            changed.sleeping = changed.sleeping || settings.sleeping;
+            physics.setSettings(changed);
         }
         std::chrono::steady_clock::duration stepTime{};
         long long contactSum = 0;
+        long long sleepingSum = 0;
         const long long frames = scene.warmUpFrames + scene.timedFrames;
         for (long long frame = 0; frame < frames; ++frame) {
             if (const int signal = interruptSignal(); signal != 0) throw Interrupted{128 + signal};
@@ -129,6 +137,7 @@ BenchResult measure(const BenchScene& scene, const BenchSettings& settings) {
             if (frame >= scene.warmUpFrames) {
                 stepTime += worldStep;
                 contactSum += world.activeContactCount();
+                sleepingSum += world.sleepingBodyCount();
             }
             if (!world.isFinite()) {
                 result.finite = false;
@@ -137,6 +146,7 @@ BenchResult measure(const BenchScene& scene, const BenchSettings& settings) {
         }
         if (!result.finite) break;
         result.contactsPerFrame = static_cast<double>(contactSum) / static_cast<double>(scene.timedFrames);
+        result.sleepingPerFrame = static_cast<double>(sleepingSum) / static_cast<double>(scene.timedFrames);
         result.repeatMsPerFrame.push_back(
             std::chrono::duration<double, std::milli>(stepTime).count() /
             static_cast<double>(scene.timedFrames));
@@ -221,6 +231,7 @@ nlohmann::ordered_json resultJson(const BenchScene& scene, const BenchResult& re
             json["paper_ratio"] = scene.paperMsPerFrame / result.medianMsPerFrame;
     }
     json["finite"] = result.finite;
+    if (settings.sleeping) json["sleeping_bodies_per_frame"] = result.sleepingPerFrame;
     return json;
 }
 
@@ -250,16 +261,20 @@ int bench(const BenchOptions& options) {
             return interrupted.exitCode;
         }
         table.printRow(scene, result);
+        if (settings.sleeping && result.finite)
+            std::printf("  %s: %.4g of %zu moving bodies asleep (mean over the timed frames)\n",
+                        scene.source.label.c_str(), result.sleepingPerFrame,
+                        movingBodies(scene.source.description));
         json.push_back(resultJson(scene, result, settings));
         if (!result.finite) nonFinite.push_back(scene.source.label);
     }
     std::printf(
         "ms/frame: median of %d repeat%s of %.6g s each after a %.6g s warm-up, world step "
-        "only, %d thread%s\n"
+        "only, %d thread%s%s\n"
         "bodies: moving ones; paper: Table 1 (3.6 GHz Core i7); paper/ours > 1: faster "
         "here\n",
-        settings.repeats, settings.repeats == 1 ? "" : "s", settings.seconds, kBenchWarmUpSeconds,
-        settings.threads, settings.threads == 1 ? "" : "s");
+        settings.repeats, settings.repeats == 1 ? "" : "s", settings.seconds, settings.warmUp,
+        settings.threads, settings.threads == 1 ? "" : "s", settings.sleeping ? ", sleeping on" : "");
 
     if (jsonFile) {
         jsonFile->write(json.dump(2) + "\n");
@@ -295,6 +310,13 @@ CLI::App* addBenchCommand(CLI::App& app, BenchOptions& options) {
         ->type_name("N");
     command->add_option("--threads", options.threads, "Threads the step uses (default 1; 1-64)")
         ->type_name("N");
+    command
+        ->add_option("--warm-up", options.warmUp,
+                     "Simulated time run untimed before the timed seconds (default 1; 0-3600)")
+        ->type_name("T");
+    command->add_flag("--sleeping", options.sleeping,
+                      "Turn sleeping on in every scene (WorldSettings::sleeping; measure a settled "
+                      "pile with a --warm-up long enough for it to fall asleep)");
     return command;
 }
 

@@ -18,6 +18,8 @@ struct BenchOptions {
     std::string seconds;
     std::string repeats;
     std::string threads;  ///< --threads N (default 1)
+    std::string warmUp;   ///< --warm-up T: untimed seconds before the timed ones (default 1)
+    bool sleeping = false;  ///< --sleeping: WorldSettings::sleeping on in every scene
 };
 
 /// Defaults and accepted ranges.

@@ -2,13 +2,17 @@
 // world_edits.cpp): a stack falls asleep and costs no motion; a body about to hit a sleeping
 // island wakes it before any contact, and the hit follows the closed form of an elastic
 // collision; a pendulum at its turning point never sleeps; edits (a pose, a velocity, a drag
-// joint, a destroyed support, a gravity change) wake what they touch.
+// joint, a destroyed support, a gravity change) wake what they touch; a ball held by three
+// bodies rests on its surface's speed, not on its turning, so a settled pile of spheres
+// (spheres1000's layout) sleeps and a sphere dropped on it wakes it before the hit, while a ball
+// rolling slowly down a slope, a ball spinning on the ground and a slowly spinning top stay awake.
 
 #include "physics_test_support.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 
 namespace substep {
@@ -118,9 +122,11 @@ TEST(SleepIslandsTest, IslandWakesBeforeItIsHitAndTakesTheElasticImpulse) {
         for (int frame = 0; frame < framesOf(1.5); ++frame) {
             world.step(kDt);
             ASSERT_FALSE(sleepingMeetsAwake(world)) << speed << " frame " << frame;
-            for (const ContactPair& pair : world.contactPairs())
-                if (pair.count > 0 && std::minmax(pair.body0, pair.body1) == std::minmax(box.index, ball.index))
+            for (const ContactPair& pair : world.contactPairs()) {
+                if (pair.count > 0 && std::minmax(pair.body0, pair.body1) == std::minmax(box.index, ball.index)) {
                     EXPECT_FALSE(world.isAsleep(box)) << "hit while asleep, frame " << frame;
+                }
+            }
         }
         // Equal masses, e = 1: the ball stops and the box leaves at its speed.
         EXPECT_NEAR(world.body(box).v.x(), speed, 0.02 * speed)
@@ -291,6 +297,168 @@ TEST(SleepIslandsTest, SeparateIslandsSleepApart) {
     // Still sliding: μ_d averaged with the ground's, (0.05 + 0.3) / 2, slows it by about
     // 1.75 m/s in the second.
     EXPECT_NEAR(a.v.z(), 1.25, 0.1);
+}
+
+/// The rest rule on its own: a ball (radius 0.08 m) turning in place at 0.5 rad/s, ten times
+/// sleep.angularSpeed, while held by three bodies rests and its island sleeps after sleep.time;
+/// the same ball touching one or two bodies (the ground, a groove, a pair of rails: it can roll)
+/// or a box touching three stays awake; a held ball whose centre moves at sleep.speed too.
+TEST(SleepIslandsTest, BallHeldByThreeBodiesRestsWhileTurningInPlace) {
+    const SleepSettings settings;
+    struct Case {
+        const char* name;
+        Shape shape;
+        int touches;
+        bool sleeps;
+    };
+    for (const Case& c : {Case{"ball held by 3", sphereShape(0.08), 3, true},
+                          Case{"ball held by 4", sphereShape(0.08), 4, true},
+                          Case{"ball on 2 (rolls)", sphereShape(0.08), 2, false},
+                          Case{"ball on 1 (rolls)", sphereShape(0.08), 1, false},
+                          Case{"box held by 3", boxShape(Vec3::Constant(0.1)), 3, false}}) {
+        // Body 0 the turning one, bodies 1-4 static supports.
+        std::vector<Body> bodies;
+        bodies.push_back(makeBody({.shape = c.shape, .mass = 1.0, .angularVelocity = Vec3(0.3, 0.0, 0.4)}));
+        for (int i = 0; i < 4; ++i)
+            bodies.push_back(makeBody({.shape = sphereShape(0.1), .type = BodyType::Static,
+                                       .position = Vec3(0.5 * i, -1.0, 0.0)}));
+        std::vector<BodyPair> touching;
+        for (int i = 0; i < c.touches; ++i) touching.push_back({0, static_cast<uint32_t>(1 + i)});
+        SleepIslands islands;
+        for (int frame = 0; frame < framesOf(1.0); ++frame) {
+            // The turning is kept up every frame, as the solve's residue keeps it in a pile.
+            bodies[0].omega = Vec3(0.3, 0.0, 0.4);
+            if (!islands.asleep(0)) islands.update(bodies, touching, {}, kDt, settings);
+        }
+        EXPECT_EQ(islands.asleep(0), c.sleeps) << c.name;
+    }
+    // A ball held by three whose centre moves at sleep.speed is not at rest.
+    std::vector<Body> bodies;
+    bodies.push_back(makeBody({.shape = sphereShape(0.08), .mass = 1.0, .velocity = Vec3(0.05, 0.0, 0.0)}));
+    for (int i = 0; i < 3; ++i)
+        bodies.push_back(makeBody({.shape = sphereShape(0.1), .type = BodyType::Static}));
+    const std::vector<BodyPair> touching = {{0, 1}, {0, 2}, {0, 3}};
+    SleepIslands islands;
+    for (int frame = 0; frame < framesOf(1.0); ++frame) islands.update(bodies, touching, {}, kDt, settings);
+    EXPECT_FALSE(islands.asleep(0));
+}
+
+/// A ball (r 0.1 m, 1 kg) released from rest on slopes of 0.5° to 5° (μ_s 0.5, enough to roll
+/// without slipping below atan(3.5 μ_s)): it rolls slower than sleep.speed for its first
+/// fraction of a second, but it turns on one contact, so it never sleeps, and it covers the
+/// closed-form distance of a rolling solid ball, s = ½ (5/7) g sin θ t².
+TEST(SleepIslandsTest, BallRollingSlowlyDownASlopeDoesNotSleep) {
+    for (const double degrees : {0.5, 1.0, 2.0, 5.0}) {
+        const double angle = degrees * test::kPi / 180.0;
+        World world({.gravity = kGravity, .substeps = 20, .sleeping = true});
+        const Quat tilt(Eigen::AngleAxisd(angle, Vec3::UnitZ()));
+        const Vec3 down = tilt * Vec3(-1.0, 0.0, 0.0);
+        const Vec3 up = tilt * Vec3::UnitY();
+        world.createBody({.shape = boxShape(Vec3(20.0, 0.2, 2.0)), .type = BodyType::Static,
+                          .position = -0.1 * up, .orientation = tilt});
+        const Vec3 start = 0.1 * up;
+        const BodyId ball = world.createBody({.shape = sphereShape(0.1), .mass = 1.0, .position = start});
+        const double seconds = 2.0;
+        for (int frame = 0; frame < framesOf(seconds); ++frame) {
+            world.step(kDt);
+            ASSERT_FALSE(world.isAsleep(ball)) << degrees << "° frame " << frame;
+        }
+        const double expected = 0.5 * (5.0 / 7.0) * 10.0 * std::sin(angle) * seconds * seconds;
+        EXPECT_NEAR((world.body(ball).x - start).dot(down), expected, 0.02 * expected) << degrees << "°";
+    }
+}
+
+/// Spins a point contact does not oppose go on, so they never sleep: a ball spinning on the
+/// ground about the vertical (one contact: not held) and a top, a capsule standing on its round
+/// end, spinning about its axis at 0.2 and 1 rad/s. Both keep their spin to within 1 %.
+TEST(SleepIslandsTest, SpinningBallAndSlowlySpinningTopDoNotSleep) {
+    for (const double rate : {0.2, 1.0}) {
+        World world = sleepyWorld();
+        const BodyId ball = world.createBody({.shape = sphereShape(0.1), .mass = 1.0,
+                                              .position = Vec3(0.0, 0.1, 0.0),
+                                              .angularVelocity = Vec3(0.0, rate, 0.0)});
+        const BodyId top = world.createBody({.shape = capsuleShape(0.05, 0.3), .mass = 1.0,
+                                             .position = Vec3(2.0, 0.2, 0.0),
+                                             .angularVelocity = Vec3(0.0, rate, 0.0)});
+        for (int frame = 0; frame < framesOf(3.0); ++frame) {
+            world.step(kDt);
+            ASSERT_FALSE(world.isAsleep(ball)) << rate << " frame " << frame;
+            ASSERT_FALSE(world.isAsleep(top)) << rate << " frame " << frame;
+        }
+        EXPECT_NEAR(world.body(ball).omega.y(), rate, 0.01 * rate);
+        EXPECT_NEAR(world.body(top).omega.y(), rate, 0.01 * rate);
+    }
+}
+
+/// spheres1000's layout (1000 spheres r 0.1, 1 kg, friction 0.5, restitution 0.1, a 10 x 10 x 10
+/// grid at 0.25 m pitch dropped into a 3 x 3 m walled box) with sleeping on: the pile falls
+/// asleep once settled, though hundreds of its balls still turn in their pockets; a sphere
+/// dropped on it wakes the island no later than the frame of its first contact, and no pair
+/// ever links a sleeping body to an awake one.
+TEST(SleepIslandsTest, SettledSpherePileSleepsAndWakesWhenHit) {
+    World world({.gravity = kGravity, .substeps = 20, .sleeping = true});
+    const BodyDef surface{.staticFriction = 0.5, .dynamicFriction = 0.5, .restitution = 0.1};
+    BodyDef ground = surface;
+    ground.shape = planeShape(Vec3::UnitY(), 0.0);
+    ground.type = BodyType::Static;
+    world.createBody(ground);
+    for (int side = 0; side < 4; ++side) {
+        const bool alongX = side < 2;
+        const double offset = (side % 2 == 0 ? -1.0 : 1.0) * 1.6;
+        BodyDef wall = surface;
+        wall.shape = boxShape(alongX ? Vec3(3.4, 1.5, 0.2) : Vec3(0.2, 1.5, 3.0));
+        wall.type = BodyType::Static;
+        wall.position = alongX ? Vec3(0.0, 0.75, offset) : Vec3(offset, 0.75, 0.0);
+        world.createBody(wall);
+    }
+    std::vector<BodyId> spheres;
+    for (int y = 0; y < 10; ++y)
+        for (int z = 0; z < 10; ++z)
+            for (int x = 0; x < 10; ++x) {
+                BodyDef def = surface;
+                def.shape = sphereShape(0.1);
+                def.mass = 1.0;
+                const double shift = 0.01 * (y % 3);
+                def.position = Vec3((x - 4.5) * 0.25 + shift, 0.5 + y * 0.25, (z - 4.5) * 0.25 - shift);
+                spheres.push_back(world.createBody(def));
+            }
+    int asleepAt = -1;
+    for (int frame = 1; frame <= framesOf(60.0) && asleepAt < 0; ++frame) {
+        world.step(kDt);
+        if (world.sleepingBodyCount() == 1000) asleepAt = frame;
+    }
+    ASSERT_GT(asleepAt, 0) << "the pile never fell asleep in 60 s";
+    std::printf("spheres1000's pile fell asleep at %.2f s\n", asleepAt * kDt);
+    double topY = 0.0;
+    uint32_t topIndex = spheres.front().index;
+    for (const BodyId id : spheres)
+        if (world.body(id).x.y() > topY) topY = world.body(id).x.y(), topIndex = id.index;
+
+    // Dropped from 0.4 m above the highest ball, straight over it.
+    const Vec3 over = world.body(BodyId{topIndex, world.bodies()[topIndex].generation}).x;
+    const BodyId ball = world.createBody({.shape = sphereShape(0.1), .mass = 1.0,
+                                          .position = Vec3(over.x(), topY + 0.6, over.z())});
+    int wokeAt = -1;
+    int hitAt = -1;
+    for (int frame = 1; frame <= framesOf(1.0) && hitAt < 0; ++frame) {
+        world.step(kDt);
+        ASSERT_FALSE(sleepingMeetsAwake(world)) << frame;
+        if (wokeAt < 0 && world.sleepingBodyCount() < 1000) wokeAt = frame;
+        for (const ContactPair& pair : world.contactPairs()) {
+            const uint32_t other = pair.body0 == ball.index ? pair.body1 : pair.body0;
+            if (pair.count > 0 && (pair.body0 == ball.index || pair.body1 == ball.index) &&
+                world.bodies()[other].isDynamic()) {
+                hitAt = frame;
+                EXPECT_FALSE(world.isAsleep({other, world.bodies()[other].generation}));
+            }
+        }
+    }
+    ASSERT_GT(hitAt, 0) << "the ball never reached the pile";
+    ASSERT_GT(wokeAt, 0);
+    EXPECT_LE(wokeAt, hitAt);
+    // The pile is one island: the hit woke all of it.
+    EXPECT_EQ(world.sleepingBodyCount(), 0);
+    EXPECT_TRUE(world.isFinite());
 }
 
 }  // namespace

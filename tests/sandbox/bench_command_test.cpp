@@ -132,6 +132,23 @@ TEST_F(BenchCommand, JsonIsAnArrayWithEveryField) {
     }
 }
 
+/// --sleeping turns sleeping on and reports the sleeping bodies; --warm-up sets the untimed
+/// frames: stack10's ten cubes, stacked at rest, sleep after 0.5 s, so after a 2 s warm-up all
+/// ten sleep through the timed frames (without --sleeping none do, and the key is absent).
+TEST_F(BenchCommand, SleepingAndWarmUp) {
+    const Result result = substep("bench stack10 --sleeping --warm-up 2 --seconds 0.5 --repeats 1 --json s.json");
+    ASSERT_EQ(result.exitCode, 0) << result.err;
+    EXPECT_NE(result.out.find("stack10: 10 of 10 moving bodies asleep"), std::string::npos) << result.out;
+    EXPECT_NE(result.out.find("after a 2 s warm-up"), std::string::npos) << result.out;
+    const nlohmann::json json = nlohmann::json::parse(readFile(work() / "s.json"));
+    EXPECT_EQ(json.at(0).at("warm_up_frames"), 120);
+    EXPECT_EQ(json.at(0).at("sleeping_bodies_per_frame"), 10.0);
+
+    const Result awake = substep("bench stack10 --seconds 0.1 --repeats 1 --json a.json");
+    ASSERT_EQ(awake.exitCode, 0) << awake.err;
+    EXPECT_FALSE(nlohmann::json::parse(readFile(work() / "a.json")).at(0).contains("sleeping_bodies_per_frame"));
+}
+
 TEST_F(BenchCommand, UnknownSceneExits2AndWritesNothing) {
     const Result result = substep(std::string("bench boxes3 no_such_scene --json b.json") + kQuick);
     EXPECT_EQ(result.exitCode, 2);
@@ -144,7 +161,8 @@ TEST_F(BenchCommand, BadOptionsExit2AndWriteNothing) {
     for (const char* options : {"--repeats 0", "--repeats -1", "--repeats 101", "--repeats 1.5",
                                 "--repeats x", "--repeats 99999999999999999999", "--seconds 0",
                                 "--seconds -1", "--seconds nan", "--seconds inf", "--seconds 1e999",
-                                "--seconds 3601", "--seconds x", "--no-such-option"}) {
+                                "--seconds 3601", "--seconds x", "--warm-up -1", "--warm-up nan",
+                                "--warm-up 3601", "--warm-up x", "--no-such-option"}) {
         const Result result = substep(std::string("bench boxes3 --json b.json ") + options);
         EXPECT_EQ(result.exitCode, 2) << options;
         EXPECT_FALSE(result.err.empty()) << options;
