@@ -1,12 +1,14 @@
 // SoftSystem's coupling to rigid bodies: attachments (Eqs. 2-9) and particle contacts
 // (Eqs. 26-30 and 34), each particle standing in for a body with w = 1/m and no rotation
 // (paper section 4).
+#include "physics/collision/heightfield.h"
 #include "physics/collision/narrowphase.h"
 #include "physics/collision/shape_bounds.h"
 #include "physics/soft/soft_system.h"
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace substep {
 namespace {
@@ -64,6 +66,16 @@ inline Vec3 attachmentImpulse(double& lambda, double alphaTilde, const Vec3& del
         alphaTilde == 0.0 ? c2 / denominator : (c2 - alphaTilde * lambda * c) / denominator;
     lambda += deltaLambda;
     return factor * delta;
+}
+
+/// A lower bound on the gap between a sphere (centre p) and a static shape of world bounds
+/// `bounds`: its distance to the bounds, or for a heightfield, solid below its surface (and so
+/// beyond its bounds), its height above the highest sample. (The narrowphase's points are not
+/// the nearest: a heightfield reports the triangles under the sphere.)
+double staticGap(const Shape& shape, const Pose& pose, const Aabb& bounds, const Vec3& p, double radius) {
+    if (shape.type == ShapeType::Heightfield)
+        return shape.heightfield ? pose.applyInverse(p).y() - shape.heightfield->maxHeight - radius : 0.0;
+    return (bounds.min - p).cwiseMax(p - bounds.max).cwiseMax(0.0).norm() - radius;
 }
 
 }  // namespace
@@ -187,17 +199,23 @@ void SoftSystem::collectCandidates(std::span<const Body> bodies, double dt, doub
             if (std::find(soft.attachedBodies.begin(), soft.attachedBodies.end(), bi) != soft.attachedBodies.end())
                 continue;
             const Pose pose{b.userPosition(), b.userOrientation()};
+            // A static body stays put for the frame: its candidates keep their gap.
+            const bool still = b.type == BodyType::Static;
             const double reach = shapeReach(b.shape);
             double sweep = dt * b.v.norm();
             if (std::isfinite(reach)) sweep += dt * b.omega.norm() * reach;
-            const Aabb bodyBox = shapeBounds(b.shape, pose.position, pose.rotation).inflated(sweep);
+            const Aabb staticBounds = shapeBounds(b.shape, pose.position, pose.rotation);
+            const Aabb bodyBox = staticBounds.inflated(sweep);
             if (!bodyBox.overlaps(softBox)) continue;
             for (uint32_t i = first; i < end; ++i) {
                 const double reachOut = margin + 2.0 * dt * v_[i].norm() + sweep + fall;
                 const Aabb point = Aabb{x_[i], x_[i]}.inflated(soft.radius + reachOut);
                 if (!point.overlaps(bodyBox)) continue;
                 collide(probe, Pose{x_[i], Quat::Identity()}, b.shape, pose, reachOut, manifold);
-                if (manifold.count > 0) candidates_.push_back({.particle = i, .body = bi, .softBody = s});
+                if (manifold.count == 0) continue;
+                const double gap = still ? staticGap(b.shape, pose, staticBounds, x_[i], soft.radius)
+                                         : -std::numeric_limits<double>::infinity();  // never skipped
+                candidates_.push_back({.particle = i, .body = bi, .softBody = s, .gap = gap, .origin = x_[i]});
             }
         }
     }
@@ -214,6 +232,9 @@ void SoftSystem::findContacts(std::span<const Body> bodies, double margin) {
     // Candidates come grouped by soft body, then rigid body: poses and probes are made once
     // per group.
     for (const Candidate& candidate : candidates_) {
+        // The particle's distance to a static shape changes by at most its own displacement:
+        // a particle still further than the margin from it cannot touch it in this substep.
+        if (candidate.gap - (x_[candidate.particle] - candidate.origin).norm() > margin) continue;
         const Body& b = bodies[candidate.body];
         const SoftBodyData& soft = bodies_[candidate.softBody];
         if (candidate.body != poseBody || candidate.softBody != probeBody) {
@@ -272,6 +293,7 @@ void SoftSystem::solveContacts(SolverContext& ctx) {
         const double deltaTangent = length / (w + bodyInverseMass(b, r, t));
         if (c.lambdaTangent + deltaTangent > c.staticFriction * c.lambdaNormal) continue;
         c.lambdaTangent += deltaTangent;
+        c.frictionImpulse -= deltaTangent * t;
         x -= (w * deltaTangent) * t;
         if (b.invMass > 0.0) applyImpulse(ctx, c.body, 0, deltaTangent * t, r.cross(deltaTangent * t), Vec3::Zero());
     }
@@ -307,6 +329,12 @@ void SoftSystem::solveContactVelocities(Body* bodies, double h, double gravity) 
 int SoftSystem::activeContactCount() const {
     return static_cast<int>(std::count_if(contacts_.begin(), contacts_.end(),
                                           [](const ParticleContact& c) { return c.lambdaNormal > 0.0; }));
+}
+
+Vec3 SoftSystem::contactForce(double h) const {
+    Vec3 impulse = Vec3::Zero();
+    for (const ParticleContact& c : contacts_) impulse += c.lambdaNormal * c.normal + c.frictionImpulse;
+    return impulse / (h * h);
 }
 
 double SoftSystem::maxPenetration(std::span<const Body> bodies) const {

@@ -74,6 +74,9 @@ public:
     SoftSurface surface(SoftBodyId id) const;
     /// Contact points that pushed in the last substep.
     int activeContactCount() const;
+    /// The particle contacts' total force on the particles in the last substep of length h (N):
+    /// Σ (λ_n n + the static friction's impulse) / h² (Eq. 10 for contacts).
+    Vec3 contactForce(double h) const;
     /// Deepest current overlap of a particle contact (m).
     double maxPenetration(std::span<const Body> bodies) const;
     /// Every particle's position and velocity, the soft bodies' particles one after the other
@@ -115,6 +118,11 @@ private:
         uint32_t particle = 0;
         uint32_t body = 0;
         uint32_t softBody = 0;
+        /// The particle sphere's gap to a static body's shape when the frame began (m), and
+        /// where the particle was: the substeps skip the pair while the gap less the particle's
+        /// displacement exceeds the contact margin. −∞ for a moving body (never skipped).
+        double gap = 0.0;
+        Vec3 origin = Vec3::Zero();
     };
     /// A contact point of this substep: the particle's surface point is x − radius n; the
     /// body's is kept in its principal frame (r1); n points from the body to the particle.
@@ -127,6 +135,7 @@ private:
         double staticFriction = 0.0, dynamicFriction = 0.0, restitution = 0.0;
         double lambdaNormal = 0.0;
         double lambdaTangent = 0.0;
+        Vec3 frictionImpulse = Vec3::Zero();  ///< Σ of the static friction's impulses on the particle
     };
 
     void solveContactVelocities(Body* bodies, double h, double gravity);
