@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,7 @@ struct BenchSettings {
     double seconds = kBenchDefaultSeconds;
     int repeats = static_cast<int>(kBenchDefaultRepeats);
     int threads = 1;
+    std::optional<bool> sweptRestitution;  ///< --restitution; none: each scene's
 };
 
 BenchSettings checkOptions(const BenchOptions& options) {
@@ -34,6 +36,8 @@ BenchSettings checkOptions(const BenchOptions& options) {
     if (!options.seconds.empty())
         settings.seconds = parsePositiveReal("--seconds", options.seconds, kBenchMaxSeconds);
     settings.threads = parseThreads(options.threads);
+    if (!options.restitution.empty())
+        settings.sweptRestitution = parseSweptRestitution("--restitution", options.restitution);
     if (!options.repeats.empty()) {
         settings.repeats =
             static_cast<int>(parseInteger("--repeats", options.repeats, 1, kBenchMaxRepeats));
@@ -76,6 +80,7 @@ std::vector<BenchScene> resolveScenes(const BenchOptions& options, const BenchSe
     std::vector<BenchScene> scenes;
     for (const std::string& name : names) {
         BenchScene scene{.source = resolveScene(name)};
+        if (settings.sweptRestitution) scene.source.description.sweptRestitution = *settings.sweptRestitution;
         if (scene.source.builtin) scene.paperMsPerFrame = findBuiltinScene(name)->paperMsPerFrame;
         const double dt = scene.source.description.dt;
         // At least one frame each, so a --seconds shorter than dt still measures something.
@@ -295,6 +300,9 @@ CLI::App* addBenchCommand(CLI::App& app, BenchOptions& options) {
         ->type_name("N");
     command->add_option("--threads", options.threads, "Threads the step uses (default 1; 1-64)")
         ->type_name("N");
+    command->add_option("--restitution", options.restitution,
+                        "Restitution: swept (two-body collisions, any order) or paper (Eq. 34 alone)")
+        ->type_name("swept|paper");
     return command;
 }
 

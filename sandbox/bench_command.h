@@ -18,6 +18,7 @@ struct BenchOptions {
     std::string seconds;
     std::string repeats;
     std::string threads;  ///< --threads N (default 1)
+    std::string restitution;  ///< "swept" or "paper"; empty: each scene's
 };
 
 /// Defaults and accepted ranges.
