@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -29,6 +30,7 @@ struct BenchSettings {
     int threads = 1;
     double warmUp = kBenchWarmUpSeconds;
     bool sleeping = false;
+    std::optional<bool> sweptRestitution;  ///< --restitution; none: each scene's
 };
 
 BenchSettings checkOptions(const BenchOptions& options) {
@@ -39,6 +41,8 @@ BenchSettings checkOptions(const BenchOptions& options) {
     if (!options.warmUp.empty())
         settings.warmUp = parseRealWithin("--warm-up", options.warmUp, 0.0, kBenchMaxSeconds);
     settings.sleeping = options.sleeping;
+    if (!options.restitution.empty())
+        settings.sweptRestitution = parseSweptRestitution("--restitution", options.restitution);
     if (!options.repeats.empty()) {
         settings.repeats =
             static_cast<int>(parseInteger("--repeats", options.repeats, 1, kBenchMaxRepeats));
@@ -82,6 +86,7 @@ std::vector<BenchScene> resolveScenes(const BenchOptions& options, const BenchSe
     std::vector<BenchScene> scenes;
     for (const std::string& name : names) {
         BenchScene scene{.source = resolveScene(name)};
+        if (settings.sweptRestitution) scene.source.description.sweptRestitution = *settings.sweptRestitution;
         if (scene.source.builtin) scene.paperMsPerFrame = findBuiltinScene(name)->paperMsPerFrame;
         const double dt = scene.source.description.dt;
         // At least one frame each, so a --seconds shorter than dt still measures something.
@@ -317,6 +322,9 @@ CLI::App* addBenchCommand(CLI::App& app, BenchOptions& options) {
     command->add_flag("--sleeping", options.sleeping,
                       "Turn sleeping on in every scene (WorldSettings::sleeping; measure a settled "
                       "pile with a --warm-up long enough for it to fall asleep)");
+    command->add_option("--restitution", options.restitution,
+                        "Restitution: swept (two-body collisions, any order) or paper (Eq. 34 alone)")
+        ->type_name("swept|paper");
     return command;
 }
 

@@ -20,6 +20,7 @@ struct BenchOptions {
     std::string threads;  ///< --threads N (default 1)
     std::string warmUp;   ///< --warm-up T: untimed seconds before the timed ones (default 1)
     bool sleeping = false;  ///< --sleeping: WorldSettings::sleeping on in every scene
+    std::string restitution;  ///< "swept" or "paper"; empty: each scene's
 };
 
 /// Defaults and accepted ranges.

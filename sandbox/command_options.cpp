@@ -142,4 +142,10 @@ JointProjection parseJointProjection(const char* option, const std::string& text
     throw UsageError(std::string(option) + ": expected paper or start, got '" + text + "'");
 }
 
+bool parseSweptRestitution(const char* option, const std::string& text) {
+    if (text == "swept") return true;
+    if (text == "paper") return false;
+    throw UsageError(std::string(option) + ": expected swept or paper, got '" + text + "'");
+}
+
 }  // namespace substep

@@ -48,6 +48,10 @@ int parseThreads(const std::string& text);
 /// `text` as a joint projection ("paper" or "start", WorldSettings::jointProjection). Throws
 /// UsageError naming `option` otherwise.
 JointProjection parseJointProjection(const char* option, const std::string& text);
+/// `text` as a restitution rule: "swept" (true: WorldSettings::sweptRestitution, the sweeps of
+/// two-body collisions) or "paper" (false: Eq. 34 alone). Throws UsageError naming `option`
+/// otherwise.
+bool parseSweptRestitution(const char* option, const std::string& text);
 /// `text` as a finite number in [lowest, highest]. Throws UsageError naming `option` otherwise.
 double parseRealWithin(const char* option, const std::string& text, double lowest, double highest);
 

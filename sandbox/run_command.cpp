@@ -32,6 +32,7 @@ struct RunSettings {
     std::optional<int> iterations;
     std::optional<double> dt;
     std::optional<JointProjection> jointProjection;
+    std::optional<bool> sweptRestitution;
 };
 
 RunSettings checkOptions(const RunOptions& options) {
@@ -58,6 +59,8 @@ RunSettings checkOptions(const RunOptions& options) {
     if (!options.jointProjection.empty())
         settings.jointProjection =
             parseJointProjection("--joint-projection", options.jointProjection);
+    if (!options.restitution.empty())
+        settings.sweptRestitution = parseSweptRestitution("--restitution", options.restitution);
     return settings;
 }
 
@@ -127,6 +130,7 @@ int run(const RunOptions& options) {
     if (settings.iterations) description.iterations = *settings.iterations;
     if (settings.dt) description.dt = *settings.dt;
     if (settings.jointProjection) description.jointProjection = *settings.jointProjection;
+    if (settings.sweptRestitution) description.sweptRestitution = *settings.sweptRestitution;
     const double dt = description.dt;
     const long long frames = frameCount(settings, dt);
     LiveScene live = startLabelledScene(source, description);
@@ -140,6 +144,7 @@ int run(const RunOptions& options) {
     if (settings.iterations) solver.iterations = *settings.iterations;
     solver.threads = threads;
     if (settings.jointProjection) solver.jointProjection = *settings.jointProjection;
+    if (settings.sweptRestitution) solver.sweptRestitution = *settings.sweptRestitution;
     physics.setSettings(solver);
 
     // The outputs are checked (not the scene file, not each other, regular files) before the
@@ -231,6 +236,9 @@ CLI::App* addRunCommand(CLI::App& app, RunOptions& options) {
     command->add_option("--joint-projection", options.jointProjection,
                         "Joint directions: paper (current state) or start (substep start)")
         ->type_name("paper|start");
+    command->add_option("--restitution", options.restitution,
+                        "Restitution: swept (two-body collisions, any order) or paper (Eq. 34 alone)")
+        ->type_name("swept|paper");
     return command;
 }
 

@@ -24,6 +24,7 @@ struct RunOptions {
     std::vector<std::string> knobs;  ///< --set NAME=VALUE, in order
     std::string threads;             ///< --threads N (default 1)
     std::string jointProjection;     ///< "paper" or "start"; empty: the scene's
+    std::string restitution;         ///< "swept" or "paper"; empty: the scene's
 };
 
 /// Accepted ranges (DESIGN.md for substeps and iterations; frames is a sanity bound).

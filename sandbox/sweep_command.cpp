@@ -193,7 +193,7 @@ struct Interrupted {
 
 SplitResult runSplit(const SceneSource& source, const SceneEntry* entry, const Split& split,
                      long long frames, int threads, Progress& progress) {
-    SceneDescription description = source.description;  // --joint-projection already applied
+    SceneDescription description = source.description;  // --joint-projection, --restitution applied
     description.substeps = split.substeps;
     description.iterations = split.iterations;
     LiveScene live = startLabelledScene(source, description);
@@ -384,6 +384,8 @@ int sweep(const SweepOptions& options) {
             : std::optional(parseJointProjection("--joint-projection", options.jointProjection));
     SceneSource source = resolveScene(options.scene);
     if (projection) source.description.jointProjection = *projection;
+    if (!options.restitution.empty())
+        source.description.sweptRestitution = parseSweptRestitution("--restitution", options.restitution);
     const SceneEntry* entry = source.builtin ? findBuiltinScene(source.label) : nullptr;
     const double dt = source.description.dt;
     const long long frames = framesForSeconds(seconds, dt, kMaxFrames);
@@ -497,6 +499,9 @@ CLI::App* addSweepCommand(CLI::App& app, SweepOptions& options) {
     command->add_option("--joint-projection", options.jointProjection,
                         "Joint directions: paper (current state) or start (substep start)")
         ->type_name("paper|start");
+    command->add_option("--restitution", options.restitution,
+                        "Restitution: swept (two-body collisions, any order) or paper (Eq. 34 alone)")
+        ->type_name("swept|paper");
     command->footer(
         "Every split substeps x iterations = B runs from a fresh build of the scene. ms/frame is "
         "the median over frames of the time inside world.step. Plots need /usr/bin/python3 "

@@ -20,6 +20,7 @@ struct SweepOptions {
     std::string plotPath;
     std::string threads;  ///< --threads N (default 1)
     std::string jointProjection;  ///< "paper" or "start"; empty: the scene's
+    std::string restitution;      ///< "swept" or "paper"; empty: the scene's
 };
 
 /// Accepted budgets (a sanity bound: budget 10000 has 25 splits of 10000 passes per frame).

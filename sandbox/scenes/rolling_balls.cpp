@@ -72,16 +72,22 @@ constexpr double kSpringEase = 0.04;  ///< m of clothoid into and out of the coi
 constexpr double kSpringTurns = 3.0;
 constexpr double kSpringSlope = 0.4;  ///< drop per horizontal metre: a pitch of 40 mm
 
-// The gate: a star wheel of three bars (six spokes 60° apart) beside the head of the plunge,
+// The gate: a star wheel of four bars (eight spokes 45° apart) beside the head of the plunge,
 // turned by a hinge motor, its spokes sweeping the track at the marbles' centres. Between two
 // spokes there is room for one marble: the spoke behind it swings in between it and the next,
 // which waits for the following pocket, so marbles lifted together by one arm leave the gate a
 // pocket apart. (A free wheel the marbles turn themselves stalls on the gentle slope here.)
-constexpr int kGateBars = 3;
+// With six spokes 60° apart the pocket held a marble and a half: the entering spoke's tip met
+// the next marble, queued against the held one, on its uphill flank and pushed it sideways
+// into the far wires while the drive's target ran on, and it pressed up to 4.4 mm into the
+// marble within 10 s (10 mm within 120 s). A sphere's contact normal passes through its
+// centre, so no tip shape turns that push uphill; 45° apart, the tip meets the queued marble
+// on its downhill flank and pushes it back up the track (0.7 mm within 10 s).
+constexpr int kGateBars = 4;
 constexpr double kGateHubOffset = 0.035;  ///< m beside the centre line
 constexpr double kGateSpoke = 0.05;       ///< m from the hub to a spoke's end
 constexpr double kGateBarMass = 0.05;     ///< kg
-constexpr double kGateSpeed = 4.0;        ///< rad/s: a pocket every 0.26 s
+constexpr double kGateSpeed = 3.0;        ///< rad/s: a pocket every 0.26 s (2π / 8 / 3)
 constexpr double kGateCompliance = 0.5;  ///< rad per N·m: a spoke swinging in onto a marble gives way a little
 constexpr size_t kGateInto = 5;           ///< control points into the plunge (10 cm)
 

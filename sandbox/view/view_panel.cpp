@@ -442,6 +442,15 @@ PanelRequests ViewPanel::draw(CompareSession& session, const ViewStatus& status,
                 ImGui::SetTooltip("Joint projection: paper = directions on the current state;\n"
                                   "start = on the substep's start poses (keeps a pendulum's "
                                   "energy)");
+            // Restitution: sweeps of two-body collisions (any listing order) or Eq. 34 alone.
+            int restitution = controls.sweptRestitution ? 0 : 1;
+            if (ImGui::Combo(comparing ? "##restitution" : "restitution", &restitution, "swept\0paper\0")) {
+                controls.sweptRestitution = restitution == 0;
+                requests.controlsChanged = true;
+            }
+            if (ImGui::IsItemHovered())
+                ImGui::SetTooltip("Restitution: swept = two-body collisions swept through touching\n"
+                                  "bodies, the same in any listing order; paper = Eq. 34 alone");
             ImGui::PopItemWidth();
             ImGui::PopID();
         }

@@ -14,6 +14,7 @@ SessionControls controlsOf(const SceneDescription& description, const SessionCon
     controls.substeps = description.substeps;
     controls.iterations = description.iterations;
     controls.jointProjection = description.jointProjection;
+    controls.sweptRestitution = description.sweptRestitution;
     controls.gravityY = static_cast<float>(description.gravity.y());
     return controls;
 }
@@ -172,6 +173,7 @@ void ViewSession::applyControls() {
     settings.substeps = controls_.substeps;
     settings.iterations = controls_.iterations;
     settings.jointProjection = controls_.jointProjection;
+    settings.sweptRestitution = controls_.sweptRestitution;
     settings.gravity.y() = controls_.gravityY;
     settings.measureTime = true;  // the panel's stage breakdown
     physics.setSettings(settings);

@@ -31,6 +31,7 @@ struct SessionControls {
     int substeps = 20;
     int iterations = 1;
     JointProjection jointProjection = JointProjection::Paper;  ///< WorldSettings::jointProjection
+    bool sweptRestitution = WorldSettings{}.sweptRestitution;  ///< WorldSettings::sweptRestitution
     float gravityY = -10.0f;  ///< m/s²; x and z stay the scene's
     DrawingOptions drawing;
 };

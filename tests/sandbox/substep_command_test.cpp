@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -279,6 +280,56 @@ TEST_F(SubstepCommand, UsageErrorsExit2) {
     EXPECT_EQ(substep("--help").exitCode, 0);
     EXPECT_EQ(substep("run --help").exitCode, 0);
     EXPECT_TRUE(workEntries().empty());
+}
+
+// --restitution (issue 17; an addition to DESIGN.md's command): the row of the issue, a striker
+// listed first at 1 m/s into three touching spheres (no gravity, no friction, e = 1), in a file
+// that asks for the paper's rule. With the sweeps the closed form of elastic collisions holds
+// (the striker stops, the far sphere leaves at 1 m/s); the paper's Eq. 34 alone carries the
+// push down the row in one pass and the far sphere leaves at 0.43 m/s. A bad value exits 2
+// naming the option, on run, bench and sweep, and writes nothing.
+TEST_F(SubstepCommand, RestitutionOptionChoosesTheRule) {
+    std::string bodies;
+    for (int i = 0; i < 4; ++i) {
+        const double x = i == 0 ? -0.3 : 0.2 * (i - 1);
+        bodies += std::string(i == 0 ? "" : ",\n") + "{\"name\": \"s" + std::to_string(i) +
+                  "\", \"shape\": {\"type\": \"sphere\", \"radius\": 0.1}, \"mass\": 1, \"position\": [" +
+                  std::to_string(x) + ", 0, 0], \"velocity\": [" + (i == 0 ? "1" : "0") +
+                  ", 0, 0], \"friction\": {\"static\": 0, \"dynamic\": 0}, \"restitution\": 1}";
+    }
+    std::ofstream(work() / "row.json") << "{\"substep_scene\": 1, \"gravity\": [0, 0, 0], \"substeps\": 20, "
+                                          "\"restitution\": \"paper\", \"bodies\": [" << bodies << "]}\n";
+    const auto finalVx = [&](const std::string& file, const std::string& body) {
+        const std::vector<std::string> rows = lines(readFile(work() / file));
+        const std::vector<std::string> header = split(rows.at(0));
+        const std::vector<std::string> last = split(rows.back());
+        const auto it = std::find(header.begin(), header.end(), body + ".vx");
+        return std::strtod(last.at(static_cast<std::size_t>(it - header.begin())).c_str(), nullptr);
+    };
+    const Result swept = substep("run row.json --frames 60 --restitution swept --csv swept.csv");
+    ASSERT_EQ(swept.exitCode, 0) << swept.err;
+    EXPECT_NEAR(finalVx("swept.csv", "s0"), 0.0, 1e-3);
+    EXPECT_NEAR(finalVx("swept.csv", "s1"), 0.0, 1e-3);
+    EXPECT_NEAR(finalVx("swept.csv", "s2"), 0.0, 1e-3);
+    EXPECT_NEAR(finalVx("swept.csv", "s3"), 1.0, 1e-3);
+    const Result paper = substep("run row.json --frames 60 --restitution paper --csv paper.csv");
+    ASSERT_EQ(paper.exitCode, 0) << paper.err;
+    EXPECT_LT(finalVx("paper.csv", "s3"), 0.6) << "the paper's rule, listed striker first";
+    fs::remove(work() / "swept.csv");
+    fs::remove(work() / "paper.csv");
+    for (const std::string& command : {std::string("run row.json --frames 1 --csv bad.csv"),
+                                       std::string("bench row.json --seconds 0.1 --repeats 1 --json bad.json"),
+                                       std::string("sweep row.json --budget 2 --seconds 0.1 --csv bad.csv")}) {
+        const Result bad = substep(command + " --restitution Swept");
+        EXPECT_EQ(bad.exitCode, 2) << command;
+        EXPECT_NE(bad.err.find("--restitution: expected swept or paper, got 'Swept'"), std::string::npos)
+            << command << ": " << bad.err;
+        const Result good = substep(command + " --restitution swept");
+        EXPECT_EQ(good.exitCode, 0) << command << ": " << good.err;
+        fs::remove(work() / "bad.csv");
+        fs::remove(work() / "bad.json");
+    }
+    EXPECT_EQ(workEntries(), std::vector<std::string>{"row.json"});
 }
 
 // Without a display the viewer (also `substep` alone) says so, points to `render`, and exits 2;
