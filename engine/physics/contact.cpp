@@ -300,13 +300,14 @@ double pushOut(double depth, const Body& b0, const Body& b1, const Vec3& r0, con
 
 /// One body's side of a point correction along unit n at world offset r (Eq. 2 or Eq. 3, and
 /// the rotation Eq. 8 or Eq. 9 makes per unit multiplier): what applyPositionalCorrection
-/// computes, without its normalisation of a direction that is already unit.
+/// computes, without its normalisation of a direction that is already unit. Always inlined:
+/// the compiler kept it out of line, a call per body and direction (4 % of spheres1000).
 struct PointResponse {
     double w = 0.0;
     Vec3 turn = Vec3::Zero();
 };
 
-inline PointResponse pointResponse(const Body& b, const Vec3& r, const Vec3& n) {
+[[gnu::always_inline]] inline PointResponse pointResponse(const Body& b, const Vec3& r, const Vec3& n) {
     if (b.invMass == 0.0) return {};
     if (!b.rotates()) return {b.invMass, Vec3::Zero()};
     const Vec3 rn = r.cross(n);
@@ -328,8 +329,10 @@ inline void movePoint(Body& b, const PointResponse& s, const Vec3& p, double del
 /// (Eq. 26), then static friction from the motion during the substep (Eq. 27, Eq. 28), each
 /// the scalar update of Eq. 2 to Eq. 9. Fused: the normal is already unit, so the push skips
 /// the general correction's normalisation, and both corrections move the bodies in place.
-/// Jacobi takes applyPositionalCorrection, which gathers the motions instead.
-void solveSinglePointPositions(ContactPair& pair, Contact& c, SolverContext& ctx) {
+/// Jacobi takes applyPositionalCorrection, which gathers the motions instead. The one-point
+/// functions are flattened: GCC kept Eigen's quaternion rotation out of line in them, a call
+/// per lever arm (8 % of spheres1000).
+[[gnu::flatten]] void solveSinglePointPositions(ContactPair& pair, Contact& c, SolverContext& ctx) {
     Body& b0 = ctx.bodies[pair.body0];
     Body& b1 = ctx.bodies[pair.body1];
     const Vec3& n = c.normal;
@@ -410,7 +413,7 @@ inline void changePointVelocity(Body& b0, Body& b1, const PointResponse& s0, con
 
 /// Dynamic friction of a one-point pair (Eq. 29, Eq. 30, Eq. 33), with the impulse clamped
 /// (ERRATA item 2), after its normal velocity was set.
-void applySinglePointFriction(const ContactPair& pair, const Contact& c, Body& b0, Body& b1,
+[[gnu::flatten]] void applySinglePointFriction(const ContactPair& pair, const Contact& c, Body& b0, Body& b1,
                               const Vec3& r0, const Vec3& r1, double h) {
     if (!(pair.dynamicFriction > 0.0)) return;
     const Vec3& n = c.normal;
@@ -431,7 +434,7 @@ void applySinglePointFriction(const ContactPair& pair, const Contact& c, Body& b
 /// then dynamic friction with the impulse clamped (ERRATA item 2). Fused: each change is
 /// applied along its unit direction with the generalised inverse mass computed once (the
 /// general Eq. 33 normalises the change and computes w again).
-void solveSinglePointVelocities(const ContactPair& pair, const Contact& c, Body& b0, Body& b1,
+[[gnu::flatten]] void solveSinglePointVelocities(const ContactPair& pair, const Contact& c, Body& b0, Body& b1,
                                 double h, double gravity) {
     const Vec3& n = c.normal;
     const Vec3 r0 = b0.q * c.local0;

@@ -5,6 +5,7 @@
 
 #include "physics/collision/narrowphase.h"
 #include "physics/collision/shape_bounds.h"
+#include "physics/contact_spheres.h"
 #include "physics/joint_block_solve.h"
 #include "physics/joints/joint_frame.h"
 #include "physics/joints/joint_geometry.h"
@@ -302,6 +303,7 @@ bool World::substep() {
     if (soft) soft_->integrate(h, settings_.gravity);
     lap(stepTimes_.integrate);
     if (!contactPairs_.empty()) findContacts(frame_.sleeping);
+    else touchingPairs_.clear();
     if (soft) soft_->findContacts(bodies_, settings_.contactMargin);
     lap(stepTimes_.narrowphase);
     for (int i = 0; i < settings_.iterations; ++i) solvePositions(h);
@@ -364,6 +366,7 @@ void World::collectContactPairs(double dt) {
     previousPairs_.swap(contactPairs_);
     contactPairs_.clear();
     contacts_.clear();
+    touchingPairs_.clear();
     if (collidingBodies_ < 2) return;  // nothing can touch: no broadphase at all
     if (jointsChanged_) {
         jointsChanged_ = false;
@@ -433,6 +436,7 @@ void World::findContacts(bool sleeping) {
     const int threads = std::clamp(settings_.threads, 1, 64);
     if (threads == 1 || pairs < 2 * kPairsPerChunk) {
         findPairContacts(0, pairs, sleeping, contacts_);
+        listTouchingPairs();
         return;
     }
     // In parallel: each chunk of pairs finds its contacts into its own list, and the lists are
@@ -451,6 +455,15 @@ void World::findContacts(bool sleeping) {
         for (size_t p = first; p < std::min(pairs, first + kPairsPerChunk); ++p) contactPairs_[p].first += offset;
         contacts_.insert(contacts_.end(), chunkContacts_[chunk].begin(), chunkContacts_[chunk].end());
     }
+    listTouchingPairs();
+}
+
+void World::listTouchingPairs() {
+    // Most of a frame's pairs have no point in a given substep (a pile's: half of them): the
+    // solve and the velocity pass visit only those that have, in pair order.
+    touchingPairs_.clear();
+    for (uint32_t p = 0; p < contactPairs_.size(); ++p)
+        if (contactPairs_[p].count > 0) touchingPairs_.push_back(p);
 }
 
 void World::findPairContacts(size_t first, size_t last, bool sleeping, std::vector<Contact>& out) {
@@ -458,7 +471,9 @@ void World::findPairContacts(size_t first, size_t last, bool sleeping, std::vect
     ContactManifold manifold;
     for (size_t p = first; p < last; ++p) {
         ContactPair& pair = contactPairs_[p];
-        if (stepCancellationRequested()) break;  // the step ends at the substep loop's check
+        // The step ends at the substep loop's check. Asked every kPairsPerChunk pairs: the
+        // flag is an atomic load, and a frame's pairs are thousands.
+        if ((p - first) % kPairsPerChunk == 0 && stepCancellationRequested()) break;
         if (asleep && (asleep[pair.body0] | asleep[pair.body1])) {
             // A sleeping island's pair (the other body sleeps or is static): no contacts, and
             // its static friction anchors are kept for when it wakes.
@@ -473,15 +488,23 @@ void World::findPairContacts(size_t first, size_t last, bool sleeping, std::vect
         // Bounding spheres first: most of a frame's candidate pairs are not touching in a
         // given substep, and this test costs a fraction of the narrowphase.
         const double reach = reaches_[pair.body0] + reaches_[pair.body1] + settings_.contactMargin;
-        if (std::isfinite(reach) && (pose0.position - pose1.position).squaredNorm() > reach * reach)
-            manifold.clear();
-        else
-            collide(b0.shape, pose0, b1.shape, pose1, settings_.contactMargin, manifold);
+        const bool apart =
+            std::isfinite(reach) && (pose0.position - pose1.position).squaredNorm() > reach * reach;
         pair.first = static_cast<uint32_t>(out.size());
+        pair.lambdaNormal = pair.lambdaTangent1 = pair.lambdaTangent2 = pair.lambdaTwist = 0.0;
+        // Spheres on spheres and planes (a pile's pairs) write their point straight into `out`.
+        const int spherePoints =
+            apart ? 0 : appendSpherePairContacts(b0, pose0, b1, pose1, settings_.contactMargin, out);
+        if (spherePoints >= 0) {
+            pair.count = static_cast<uint32_t>(spherePoints);
+            if (spherePoints == 0) pair.anchored = false;  // apart: the next touch anchors anew
+            if (sleeping && spherePoints > 0) pairTouched_[p] = 1;
+            continue;
+        }
+        collide(b0.shape, pose0, b1.shape, pose1, settings_.contactMargin, manifold);
         pair.count = static_cast<uint32_t>(manifold.count);
         if (manifold.count == 0) pair.anchored = false;  // apart: the next touch anchors anew
         if (sleeping && manifold.count > 0) pairTouched_[p] = 1;
-        pair.lambdaNormal = pair.lambdaTangent1 = pair.lambdaTangent2 = pair.lambdaTwist = 0.0;
         // Paper 3.5: the points are kept in the bodies' frames (r1, r2), so the position solve
         // measures the depth on the poses as other corrections leave them.
         const Quat q0Inverse = b0.q.conjugate();
@@ -566,9 +589,10 @@ void World::solvePositions(double h) {
             for (Joint& joint : joints_)
                 if (joint.alive && !sleeps(joint)) solveJointPositions(joint, ctx);
         }
-        for (ContactPair& pair : contactPairs_)
-            if (pair.count > 0)
-                solveContactPositions(pair, std::span(contacts_).subspan(pair.first, pair.count), ctx);
+        for (const uint32_t p : touchingPairs_) {
+            ContactPair& pair = contactPairs_[p];
+            solveContactPositions(pair, std::span(contacts_).subspan(pair.first, pair.count), ctx);
+        }
     }
     // Soft bodies after the rigid ones: elements, attachments, then their contacts.
     if (hasSoftBodies()) {
@@ -630,19 +654,18 @@ void World::solveVelocities(double h) {
                               findRestitutionImpulses(contactPairs_, contacts_, bodies_.data(), bodies_.size(), h,
                                                       gravity, restitutionScratch_);
         if (collided)
-            for (uint32_t p = 0; p < contactPairs_.size(); ++p) {
+            for (const uint32_t p : touchingPairs_) {
                 const ContactPair& pair = contactPairs_[p];
                 if (pair.count == 1 && contacts_[pair.first].collisionPass)
                     around(ConstraintKind::Contact, p, pair.body0, pair.body1,
                            [&] { solveCollisionVelocities(pair, contacts_[pair.first], bodies_.data(), h); });
             }
-        for (uint32_t p = 0; p < contactPairs_.size(); ++p) {
+        for (const uint32_t p : touchingPairs_) {
             const ContactPair& pair = contactPairs_[p];
-            if (pair.count > 0)
-                around(ConstraintKind::Contact, p, pair.body0, pair.body1, [&] {
-                    solveContactVelocities(pair, std::span(contacts_).subspan(pair.first, pair.count),
-                                           bodies_.data(), h, gravity);
-                });
+            around(ConstraintKind::Contact, p, pair.body0, pair.body1, [&] {
+                solveContactVelocities(pair, std::span(contacts_).subspan(pair.first, pair.count),
+                                       bodies_.data(), h, gravity);
+            });
         }
     };
     if (corrections_) [[unlikely]] {

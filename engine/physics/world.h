@@ -288,6 +288,10 @@ private:
     std::vector<double> reaches_;  ///< per body: its shape's reach (0: in no pair this frame)
     std::vector<Pose> poses_;      ///< per body: its shape's pose this substep
     std::vector<Contact> contacts_;
+    /// This substep's pairs with contact points (indices into contactPairs_, in pair order):
+    /// the solve and the velocity pass visit these alone.
+    std::vector<uint32_t> touchingPairs_;
+    void listTouchingPairs();
     RestitutionScratch restitutionScratch_;  ///< reused by the restitution sweeps
     std::size_t droppedContactPairs_ = 0;
     /// Body pairs joined by a joint that does not let them collide, sorted; rebuilt when the

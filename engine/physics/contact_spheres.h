@@ -1,0 +1,89 @@
+#pragma once
+/// The narrowphase's fast path for the pairs of a sphere pile: sphere – sphere and sphere –
+/// plane contacts written straight into the solver's Contact list, in the bodies' frames,
+/// without the dispatch table, the manifold and its copy (World::findPairContacts). The
+/// arithmetic is collideSphereSphere's and collideSpherePlane's expression for expression,
+/// followed by the frame change World::findPairContacts makes, so the contacts are
+/// bit-identical to the general path's (tests/physics/contact_spheres_test.cpp compares them).
+
+#include "physics/body.h"
+#include "physics/collision/contact_manifold.h"
+#include "physics/collision/shape.h"
+#include "physics/contact.h"
+
+#include <vector>
+
+namespace substep {
+
+/// The contact of one point as World::findPairContacts stores it: each body's point in its
+/// principal frame (paper 3.5: r1, r2), the normal from body 1 towards body 0.
+[[gnu::flatten]] inline void appendContactInBodyFrames(const Body& b0, const Body& b1, const Vec3& point0,
+                                      const Vec3& point1, const Vec3& normal,
+                                      std::vector<Contact>& out) {
+    out.push_back({.local0 = b0.q.conjugate() * (point0 - b0.x),
+                   .local1 = b1.q.conjugate() * (point1 - b1.x),
+                   .normal = normal,
+                   .feature = 0});
+}
+
+/// Sphere (a, pose pa) against sphere (b, pose pb): collideSphereSphere's point on the line of
+/// centres, kept while its gap is within `margin`. Returns the points added (0 or 1).
+inline int appendSphereSphereContact(const Body& b0, const Pose& pa, const Body& b1, const Pose& pb,
+                                     double margin, std::vector<Contact>& out) {
+    const double ra = b0.shape.radius;
+    const double rb = b1.shape.radius;
+    const Vec3 d = pa.position - pb.position;
+    const double distance = d.norm();
+    if (distance - ra - rb > margin) return 0;
+    // Coincident centres: any direction separates them; +y is as good as another.
+    const Vec3 n = distance > kDirectionEpsilon ? Vec3(d / distance) : Vec3::UnitY();
+    const Vec3 point0 = pa.position - ra * n;
+    const Vec3 point1 = pb.position + rb * n;
+    const double depth = (point1 - point0).dot(n);
+    if (!(depth >= -margin)) return 0;
+    appendContactInBodyFrames(b0, b1, point0, point1, n, out);
+    return 1;
+}
+
+/// Sphere body `sphere` (pose ps) against plane body `plane`: collideSpherePlane's point below
+/// the centre. `sphereFirst` says whether the sphere is the pair's body 0; otherwise the point
+/// is stored the other way round with the normal flipped, as the dispatch table's swapped slot
+/// does. Returns the points added (0 or 1).
+inline int appendSpherePlaneContact(const Body& sphere, const Pose& ps, const Body& plane,
+                                    bool sphereFirst, double margin, std::vector<Contact>& out) {
+    // unitPlane (primitive_geometry.h): a zero normal means +y.
+    const Shape& shape = plane.shape;
+    const double length = shape.normal.norm();
+    const bool unit = length > kDirectionEpsilon;
+    const Vec3 normal = unit ? Vec3(shape.normal / length) : Vec3(Vec3::UnitY());
+    const double offset = unit ? shape.offset / length : shape.offset;
+    const double height = normal.dot(ps.position) - offset;
+    const Vec3 point0 = ps.position - sphere.shape.radius * normal;
+    const Vec3 point1 = ps.position - height * normal;
+    const double depth = (point1 - point0).dot(normal);
+    if (!(depth >= -margin)) return 0;
+    if (sphereFirst)
+        appendContactInBodyFrames(sphere, plane, point0, point1, normal, out);
+    else
+        appendContactInBodyFrames(plane, sphere, point1, point0, Vec3(-normal), out);
+    return 1;
+}
+
+/// The fast path's pairs: sphere – sphere and sphere – plane in either order. Appends their
+/// point and returns its count, or −1 for any other pair (the general narrowphase's).
+inline int appendSpherePairContacts(const Body& b0, const Pose& pose0, const Body& b1,
+                                    const Pose& pose1, double margin, std::vector<Contact>& out) {
+    const ShapeType t0 = b0.shape.type;
+    const ShapeType t1 = b1.shape.type;
+    if (t0 == ShapeType::Sphere) {
+        if (t1 == ShapeType::Sphere)
+            return appendSphereSphereContact(b0, pose0, b1, pose1, margin, out);
+        if (t1 == ShapeType::Plane)
+            return appendSpherePlaneContact(b0, pose0, b1, true, margin, out);
+    } else if (t0 == ShapeType::Plane && t1 == ShapeType::Sphere) {
+        return appendSpherePlaneContact(b1, pose1, b0, false, margin, out);
+    }
+    return -1;
+}
+
+}  // namespace substep
