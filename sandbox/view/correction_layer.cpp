@@ -14,22 +14,6 @@ namespace substep::view {
 
 namespace {
 
-const char* typeName(JointType type) {
-    switch (type) {
-        case JointType::Distance:
-            return "distance joint";
-        case JointType::Fixed:
-            return "fixed joint";
-        case JointType::Hinge:
-            return "hinge";
-        case JointType::Spherical:
-            return "ball joint";
-        case JointType::Prismatic:
-            return "prismatic joint";
-    }
-    return "joint";
-}
-
 /// Names of the world's bodies and joints by storage index, from the components.
 struct Names {
     std::unordered_map<uint32_t, std::string> bodies;
@@ -46,7 +30,7 @@ struct Names {
             if (joint.id.isNull()) return;
             const ecs::Name* name = registry.tryGet<ecs::Name>(entity);
             joints[joint.id.index] =
-                std::string(typeName(joint.def.type)) + " '" +
+                std::string(jointTypeName(joint.def.type)) + " joint '" +
                 (name ? name->value : "joint " + std::to_string(entity.index)) + "'";
         });
     }

@@ -10,22 +10,6 @@ namespace substep::view {
 
 namespace {
 
-const char* typeName(JointType type) {
-    switch (type) {
-        case JointType::Distance:
-            return "distance";
-        case JointType::Fixed:
-            return "fixed";
-        case JointType::Hinge:
-            return "hinge";
-        case JointType::Spherical:
-            return "spherical";
-        case JointType::Prismatic:
-            return "prismatic";
-    }
-    return "joint";
-}
-
 std::string nameOf(ecs::Registry& registry, ecs::Entity entity, const char* kind) {
     if (entity.isNull()) return "the world";
     if (const ecs::Name* name = registry.tryGet<ecs::Name>(entity)) return name->value;
@@ -82,7 +66,7 @@ std::optional<JointDetails> inspectJoint(SceneInstance& scene, ecs::Entity entit
     const Body* bodies = scene.world().bodies().data();
     JointDetails details;
     details.name = nameOf(registry, entity, "joint");
-    details.type = typeName(joint->type());
+    details.type = jointTypeName(joint->type());
     details.body0 = nameOf(registry, component->body0, "body");
     details.body1 = nameOf(registry, component->body1, "body");
     details.force = component->readout.force;

@@ -265,7 +265,9 @@ void checkMassRatio(bool blockSolve, int substeps) {
     EXPECT_EQ(scene.world().jointClusterCount(), blockSolve ? 3u : 0u);
     const std::string solver = blockSolve ? "block_" : "gauss_seidel_";
     report("mass_ratio_peak_top_gap_m_" + solver + std::to_string(substeps) + "_3", peakTopGap);
-    if (blockSolve) EXPECT_LT(peakTopGap, 1e-3);  // the rigid gap under 1 mm, also at its peak
+    if (blockSolve) {
+        EXPECT_LT(peakTopGap, 1e-3);  // the rigid gap under 1 mm, also at its peak
+    }
     for (int i = 0; i < 3; ++i) {
         const double alpha = compliances[i];
         SCOPED_TRACE(::testing::Message() << solver << substeps << " substeps, compliance " << alpha);

@@ -22,6 +22,23 @@ namespace substep {
 
 enum class JointType : uint8_t { Distance, Fixed, Hinge, Spherical, Prismatic };
 
+/// The type's name as scene files spell it ("hinge", "spherical", ...).
+constexpr const char* jointTypeName(JointType type) {
+    switch (type) {
+        case JointType::Distance:
+            return "distance";
+        case JointType::Fixed:
+            return "fixed";
+        case JointType::Hinge:
+            return "hinge";
+        case JointType::Spherical:
+            return "spherical";
+        case JointType::Prismatic:
+            return "prismatic";
+    }
+    return "joint";
+}
+
 struct Range {
     double lower = 0.0;
     double upper = 0.0;

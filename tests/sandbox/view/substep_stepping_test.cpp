@@ -92,7 +92,7 @@ TEST(SubstepStepping, PlayingAgainStopsTheRecording) {
     session.stepSubstep();
     EXPECT_FALSE(session.playback().playing) << "a substep pauses";
     ASSERT_FALSE(session.first().corrections().empty());
-    EXPECT_NE(session.first().corrections().front().describe().find("hinge 'hinge' moved 'bar'"),
+    EXPECT_NE(session.first().corrections().front().describe().find("hinge joint 'hinge' moved 'bar'"),
               std::string::npos)
         << session.first().corrections().front().describe();
     session.playback().playing = true;

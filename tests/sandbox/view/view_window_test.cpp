@@ -50,6 +50,11 @@ wait_files() {  # until N files match the glob
   done
   echo "TIMEOUT waiting for $1 of $2"; exit 1
 }
+shoot() {  # Shift+P (the view alone) once it has settled, until N shots are written
+  sleep 0.5
+  xdotool key shift+p
+  wait_files "$1" 'substep_*_f*.png'
+}
 sleep 1
 )sh";
 
@@ -68,6 +73,18 @@ class ViewWindowTest : public CommandTest {
                                     quoted(script.string()) + " " + arguments + " >" + quoted(out.string()) + " 2>&1";
         std::system(command.c_str());
         return readFile(out);
+    }
+
+    /// The view shots whose names start with `stem` (paused at frame N: stemN.png, stemN_2.png,
+    /// ...), in taking order.
+    std::vector<std::string> shotsOf(const std::string& stem) {
+        std::vector<std::string> shots;
+        for (const std::string& name : workEntries())
+            if (name.rfind(stem, 0) == 0) shots.push_back(name);
+        std::sort(shots.begin(), shots.end(), [](const std::string& a, const std::string& b) {
+            return a.size() != b.size() ? a.size() < b.size() : a < b;
+        });
+        return shots;
     }
 
     /// The frame in a title "Substep - cradle (paused at frame 42, t = ...)".
@@ -125,13 +142,8 @@ wait_files 4 'substep_cradle_f*.png'
 )sh");
     ASSERT_NE(out.find("DONE"), std::string::npos) << out;
     // Paused at frame N, every shot is named substep_cradle_fN[_k].png, in taking order.
-    std::vector<std::string> shots;
-    for (const std::string& name : workEntries())
-        if (name.rfind("substep_cradle_f", 0) == 0) shots.push_back(name);
+    const std::vector<std::string> shots = shotsOf("substep_cradle_f");
     ASSERT_EQ(shots.size(), 4u) << out;
-    std::sort(shots.begin(), shots.end(), [](const std::string& a, const std::string& b) {
-        return a.size() != b.size() ? a.size() < b.size() : a < b;
-    });
     const render::Image plain = render::decodePng(readFile(work() / shots[0]));
     const render::Image help = render::decodePng(readFile(work() / shots[1]));
     const render::Image hidden = render::decodePng(readFile(work() / shots[2]));
@@ -170,22 +182,13 @@ TEST_F(ViewWindowTest, AClickSelectsTheBodyAndOutlinesIt) {
     const std::string out = drive("view hinge_bar --size 1000x700", R"sh(
 xdotool mousemove --window "$win" 690 350 key space
 wait_title 'paused at frame'
-sleep 0.5
-xdotool key shift+p
-wait_files 1 'substep_hinge_bar_f*.png'
+shoot 1
 xdotool click 1
-sleep 0.5
-xdotool key shift+p
-wait_files 2 'substep_hinge_bar_f*.png'
+shoot 2
 )sh");
     ASSERT_NE(out.find("DONE"), std::string::npos) << out;
-    std::vector<std::string> shots;
-    for (const std::string& name : workEntries())
-        if (name.rfind("substep_hinge_bar_f", 0) == 0) shots.push_back(name);
+    const std::vector<std::string> shots = shotsOf("substep_hinge_bar_f");
     ASSERT_EQ(shots.size(), 2u) << out;
-    std::sort(shots.begin(), shots.end(), [](const std::string& a, const std::string& b) {
-        return a.size() != b.size() ? a.size() < b.size() : a < b;
-    });
     const auto yellowPixels = [](const render::Image& image) {
         std::size_t count = 0;
         for (int y = 0; y < image.height; ++y) {
@@ -212,25 +215,16 @@ xdotool key space
 t=$(wait_title 'paused at frame')
 n=$(echo "$t" | sed -n 's/.*paused at frame \([0-9]*\).*/\1/p')
 echo "paused $t"
-sleep 0.5
-xdotool key shift+p
-wait_files 1 'substep_cradle_f*.png'
+shoot 1
 xdotool key --delay 30 Left Left Left Left Left Left Left Left Left Left
 echo "back $(wait_title "paused at frame $((n - 10)),")"
 xdotool key --delay 30 s s s s s s s s s s
 echo "again $(wait_title "paused at frame $n,")"
-sleep 0.5
-xdotool key shift+p
-wait_files 2 'substep_cradle_f*.png'
+shoot 2
 )sh");
     ASSERT_NE(out.find("DONE"), std::string::npos) << out;
-    std::vector<std::string> shots;
-    for (const std::string& name : workEntries())
-        if (name.rfind("substep_cradle_f", 0) == 0) shots.push_back(name);
+    const std::vector<std::string> shots = shotsOf("substep_cradle_f");
     ASSERT_EQ(shots.size(), 2u) << out;
-    std::sort(shots.begin(), shots.end(), [](const std::string& a, const std::string& b) {
-        return a.size() != b.size() ? a.size() < b.size() : a < b;
-    });
     const render::Image first = render::decodePng(readFile(work() / shots[0]));
     const render::Image again = render::decodePng(readFile(work() / shots[1]));
     ASSERT_EQ(first.width, again.width);
@@ -247,30 +241,17 @@ TEST_F(ViewWindowTest, LayerKeysAddBoxesCentresAndVelocitiesToTheViewAndTakeThem
 sleep 1
 xdotool key space
 wait_title 'paused at frame'
-sleep 0.5
-xdotool key shift+p
-wait_files 1 'substep_cradle_f*.png'
+shoot 1
 xdotool key b
-sleep 0.5
-xdotool key shift+p
-wait_files 2 'substep_cradle_f*.png'
+shoot 2
 xdotool key m v
-sleep 0.5
-xdotool key shift+p
-wait_files 3 'substep_cradle_f*.png'
+shoot 3
 xdotool key b m v
-sleep 0.5
-xdotool key shift+p
-wait_files 4 'substep_cradle_f*.png'
+shoot 4
 )sh");
     ASSERT_NE(out.find("DONE"), std::string::npos) << out;
-    std::vector<std::string> shots;
-    for (const std::string& name : workEntries())
-        if (name.rfind("substep_cradle_f", 0) == 0) shots.push_back(name);
+    const std::vector<std::string> shots = shotsOf("substep_cradle_f");
     ASSERT_EQ(shots.size(), 4u) << out;
-    std::sort(shots.begin(), shots.end(), [](const std::string& a, const std::string& b) {
-        return a.size() != b.size() ? a.size() < b.size() : a < b;
-    });
     std::vector<render::Image> images;
     for (const std::string& shot : shots) images.push_back(render::decodePng(readFile(work() / shot)));
     const auto differing = [](const render::Image& a, const render::Image& b) {
@@ -301,30 +282,22 @@ xdotool key space
 t=$(wait_title 'paused at frame')
 n=$(echo "$t" | sed -n 's/.*paused at frame \([0-9]*\).*/\1/p')
 echo "paused $t"
-sleep 0.5
-xdotool key shift+p
-wait_files 1 'substep_cradle_f*.png'
+shoot 1
 xdotool key period
 echo "one $(wait_title "paused at frame $n, substep 1/")"
 xdotool key Left
 wait_title "paused at frame $((n - 1)), t"
 xdotool key s
 echo "whole $(wait_title "paused at frame $n, t")"
-sleep 0.5
-xdotool key shift+p
-wait_files 2 'substep_cradle_f*.png'
+shoot 2
 xdotool key Left
 wait_title "paused at frame $((n - 1)), t"
 xdotool key --delay 30 period period shift+Right
 echo "three $(wait_title "paused at frame $((n - 1)), substep 3/")"
-sleep 0.5
-xdotool key shift+p
-wait_files 3 'substep_cradle_f*.png'
+shoot 3
 xdotool key s
 echo "finished $(wait_title "paused at frame $n, t")"
-sleep 0.5
-xdotool key shift+p
-wait_files 4 'substep_cradle_f*.png'
+shoot 4
 )sh");
     ASSERT_NE(out.find("DONE"), std::string::npos) << out;
     std::map<std::string, std::string> said;
@@ -369,14 +342,10 @@ xdotool key space
 t=$(wait_title 'paused at frame')
 n=$(echo "$t" | sed -n 's/.*paused at frame \([0-9]*\).*/\1/p')
 echo "paused $t"
-sleep 0.5
-xdotool key shift+p
-wait_files 1 'substep_rc_car_f*.png'
+shoot 1
 xdotool key shift+Right
 echo "substep $(wait_title "paused at frame $n, substep 1/")"
-sleep 0.5
-xdotool key shift+p
-wait_files 2 'substep_rc_car_f*.png'
+shoot 2
 xdotool key Left
 echo "back $(wait_title "paused at frame $((n - 1)), t")"
 xdotool key space
@@ -413,7 +382,9 @@ echo "playing $(title)"
     };
     const std::size_t before = correctionPixels(render::decodePng(readFile(plain)));
     const std::size_t after = correctionPixels(render::decodePng(readFile(stepped)));
-    EXPECT_GT(after, before + 200) << "the tyres' and the velocity pass's arrows: " << before << " -> " << after;
+    // Quiet, the step adds about 280 pixels; on a loaded machine the pause comes earlier in the
+    // car's settling and the step has added as few as 150. Before the step, 1-5 pixels are of these colours.
+    EXPECT_GT(after, before + 60) << "the tyres' and the velocity pass's arrows: " << before << " -> " << after;
 }
 
 TEST_F(ViewWindowTest, HelpListsTheControls) {
