@@ -66,6 +66,7 @@ void SleepIslands::wakeAll() {
 
 void SleepIslands::wakeIsland(uint32_t index) {
     // Walks the island's circular list, dissolving it: every body awake, its rest restarted.
+    ++changes_;
     uint32_t body = index;
     do {
         const uint32_t next = nextInIsland_[body];
@@ -192,6 +193,7 @@ void SleepIslands::update(std::span<Body> bodies, std::span<const BodyPair> touc
         b.qPrev = b.q;
         asleep_[i] = 1;
         ++sleeping_;
+        ++changes_;
     }
 }
 

@@ -9,7 +9,8 @@
 /// (|v| + |ω|·reach) and turning slower than sleepAngularSpeed gathers rest time; one that is
 /// not starts again from zero. An island whose every body has rested sleepTime falls asleep
 /// whole: its velocities are set to zero and the step skips its bodies, their joints and their
-/// contacts (they cost the broadphase's box and a flag test per loop).
+/// contacts: the broadphase keeps their boxes and pairs (broadphase.h), and the per-substep
+/// loops run over lists of the awake bodies and pairs (a joint still costs a flag test).
 ///
 /// Waking is conservative, so that no awake body ever meets a sleeping one in the solve: before
 /// the substeps, every broadphase pair and joint that links a sleeping body to an awake one (an
@@ -48,6 +49,9 @@ public:
     const uint8_t* flags() const { return asleep_.data(); }
     /// Number of sleeping bodies.
     int sleepingCount() const { return sleeping_; }
+    /// Counts the changes of the flags (a body falling asleep or waking), so that lists of the
+    /// awake bodies are rebuilt only when it moves.
+    uint64_t changes() const { return changes_; }
 
     /// Wakes the island of a sleeping body and restarts the body's rest time. A static body
     /// (moved, or changed) is remembered instead: the next wakeLinked wakes what touches it.
@@ -79,6 +83,7 @@ private:
     std::vector<uint32_t> islandLast_;  ///< per root: the body last linked into its list
     bool anyMoved_ = false;
     int sleeping_ = 0;
+    uint64_t changes_ = 0;
 };
 
 }  // namespace substep

@@ -283,6 +283,7 @@ void World::beginFrame(double dt) {
     const bool sleeping = sleepingActive();
     if (sleeping) sleep_.wakeLinked(bodies_, contactPairs_, joints_);
     sleepFlags_ = sleeping && sleep_.sleepingCount() > 0 ? sleep_.flags() : nullptr;
+    if (sleepFlags_) listAwake(true);
     if (sleeping) pairTouched_.assign(contactPairs_.size(), 0);
     const bool soft = hasSoftBodies();
     if (soft) soft_->collectCandidates(bodies_, dt, settings_.contactMargin, settings_.gravity);
@@ -295,6 +296,7 @@ bool World::substep() {
     const double h = frame_.h;
     const bool soft = frame_.soft;
     if (settings_.measureTime) lapMark_ = Clock::now();
+    if (sleepFlags_) listAwake(false);  // an edit between substeps may have woken an island
     if (corrections_) corrections_->beginSubstep(frame_.done + 1, frame_.substeps);
     // λ is zeroed before each substep's solve (paper 3.3.1); motors advance their target.
     for (Joint& joint : joints_)
@@ -360,6 +362,27 @@ void World::wakeBody(BodyId id) {
     if (isValid(id)) sleep_.wake(id.index, bodies_[id.index]);
 }
 
+void World::listAwake(bool newPairs) {
+    const uint64_t changes = sleep_.changes();
+    if (changes != awakeBodiesListedAt_ || bodies_.size() != awakeBodiesListedFor_) {
+        awakeBodies_.clear();
+        for (uint32_t i = 0; i < bodies_.size(); ++i)
+            if (sleepFlags_[i] == 0) awakeBodies_.push_back(i);
+        awakeBodiesListedAt_ = changes;
+        awakeBodiesListedFor_ = bodies_.size();
+    }
+    if (newPairs || changes != awakePairsListedAt_) {
+        // A sleeping island's pairs (the other body sleeps or is static) are left out: they
+        // report no contact points and keep their static friction anchors for when it wakes.
+        awakePairs_.clear();
+        for (uint32_t p = 0; p < contactPairs_.size(); ++p) {
+            const ContactPair& pair = contactPairs_[p];
+            if ((sleepFlags_[pair.body0] | sleepFlags_[pair.body1]) == 0) awakePairs_.push_back(p);
+        }
+        awakePairsListedAt_ = changes;
+    }
+}
+
 void World::collectContactPairs(double dt) {
     // Last frame's pairs keep their static friction anchors (contact.h) when they are found
     // again; both lists are sorted by (body0, body1).
@@ -380,7 +403,9 @@ void World::collectContactPairs(double dt) {
                       return a.body0 != b.body0 ? a.body0 < b.body0 : a.body1 < b.body1;
                   });
     }
-    broadphase_.update(bodies_, dt);
+    // Sleeping bodies keep their boxes and their pairs with one another (broadphase.h).
+    const bool anyAsleep = sleepingActive() && sleep_.sleepingCount() > 0;
+    broadphase_.update(bodies_, dt, 2.0, anyAsleep ? sleep_.flags() : nullptr);
     reaches_.assign(bodies_.size(), 0.0);
     poses_.resize(bodies_.size());
     size_t previous = 0;
@@ -427,15 +452,21 @@ void World::collectContactPairs(double dt) {
 
 void World::findContacts(bool sleeping) {
     contacts_.clear();
-    const uint8_t* asleep = sleepFlags_;
-    // Each colliding body's shape pose, once per substep rather than once per pair.
-    for (size_t i = 0; i < bodies_.size(); ++i)
-        if (reaches_[i] > 0.0 && !(asleep && asleep[i]))
-            poses_[i] = {bodies_[i].userPosition(), bodies_[i].userOrientation()};
-    const size_t pairs = contactPairs_.size();
+    // Each colliding body's shape pose, once per substep rather than once per pair; while some
+    // sleep, the awake bodies' and pairs' lists alone are visited.
+    const auto pose = [&](uint32_t i) {
+        if (reaches_[i] > 0.0) poses_[i] = {bodies_[i].userPosition(), bodies_[i].userOrientation()};
+    };
+    if (sleepFlags_) {
+        for (const uint32_t i : awakeBodies_) pose(i);
+    } else {
+        for (uint32_t i = 0; i < bodies_.size(); ++i) pose(i);
+    }
+    const uint32_t* order = sleepFlags_ ? awakePairs_.data() : nullptr;
+    const size_t pairs = sleepFlags_ ? awakePairs_.size() : contactPairs_.size();
     const int threads = std::clamp(settings_.threads, 1, 64);
     if (threads == 1 || pairs < 2 * kPairsPerChunk) {
-        findPairContacts(0, pairs, sleeping, contacts_);
+        findPairContacts(order, 0, pairs, sleeping, contacts_);
         listTouchingPairs();
         return;
     }
@@ -447,12 +478,14 @@ void World::findContacts(bool sleeping) {
     pool_->parallelFor(static_cast<int>(chunks), [&](int chunk) {
         const size_t first = static_cast<size_t>(chunk) * kPairsPerChunk;
         chunkContacts_[chunk].clear();
-        findPairContacts(first, std::min(pairs, first + kPairsPerChunk), sleeping, chunkContacts_[chunk]);
+        findPairContacts(order, first, std::min(pairs, first + kPairsPerChunk), sleeping,
+                         chunkContacts_[chunk]);
     });
     for (size_t chunk = 0; chunk < chunks; ++chunk) {
         const auto offset = static_cast<uint32_t>(contacts_.size());
         const size_t first = chunk * kPairsPerChunk;
-        for (size_t p = first; p < std::min(pairs, first + kPairsPerChunk); ++p) contactPairs_[p].first += offset;
+        for (size_t k = first; k < std::min(pairs, first + kPairsPerChunk); ++k)
+            contactPairs_[order ? order[k] : k].first += offset;
         contacts_.insert(contacts_.end(), chunkContacts_[chunk].begin(), chunkContacts_[chunk].end());
     }
     listTouchingPairs();
@@ -462,25 +495,24 @@ void World::listTouchingPairs() {
     // Most of a frame's pairs have no point in a given substep (a pile's: half of them): the
     // solve and the velocity pass visit only those that have, in pair order.
     touchingPairs_.clear();
-    for (uint32_t p = 0; p < contactPairs_.size(); ++p)
-        if (contactPairs_[p].count > 0) touchingPairs_.push_back(p);
+    if (sleepFlags_) {
+        for (const uint32_t p : awakePairs_)
+            if (contactPairs_[p].count > 0) touchingPairs_.push_back(p);
+    } else {
+        for (uint32_t p = 0; p < contactPairs_.size(); ++p)
+            if (contactPairs_[p].count > 0) touchingPairs_.push_back(p);
+    }
 }
 
-void World::findPairContacts(size_t first, size_t last, bool sleeping, std::vector<Contact>& out) {
-    const uint8_t* asleep = sleepFlags_;
+void World::findPairContacts(const uint32_t* order, size_t first, size_t last, bool sleeping,
+                             std::vector<Contact>& out) {
     ContactManifold manifold;
-    for (size_t p = first; p < last; ++p) {
+    for (size_t k = first; k < last; ++k) {
+        const size_t p = order ? order[k] : k;
         ContactPair& pair = contactPairs_[p];
         // The step ends at the substep loop's check. Asked every kPairsPerChunk pairs: the
         // flag is an atomic load, and a frame's pairs are thousands.
-        if ((p - first) % kPairsPerChunk == 0 && stepCancellationRequested()) break;
-        if (asleep && (asleep[pair.body0] | asleep[pair.body1])) {
-            // A sleeping island's pair (the other body sleeps or is static): no contacts, and
-            // its static friction anchors are kept for when it wakes.
-            pair.first = static_cast<uint32_t>(out.size());
-            pair.count = 0;
-            continue;
-        }
+        if ((k - first) % kPairsPerChunk == 0 && stepCancellationRequested()) break;
         const Body& b0 = bodies_[pair.body0];
         const Body& b1 = bodies_[pair.body1];
         const Pose& pose0 = poses_[pair.body0];
@@ -545,13 +577,12 @@ void World::repairLargeViolations(double h) {
 
 void World::integrate(double h) {
     const Vec3 gravityStep = h * settings_.gravity;
-    for (size_t i = 0; i < bodies_.size(); ++i) {
-        Body& b = bodies_[i];
-        if (b.invMass == 0.0 || (sleepFlags_ && sleepFlags_[i])) continue;
+    const auto advance = [&](Body& b) {
+        if (b.invMass == 0.0) return;
         b.xPrev = b.x;
         b.v += gravityStep;
         b.x += h * b.v;
-        if (!b.rotates()) continue;
+        if (!b.rotates()) return;
         b.qPrev = b.q;
         // Algorithm 2's gyroscopic term ω ← ω − h I⁻¹ (ω × Iω), taken implicitly: one Newton
         // step on I (ω' − ω) + h ω' × Iω' = 0 in the principal frame, where I is diagonal.
@@ -560,6 +591,12 @@ void World::integrate(double h) {
         // With equal moments ω × Iω vanishes, so cubes and spheres skip it.
         if (!b.isotropic) b.omega = b.q * implicitGyroscopicStep(b.q.conjugate() * b.omega, b.inertia, h);
         integrateRotation(b.q, h * b.omega);
+    };
+    // While some bodies sleep, the awake ones' list alone.
+    if (sleepFlags_) {
+        for (const uint32_t i : awakeBodies_) advance(bodies_[i]);
+    } else {
+        for (Body& b : bodies_) advance(b);
     }
 }
 
@@ -622,15 +659,19 @@ size_t World::jointClusterCount() const {
 
 void World::deriveVelocities(double h) {
     const double invH = 1.0 / h;
-    for (size_t i = 0; i < bodies_.size(); ++i) {
-        Body& b = bodies_[i];
-        if (b.invMass == 0.0 || (sleepFlags_ && sleepFlags_[i])) continue;
+    const auto derive = [&](Body& b) {
+        if (b.invMass == 0.0) return;
         b.vPrev = b.v;
         b.v = (b.x - b.xPrev) * invH;
-        if (!b.rotates()) continue;
+        if (!b.rotates()) return;
         b.omegaPrev = b.omega;
         // Algorithm 2's ω = ±2 Δq_xyz / h, made exact (see angularVelocityBetween).
         b.omega = angularVelocityBetween(b.qPrev, b.q, invH);
+    };
+    if (sleepFlags_) {
+        for (const uint32_t i : awakeBodies_) derive(bodies_[i]);
+    } else {
+        for (Body& b : bodies_) derive(b);
     }
 }
 

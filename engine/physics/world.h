@@ -308,8 +308,10 @@ private:
     std::unique_ptr<WorkerPool> pool_;
     /// Per chunk of pairs of a parallel narrowphase: its contacts, merged in chunk order.
     std::vector<std::vector<Contact>> chunkContacts_;
-    /// The contacts of pairs [first, last) into `out` (first-relative offsets in pair.first).
-    void findPairContacts(size_t first, size_t last, bool sleeping, std::vector<Contact>& out);
+    /// The contacts of pairs [first, last) into `out` (first-relative offsets in pair.first):
+    /// of contactPairs_[order[k]] for k in [first, last), or contactPairs_[k] when order is null.
+    void findPairContacts(const uint32_t* order, size_t first, size_t last, bool sleeping,
+                          std::vector<Contact>& out);
     /// Sleep state per body and the islands (WorldSettings::sleeping).
     SleepIslands sleep_;
     /// Pairs with a contact point in some substep of the frame (the islands' contact links).
@@ -317,6 +319,18 @@ private:
     std::vector<uint8_t> pairTouched_;  ///< per contact pair: touched in some substep
     /// This step's sleep flags per body (1: asleep), null while nothing sleeps.
     const uint8_t* sleepFlags_ = nullptr;
+    /// While some body sleeps (sleepFlags_ set), the per-substep loops visit these alone: the
+    /// bodies not asleep (static ones and dead slots included, which the loops skip as before),
+    /// ascending, rebuilt when a body falls asleep or wakes; and the frame's pairs with no
+    /// sleeping body, ascending, rebuilt each frame and when a body wakes.
+    std::vector<uint32_t> awakeBodies_;
+    std::vector<uint32_t> awakePairs_;
+    uint64_t awakeBodiesListedAt_ = ~uint64_t{0};  ///< sleep_.changes() when awakeBodies_ was made
+    size_t awakeBodiesListedFor_ = 0;               ///< bodies_.size() then
+    uint64_t awakePairsListedAt_ = ~uint64_t{0};   ///< sleep_.changes() when awakePairs_ was made
+    /// Brings awakeBodies_ and awakePairs_ up to date with the sleep flags (`newPairs`: the
+    /// frame's pairs were just collected).
+    void listAwake(bool newPairs);
     /// Whether a joint belongs to a sleeping island (then both its bodies sleep or are static).
     bool sleeps(const Joint& joint) const {
         return sleepFlags_ != nullptr && (sleepFlags_[joint.body0] | sleepFlags_[joint.body1]) != 0;

@@ -75,6 +75,7 @@ void World::restore(const WorldSnapshot& s) {
     anyDamping_ = s.anyDamping_;
     repairPending_ = s.repairPending_;
     sleep_ = s.sleep_;
+    awakeBodiesListedAt_ = awakePairsListedAt_ = ~uint64_t{0};  // the flags are the snapshot's
     restitutionScratch_ = s.restitution_;
     if (s.soft_) {
         if (soft_)

@@ -2,10 +2,12 @@
 // world_edits.cpp): a stack falls asleep and costs no motion; a body about to hit a sleeping
 // island wakes it before any contact, and the hit follows the closed form of an elastic
 // collision; a pendulum at its turning point never sleeps; edits (a pose, a velocity, a drag
-// joint, a destroyed support, a gravity change) wake what they touch; a ball held by three
-// bodies rests on its surface's speed, not on its turning, so a settled pile of spheres
-// (spheres1000's layout) sleeps and a sphere dropped on it wakes it before the hit, while a ball
-// rolling slowly down a slope, a ball spinning on the ground and a slowly spinning top stay awake.
+// joint, a destroyed support, a gravity change, a static body moved into it) wake what they
+// touch; while an island sleeps the others move bit for bit as with sleeping off, at one thread
+// and at two; a ball held by three bodies rests on its surface's speed, not on its turning, so a
+// settled pile of spheres (spheres1000's layout) sleeps, a sphere dropped on it wakes it before
+// the hit and the woken pile settles and sleeps again, while a ball rolling slowly down a slope,
+// a ball spinning on the ground and a slowly spinning top stay awake.
 
 #include "physics_test_support.h"
 
@@ -269,6 +271,68 @@ TEST(SleepIslandsTest, MovedStaticBodyWakesWhatIsJointedToIt) {
     EXPECT_GT(world.body(bob).x.x(), 0.0);
 }
 
+/// A static wall moved into a sleeping box (a contact, no joint: the broadphase must find the
+/// new pair of a moved static body and a body that sleeps) wakes it, and the box is pushed out
+/// of the wall's new place: its face ends 1 cm further along, within the contact margin.
+TEST(SleepIslandsTest, MovedStaticBodyWakesWhatItNowTouches) {
+    for (const double gap : {0.3, 1.0}) {
+        World world = sleepyWorld();
+        const BodyId box = addStack(world, 1).front();
+        const BodyId wall = world.createBody({.shape = boxShape(Vec3(0.2, 0.4, 0.4)),
+                                              .type = BodyType::Static,
+                                              .position = Vec3(-0.2 - gap, 0.2, 0.0)});
+        for (int frame = 0; frame < framesOf(1.5); ++frame) world.step(kDt);
+        ASSERT_TRUE(world.isAsleep(box)) << gap;
+        // Moved to overlap the box by 1 cm: its face from x = -0.1 - gap to x = -0.09.
+        world.setBodyPose(wall, Vec3(-0.19, 0.2, 0.0), Quat::Identity());
+        world.step(kDt);
+        EXPECT_FALSE(world.isAsleep(box)) << gap;
+        for (int frame = 0; frame < framesOf(0.5); ++frame) world.step(kDt);
+        EXPECT_NEAR(world.body(box).x.x(), 0.01, 2e-3) << gap;
+    }
+}
+
+/// With one island asleep, the awake bodies (192 balls falling side by side onto the ground,
+/// more pairs than a parallel narrowphase splits into chunks) move bit for bit as with sleeping
+/// off, at one thread and at two: the lists of awake bodies and pairs leave nothing out and
+/// keep the order.
+TEST(SleepIslandsTest, AwakeBodiesMoveAsWithSleepingOffAtAnyThreadCount) {
+    const auto run = [](bool sleeping, int threads, int& asleep) {
+        World world({.gravity = kGravity, .substeps = 20, .sleeping = sleeping, .threads = threads});
+        world.createBody({.shape = planeShape(Vec3::UnitY(), 0.0), .type = BodyType::Static});
+        addStack(world, 3);
+        for (int frame = 0; frame < framesOf(1.5); ++frame) world.step(kDt);
+        std::vector<BodyId> balls;
+        for (int layer = 0; layer < 3; ++layer)
+            for (int row = 0; row < 8; ++row)
+                for (int column = 0; column < 8; ++column)
+                    balls.push_back(world.createBody(
+                        {.shape = sphereShape(0.1),
+                         .mass = 1.0,
+                         .position = Vec3(3.0 + 0.205 * column + 0.01 * layer, 0.3 + 0.21 * layer,
+                                          0.205 * row)}));
+        std::vector<double> state;
+        for (int frame = 0; frame < framesOf(0.8); ++frame) {
+            world.step(kDt);
+            for (const BodyId id : balls) {
+                const Body& b = world.body(id);
+                state.insert(state.end(),
+                             {b.x.x(), b.x.y(), b.x.z(), b.v.x(), b.v.y(), b.v.z(), b.omega.x()});
+            }
+        }
+        asleep = world.sleepingBodyCount();
+        return state;
+    };
+    int asleep = 0;
+    const std::vector<double> reference = run(false, 1, asleep);
+    for (const int threads : {1, 2}) {
+        const std::vector<double> state = run(true, threads, asleep);
+        EXPECT_EQ(asleep, 3) << threads;  // the stack, and no ball
+        ASSERT_EQ(state.size(), reference.size());
+        EXPECT_EQ(std::memcmp(state.data(), reference.data(), state.size() * sizeof(double)), 0) << threads;
+    }
+}
+
 TEST(SleepIslandsTest, SeparateIslandsSleepApart) {
     // A stack at rest, and a box sliding on the ground far away: the stack sleeps, the slider's
     // island stays awake and moves exactly as it does with sleeping off.
@@ -458,6 +522,21 @@ TEST(SleepIslandsTest, SettledSpherePileSleepsAndWakesWhenHit) {
     EXPECT_LE(wokeAt, hitAt);
     // The pile is one island: the hit woke all of it.
     EXPECT_EQ(world.sleepingBodyCount(), 0);
+    EXPECT_TRUE(world.isFinite());
+
+    // Woken, the pile settles again with the ball on it and falls back asleep whole; asleep,
+    // its frames solve no contact.
+    int againAt = -1;
+    for (int frame = 1; frame <= framesOf(40.0) && againAt < 0; ++frame) {
+        world.step(kDt);
+        if (world.sleepingBodyCount() == 1001) againAt = frame;
+    }
+    ASSERT_GT(againAt, 0) << "the woken pile never fell asleep again in 40 s";
+    std::printf("woken, it fell asleep again %.2f s after the hit\n", againAt * kDt);
+    world.step(kDt);
+    EXPECT_TRUE(world.contacts().empty());
+    // At rest on the pile: no higher than on top of its highest ball.
+    EXPECT_LT(world.body(ball).x.y(), topY + 0.2 + 5e-3);
     EXPECT_TRUE(world.isFinite());
 }
 

@@ -35,10 +35,17 @@ bool pairLess(const BodyPair& a, const BodyPair& b) {
     return a.body0 != b.body0 ? a.body0 < b.body0 : a.body1 < b.body1;
 }
 
+/// Whether a box reaches a plane n·x = offset: its lowest point along n at or below it (the box
+/// already carries the margin).
+bool reachesPlane(const Aabb& box, const Vec3& n, const Vec3& nAbs, double offset) {
+    const double lowest = n.dot(box.center()) - 0.5 * nAbs.dot(box.extents());
+    return lowest <= offset;
+}
+
 }  // namespace
 
 Broadphase::Broadphase(const BroadphaseSettings& settings)
-    : settings_(settings), staticTree_(0.0), dynamicTree_(settings.fatMargin) {}
+    : settings_(settings), staticTree_(0.0), dynamicTree_(settings.fatMargin), frozenTree_(0.0) {}
 
 void Broadphase::setSettings(const BroadphaseSettings& settings) {
     settings_ = settings;
@@ -51,8 +58,13 @@ void Broadphase::clear() {
     boxes_.clear();
     staticTree_.clear();
     dynamicTree_.clear();
+    frozenTree_.clear();
     dynamic_.clear();
     planes_.clear();
+    frozen_.clear();
+    newlyFrozen_.clear();
+    changedFixed_.clear();
+    kept_.clear();
     sweep_.clear();
     found_.clear();
     pairs_.clear();
@@ -63,7 +75,7 @@ const Aabb& Broadphase::bounds(uint32_t index) const {
     return index < boxes_.size() ? boxes_[index] : kEmpty;
 }
 
-void Broadphase::update(std::span<const Body> bodies, double dt, double k) {
+void Broadphase::update(std::span<const Body> bodies, double dt, double k, const uint8_t* asleep) {
     // Slots beyond the span belong to bodies that no longer exist.
     for (size_t i = bodies.size(); i < slots_.size(); ++i)
         leave(static_cast<uint32_t>(i));
@@ -72,29 +84,36 @@ void Broadphase::update(std::span<const Body> bodies, double dt, double k) {
 
     dynamic_.clear();
     planes_.clear();
+    frozen_.clear();
+    newlyFrozen_.clear();
+    changedFixed_.clear();
     for (size_t i = 0; i < bodies.size(); ++i)
-        syncSlot(static_cast<uint32_t>(i), bodies[i], dt, k);
+        syncSlot(static_cast<uint32_t>(i), bodies[i], dt, k, asleep != nullptr && asleep[i] != 0);
 
     found_.clear();
     if (settings_.method == BroadphaseMethod::SweepAndPrune) collectSweepPairs();
     collectStaticAndTreePairs();
     collectPlanePairs(bodies);
+    collectSleepingPairs(bodies);
     sortPairs(bodies.size());
 }
 
 void Broadphase::leave(uint32_t index) {
     Slot& slot = slots_[index];
     if (slot.proxy != AabbTree::kNull) {
-        (slot.kind == Kind::Static ? staticTree_ : dynamicTree_).destroyProxy(slot.proxy);
+        AabbTree& tree = slot.kind == Kind::Static ? staticTree_ : slot.frozen ? frozenTree_ : dynamicTree_;
+        tree.destroyProxy(slot.proxy);
     }
     slot.proxy = AabbTree::kNull;
+    slot.frozen = false;
+    slot.kept = false;
     slot.kind = Kind::None;
     boxes_[index] = Aabb{};
     slot.shape = Shape{};  // drops references to mesh data
     slot.inSweep = false;  // its sweep entry is dropped at the next sweep
 }
 
-void Broadphase::syncSlot(uint32_t index, const Body& body, double dt, double k) {
+void Broadphase::syncSlot(uint32_t index, const Body& body, double dt, double k, bool asleep) {
     Kind wanted = Kind::None;
     if (body.alive && body.collide && body.shape.type != ShapeType::None) {
         if (body.shape.type == ShapeType::Plane) {
@@ -109,21 +128,41 @@ void Broadphase::syncSlot(uint32_t index, const Body& body, double dt, double k)
         leave(index);
     }
     slot.generation = body.generation;
+    slot.kept = false;
     if (wanted == Kind::None) return;
 
     if (wanted == Kind::Plane) {
+        const bool same = slot.kind == Kind::Plane && body.shape.normal == slot.shape.normal &&
+                          body.shape.offset == slot.shape.offset;
+        if (!same) slot.shape = body.shape;
         slot.kind = Kind::Plane;
         boxes_[index] = infiniteBox();
         if (body.shape.normal.allFinite() && std::isfinite(body.shape.offset)) {
             planes_.push_back(index);
+            if (same) slot.kept = true;
+            else changedFixed_.push_back(index);
         }
         return;
+    }
+
+    // A body asleep since the last update has not moved: its box, leaf and pairs stay.
+    if (wanted == Kind::Dynamic && asleep && slot.frozen) {
+        slot.kept = true;
+        frozen_.push_back(index);
+        return;
+    }
+    if (slot.frozen) {
+        // Woken: back from the sleeping bodies' tree into the sweep (or the dynamic tree).
+        frozenTree_.destroyProxy(slot.proxy);
+        slot.proxy = AabbTree::kNull;
+        slot.frozen = false;
     }
 
     // A static body that has not moved or changed keeps its box and its leaf untouched.
     const bool still = body.v.isZero(0.0) && body.omega.isZero(0.0);
     if (wanted == Kind::Static && slot.kind == Kind::Static && still && body.x == slot.position &&
         body.q.coeffs() == slot.orientation.coeffs() && sameGeometry(body.shape, slot.shape)) {
+        slot.kept = true;
         return;
     }
 
@@ -170,6 +209,15 @@ void Broadphase::syncSlot(uint32_t index, const Body& body, double dt, double k)
         } else {
             staticTree_.moveProxy(slot.proxy, box);
         }
+        changedFixed_.push_back(index);
+    } else if (asleep) {
+        // Falling asleep: the box made now (a sleeping body is still) serves until it wakes.
+        if (slot.proxy != AabbTree::kNull) dynamicTree_.destroyProxy(slot.proxy);
+        slot.proxy = frozenTree_.createProxy(box, index);
+        slot.frozen = true;
+        slot.inSweep = false;  // its sweep entry is dropped at the next sweep
+        frozen_.push_back(index);
+        newlyFrozen_.push_back(index);
     } else {
         dynamic_.push_back(index);
         if (settings_.method == BroadphaseMethod::AabbTree) {
@@ -185,6 +233,7 @@ void Broadphase::syncSlot(uint32_t index, const Body& body, double dt, double k)
 
 void Broadphase::collectStaticAndTreePairs() {
     const bool useTree = settings_.method == BroadphaseMethod::AabbTree;
+    const bool anyFrozen = !frozen_.empty();
     for (const uint32_t i : dynamic_) {
         const Aabb& box = boxes_[i];
         // Leaves hold fattened boxes: keep only partners whose pairing boxes overlap.
@@ -192,6 +241,12 @@ void Broadphase::collectStaticAndTreePairs() {
             const uint32_t j = staticTree_.userData(proxy);
             if (boxes_[j].overlaps(box)) found_.push_back(orderedPair(i, j));
         });
+        // Sleeping bodies do not search: the awake ones find them.
+        if (anyFrozen)
+            frozenTree_.query(box, [&](int32_t proxy) {
+                const uint32_t j = frozenTree_.userData(proxy);
+                if (boxes_[j].overlaps(box)) found_.push_back(orderedPair(i, j));
+            });
         if (!useTree) continue;
         // Each dynamic pair is reported by its lower body only.
         dynamicTree_.query(box, [&](int32_t proxy) {
@@ -206,10 +261,12 @@ void Broadphase::collectSweepPairs() {
     std::erase_if(sweep_, [&](const SweepEntry& e) {
         return e.body >= slots_.size() || !slots_[e.body].inSweep;
     });
+    size_t newcomers = 0;
     for (const uint32_t i : dynamic_) {
         if (!slots_[i].inSweep) {
             sweep_.push_back({0.0, i});
             slots_[i].inSweep = true;
+            ++newcomers;
         }
     }
     if (sweep_.size() < 2) return;
@@ -236,10 +293,13 @@ void Broadphase::collectSweepPairs() {
 
     for (SweepEntry& e : sweep_)
         e.min = boxes_[e.body].min[a];
-    // Insertion sort: last frame's order is nearly right, so this is close to linear.
+    // Insertion sort: last frame's order is nearly right, so this is close to linear. Many
+    // newcomers at the end (the first frame, an island woken) are sorted in n log n instead; the
+    // order is the same (min, then body, a total order).
     auto before = [](const SweepEntry& x, const SweepEntry& y) {
         return x.min != y.min ? x.min < y.min : x.body < y.body;
     };
+    if (newcomers > 64) std::sort(sweep_.begin(), sweep_.end(), before);
     for (size_t i = 1; i < sweep_.size(); ++i) {
         const SweepEntry entry = sweep_[i];
         size_t j = i;
@@ -280,12 +340,56 @@ void Broadphase::collectPlanePairs(std::span<const Body> bodies) {
         const Vec3& n = bodies[p].shape.normal;
         const double offset = bodies[p].shape.offset;
         const Vec3 nAbs = n.cwiseAbs();
-        for (const uint32_t i : dynamic_) {
-            // The box's lowest point along n; the box already carries the margin.
-            const Aabb& box = boxes_[i];
-            const double lowest = n.dot(box.center()) - 0.5 * nAbs.dot(box.extents());
-            if (lowest <= offset) found_.push_back(orderedPair(p, i));
+        for (const uint32_t i : dynamic_)
+            if (reachesPlane(boxes_[i], n, nAbs, offset)) found_.push_back(orderedPair(p, i));
+    }
+}
+
+void Broadphase::collectSleepingPairs(std::span<const Body> bodies) {
+    kept_.clear();
+    if (frozen_.empty()) return;
+    // Last update's pairs between slots that have not changed since (each pair has a sleeping
+    // body: static and plane slots never pair with one another) still overlap as they did.
+    const size_t slotCount = slots_.size();
+    for (const BodyPair& pair : pairs_)
+        if (pair.body1 < slotCount && slots_[pair.body0].kept && slots_[pair.body1].kept)
+            kept_.push_back(pair);
+
+    // Bodies that fell asleep: against the sleeping ones (a pair of two newcomers once), the
+    // static bodies and the planes. The awake bodies found them already.
+    for (const uint32_t i : newlyFrozen_) {
+        const Aabb& box = boxes_[i];
+        frozenTree_.query(box, [&](int32_t proxy) {
+            const uint32_t j = frozenTree_.userData(proxy);
+            if (j == i || (!slots_[j].kept && j < i)) return;
+            if (boxes_[j].overlaps(box)) found_.push_back(orderedPair(i, j));
+        });
+        staticTree_.query(box, [&](int32_t proxy) {
+            const uint32_t j = staticTree_.userData(proxy);
+            if (boxes_[j].overlaps(box)) found_.push_back(orderedPair(i, j));
+        });
+        for (const uint32_t p : planes_) {
+            const Vec3& n = bodies[p].shape.normal;
+            if (reachesPlane(box, n, n.cwiseAbs(), bodies[p].shape.offset))
+                found_.push_back(orderedPair(p, i));
         }
+    }
+
+    // Static bodies and planes that moved or changed: against the bodies that slept before.
+    for (const uint32_t s : changedFixed_) {
+        if (slots_[s].kind == Kind::Plane) {
+            const Vec3& n = bodies[s].shape.normal;
+            const Vec3 nAbs = n.cwiseAbs();
+            for (const uint32_t i : frozen_)
+                if (slots_[i].kept && reachesPlane(boxes_[i], n, nAbs, bodies[s].shape.offset))
+                    found_.push_back(orderedPair(s, i));
+            continue;
+        }
+        const Aabb& box = boxes_[s];
+        frozenTree_.query(box, [&](int32_t proxy) {
+            const uint32_t j = frozenTree_.userData(proxy);
+            if (slots_[j].kept && boxes_[j].overlaps(box)) found_.push_back(orderedPair(s, j));
+        });
     }
 }
 
@@ -308,6 +412,11 @@ void Broadphase::sortPairs(size_t bodyCount) {
         }
         pairs_[j] = pair;
     }
+    if (kept_.empty()) return;
+    // The kept pairs are in order already: merged with the new ones (no pair is in both).
+    found_.resize(kept_.size() + pairs_.size());
+    std::merge(kept_.begin(), kept_.end(), pairs_.begin(), pairs_.end(), found_.begin(), pairLess);
+    pairs_.swap(found_);
 }
 
 }  // namespace substep

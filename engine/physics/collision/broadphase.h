@@ -21,6 +21,13 @@
 ///
 /// Pairs are never static-static, never involve a dead slot, a body with collide == false or
 /// ShapeType::None. Filtering by joints is the world's business.
+///
+/// Sleeping bodies (the world's sleep flags, passed to update) do not move, so their boxes and
+/// their pairs with one another, with unchanged static bodies and with planes are kept from the
+/// last update, not found again: a body falling asleep gets its box (still: no motion growth)
+/// once and moves from the sweep into a tree of sleeping bodies, which the awake bodies, the
+/// bodies falling asleep and the static bodies that moved search; waking puts it back in the
+/// sweep. The pairs are the same as those of an update that treats every body alike.
 
 #include "physics/body.h"
 #include "physics/collision/aabb.h"
@@ -72,7 +79,10 @@ class Broadphase {
     /// Updates every body's box (grown by k·dt·|v| plus, for rotating bodies,
     /// k·dt·|ω|·reach, plus the margin) and collects the candidate pairs. `bodies` is indexed
     /// by body id; slots may die, be reused (a new generation) or change between calls.
-    void update(std::span<const Body> bodies, double dt, double k = 2.0);
+    /// `asleep` (null: none) flags sleeping bodies, as many as `bodies`: a body flagged in two
+    /// updates in a row must not have moved or changed between them (the world wakes every body
+    /// it edits), and its box and kept pairs are not looked at again.
+    void update(std::span<const Body> bodies, double dt, double k = 2.0, const uint8_t* asleep = nullptr);
 
     /// The pairs of the last update, sorted by (body0, body1) so that runs are deterministic.
     std::span<const BodyPair> pairs() const { return pairs_; }
@@ -89,7 +99,9 @@ class Broadphase {
 
     /// Number of bodies in the static and the dynamic set after the last update (diagnostics).
     int staticCount() const { return staticTree_.proxyCount(); }
-    int dynamicCount() const { return static_cast<int>(dynamic_.size()); }
+    int dynamicCount() const { return static_cast<int>(dynamic_.size() + frozen_.size()); }
+    /// Number of sleeping bodies among them, whose boxes and pairs were kept (diagnostics).
+    int sleepingCount() const { return static_cast<int>(frozen_.size()); }
 
   private:
     enum class Kind : uint8_t { None, Static, Dynamic, Plane };
@@ -103,6 +115,10 @@ class Broadphase {
         int32_t proxy = AabbTree::kNull;
         Kind kind = Kind::None;
         bool inSweep = false;  ///< has an entry in sweep_
+        bool frozen = false;   ///< a sleeping dynamic body: its proxy is in frozenTree_
+        /// Its box and kind are those of the last update (a frozen body frozen before it, a
+        /// static body or a plane that did not change): its pairs with other such slots are kept.
+        bool kept = false;
     };
 
     /// One body in the sweep, sorted by the lower bound of its box along the sweep axis.
@@ -115,11 +131,15 @@ class Broadphase {
         double minB, maxB, minC, maxC;
     };
 
-    void syncSlot(uint32_t index, const Body& body, double dt, double k);
+    void syncSlot(uint32_t index, const Body& body, double dt, double k, bool asleep);
     void leave(uint32_t index);
     void collectStaticAndTreePairs();
     void collectSweepPairs();
     void collectPlanePairs(std::span<const Body> bodies);
+    /// The pairs of bodies that fell asleep, and of static bodies and planes that changed, with
+    /// the sleeping bodies; keeps last update's pairs between unchanged sleeping, static and
+    /// plane slots in kept_.
+    void collectSleepingPairs(std::span<const Body> bodies);
     void sortPairs(size_t bodyCount);
 
     BroadphaseSettings settings_;
@@ -127,8 +147,13 @@ class Broadphase {
     std::vector<Aabb> boxes_;  ///< pairing box of each slot in the last update
     AabbTree staticTree_;
     AabbTree dynamicTree_;
-    std::vector<uint32_t> dynamic_;  ///< dynamic bodies with a box, ascending
+    std::vector<uint32_t> dynamic_;  ///< awake dynamic bodies with a box, ascending
     std::vector<uint32_t> planes_;
+    AabbTree frozenTree_;  ///< the sleeping bodies' boxes (no fat margin: they do not move)
+    std::vector<uint32_t> frozen_;         ///< sleeping bodies with a box, ascending
+    std::vector<uint32_t> newlyFrozen_;    ///< those that fell asleep since the last update
+    std::vector<uint32_t> changedFixed_;   ///< static bodies and planes re-boxed in this update
+    std::vector<BodyPair> kept_;           ///< last update's pairs between kept slots
     std::vector<SweepEntry> sweep_;
     // The boxes in sweep order, split so that the inner loop streams through lower bounds.
     std::vector<double> sweepMin_, sweepMax_;
