@@ -3,9 +3,28 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>   // TRACE
+#include <cstdlib>  // TRACE
 
 namespace substep {
 namespace {
+// TRACE begin
+struct Trace {
+    bool on = std::getenv("SUBSTEP_RTRACE") != nullptr;
+    bool old = std::getenv("SUBSTEP_ROLD") != nullptr;
+    bool paper = std::getenv("SUBSTEP_RPAPER") != nullptr;
+    long calls = 0, approachNew = 0, approachTouching = 0, collisions = 0, sweeps = 0, fallbacks = 0, windowCalls = 0,
+         passContacts = 0, starting = 0;
+    void flush() {
+        if (!on || calls == 0) return;
+        std::fprintf(stderr, "RTRACE calls %ld approachNew %.1f approachTouching %.1f collisions %.1f sweeps %.2f fallbacks %ld starting %ld window %ld pass %.1f\n",
+                     calls, double(approachNew) / calls, double(approachTouching) / calls, double(collisions) / calls,
+                     double(sweeps) / calls, fallbacks, starting, windowCalls, double(passContacts) / calls);
+        *this = Trace();
+    }
+};
+Trace trace;
+// TRACE end
 
 /// Sweeps at most: a row of n touching bodies needs about n (one per collision down the row,
 /// fewer when listed in the row's order); a heavy striker's follow-up collisions a few more.
@@ -41,11 +60,17 @@ inline bool sweeps(const ContactPair& pair, std::span<const Contact> contacts) {
     return pair.count == 1 && pair.restitution > 0.0 && contacts[pair.first].lambdaNormal > 0.0;
 }
 
+/// A pair of the sweeps that did not push in the substep before: only such a pair's approach
+/// starts a collision.
+inline bool starts(const ContactPair& pair, std::span<const Contact> contacts) {
+    return (trace.old || !pair.pushedBefore) && sweeps(pair, contacts);
+}
+
 }  // namespace
 
-bool findRestitutionImpulses(std::span<const ContactPair> pairs, std::span<Contact> contacts,
-                             const Body* bodies, size_t bodyCount, double h, double gravity,
-                             RestitutionScratch& scratch) {
+bool findRestitutionImpulses(std::span<const uint32_t> touching, std::span<const ContactPair> pairs,
+                             std::span<Contact> contacts, const Body* bodies, size_t bodyCount, double h,
+                             double gravity, RestitutionScratch& scratch) {
     // The paper's jitter guard (Eq. 34's e = 0 below 2 |g| h), and a floor without gravity.
     const double resting = std::max(2.0 * gravity * h, kRestingApproach);
     if (scratch.stamp.size() < bodyCount) {
@@ -62,6 +87,40 @@ bool findRestitutionImpulses(std::span<const ContactPair> pairs, std::span<Conta
         scratch.call = 1;
     }
     const uint32_t call = scratch.call;
+    const bool windowOpen = scratch.lastCollision != 0 && call - scratch.lastCollision < kCollisionWindow;
+    // The look every substep takes: does a collision start? Only a pair that did not push in
+    // the substep before can start one (starts()), so a pile at rest, every pair of which
+    // pushed, costs a test of two flags per touching pair.
+    bool starting = false;
+    for (const uint32_t k : touching) {
+        const ContactPair& pair = pairs[k];
+        if (!starts(pair, contacts)) continue;
+        const Body& b0 = bodies[pair.body0];
+        const Body& b1 = bodies[pair.body1];
+        const Contact& c = contacts[pair.first];
+        if (approach(velocityBefore(b0), velocityBefore(b1), b0.q * c.local0, b1.q * c.local1, c.normal) > resting) {
+            starting = true;
+            break;
+        }
+    }
+    if (trace.on) {  // TRACE
+        ++trace.calls;
+        for (const uint32_t k : touching) {
+            const ContactPair& pair = pairs[k];
+            if (!sweeps(pair, contacts)) continue;
+            const Body& b0 = bodies[pair.body0];
+            const Body& b1 = bodies[pair.body1];
+            const Contact& c = contacts[pair.first];
+            if (approach(velocityBefore(b0), velocityBefore(b1), b0.q * c.local0, b1.q * c.local1, c.normal) > resting)
+                ++(pair.pushedBefore ? trace.approachTouching : trace.approachNew);
+        }
+        trace.starting += starting;
+        trace.windowCalls += windowOpen;
+        if (trace.calls == 1200) trace.flush();
+        if (trace.paper) return false;
+    }
+    if (!starting && !windowOpen) return false;
+
     BodyVelocity* velocities = scratch.velocities.data();
     uint32_t* stamp = scratch.stamp.data();
     int* changedIn = scratch.changedIn.data();
@@ -70,24 +129,24 @@ bool findRestitutionImpulses(std::span<const ContactPair> pairs, std::span<Conta
     const auto velocity = [&](uint32_t body) {
         return stamp[body] == call ? velocities[body] : velocityBefore(bodies[body]);
     };
+    const auto reachedNow = [&](uint32_t body) { return stamp[body] == call; };
     std::vector<uint32_t>& visited = scratch.pairs;
     visited.clear();
+    for (const uint32_t k : touching)
+        if (sweeps(pairs[k], contacts)) visited.push_back(k);
     bool collidedAny = false;
-    for (int sweep = 0; sweep < kMaxSweeps; ++sweep) {
+    for (int sweep = 0; starting && sweep < kMaxSweeps; ++sweep) {
         bool collided = false;
-        // The first sweep looks at every pair that pushed and keeps them; the later ones visit
-        // only the pairs a body of which changed in the sweep before.
-        const size_t count = sweep == 0 ? pairs.size() : visited.size();
-        for (size_t index = 0; index < count; ++index) {
-            const uint32_t k = sweep == 0 ? static_cast<uint32_t>(index) : visited[index];
+        for (const uint32_t k : visited) {
             const ContactPair& pair = pairs[k];
-            if (sweep == 0) {
-                if (!sweeps(pair, contacts)) continue;
-                visited.push_back(k);
-            } else if (!(stamp[pair.body0] == call && changedIn[pair.body0] >= sweep - 1) &&
-                       !(stamp[pair.body1] == call && changedIn[pair.body1] >= sweep - 1)) {
+            // The first sweep looks at every pair that pushed; the later ones only at the pairs
+            // a body of which changed in the sweep before.
+            if (sweep > 0 && !(reachedNow(pair.body0) && changedIn[pair.body0] >= sweep - 1) &&
+                !(reachedNow(pair.body1) && changedIn[pair.body1] >= sweep - 1))
                 continue;
-            }
+            // A pair that was already touching collides only once a collision has reached one
+            // of its bodies: its own approach is a pile's settling, left to Eq. 34.
+            if (!trace.old && pair.pushedBefore && !reachedNow(pair.body0) && !reachedNow(pair.body1)) continue;
             const Body& b0 = bodies[pair.body0];
             const Body& b1 = bodies[pair.body1];
             Contact& c = contacts[pair.first];
@@ -121,9 +180,11 @@ bool findRestitutionImpulses(std::span<const ContactPair> pairs, std::span<Conta
                 changedIn[pair.body1] = sweep;
             }
             c.restitutionImpulse += impulse;
+            trace.collisions += trace.on;  // TRACE
             collided = true;
         }
         collidedAny = collidedAny || collided;
+        trace.sweeps += trace.on;  // TRACE
         if (!collided) break;
         if (sweep == kMaxSweeps - 1) {
             // Still colliding after the last sweep: a crowd (a pile, where every body touches
@@ -131,6 +192,7 @@ bool findRestitutionImpulses(std::span<const ContactPair> pairs, std::span<Conta
             // settle there, and their impulses left it shaking (spheres1000: 1650 collisions a
             // substep, five times the paper's rule's, and 70 % more time). It keeps Eq. 34.
             for (const uint32_t k : visited) contacts[pairs[k].first].restitutionImpulse = 0.0;
+            trace.fallbacks += trace.on;  // TRACE
             return false;
         }
     }
@@ -154,8 +216,23 @@ bool findRestitutionImpulses(std::span<const ContactPair> pairs, std::span<Conta
     for (const uint32_t k : visited) {
         const ContactPair& pair = pairs[k];
         Contact& c = contacts[pair.first];
-        c.collisionPass = c.restitutionImpulse > 0.0 || reached(pair.body0) || reached(pair.body1);
+        c.collisionPass = c.restitutionImpulse > 0.0;
+        if (!c.collisionPass && (reached(pair.body0) || reached(pair.body1))) {
+            // A contact between bodies a collision reached that did not collide now: its push
+            // is replaced only while the bodies part faster than resting (a struck body leaving
+            // its neighbour through an overlap); a resting one keeps Eq. 34, so that a pile a
+            // collision stirred settles as under the paper's rule.
+            if (trace.old) {
+                c.collisionPass = true;
+            } else {
+                const Body& b0 = bodies[pair.body0];
+                const Body& b1 = bodies[pair.body1];
+                c.collisionPass = -approach(velocity(pair.body0), velocity(pair.body1), b0.q * c.local0,
+                                            b1.q * c.local1, c.normal) > resting;
+            }
+        }
         any = any || c.collisionPass;
+        trace.passContacts += trace.on && c.collisionPass;  // TRACE
     }
     return any;
 }
