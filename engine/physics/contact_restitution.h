@@ -29,18 +29,6 @@
 /// substep with no collision in the window keep Eq. 34 exactly, at the cost of one look at the
 /// pushing contacts with restitution.
 ///
-/// Only a pair that did not push in the substep before (ContactPair::pushedBefore: it was
-/// apart) starts a collision; one that was touching collides only once a collision of this
-/// substep's sweeps has reached one of its bodies. A touching pair's own approach is a pile
-/// settling, which Eq. 34 damps: when every such approach faster than 2 |g| h collided, and
-/// the bodies it reached lost their pushes for the window, spheres1000 never came to rest
-/// (kinetic energy 0.65-1.3 J from 4 s to 10 s, where Eq. 34 alone leaves 0.04-0.38 J; 100-170
-/// touching contacts approaching faster than 2 |g| h a substep against 0.1-0.5). Likewise, in
-/// the window, a contact that did not collide has its push replaced only while its bodies part
-/// faster than resting on the sweeps' velocities (a struck body leaving its neighbour through
-/// an overlap); a resting one keeps Eq. 34. A substep in which no pair starts a collision and
-/// the window is closed costs one test of two flags per touching pair.
-///
 /// Collisions closer in time than a substep are taken in the order the sweeps meet them, not in
 /// time order (a striker into spheres 1 mm apart at 1 m/s and 20 substeps: the closed form
 /// holds for equal masses, within 0.3 m/s for unequal ones; 10 mm gaps: within 5e-3).

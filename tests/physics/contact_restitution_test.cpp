@@ -333,7 +333,10 @@ TEST(ContactRestitutionTest, AMarbleOnWiresStruckAlongTheTrack) {
 // A pile of spheres dropped into a walled box (spheres1000's layout, smaller): it must come to
 // rest under either rule. Failed first: under the sweeps every contact of the pile that
 // approached faster than 2 |g| h collided, and the pushes of the bodies a collision reached
-// were replaced for 16 substeps; the pile's own settling kept colliding and never stopped.
+// were replaced for 16 substeps; the pile's own settling kept colliding and never stopped
+// (kinetic energy after 6 s: 0.146 J for 125 spheres, 0.171 J for the mixed 144, past the
+// bound; 0.004 and 0.005 J now, 0.008 and 0.075 J with Eq. 34 alone). Only a pair that was
+// apart in the substep before now starts a collision.
 struct Pile {
     int side = 5;              ///< spheres along x and z
     int layers = 5;            ///< along y
