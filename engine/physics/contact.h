@@ -68,6 +68,9 @@ struct ContactPair {
     double lambdaTangent2 = 0.0;   ///< along two tangents of its normal
     double lambdaTwist = 0.0;      ///< the patch's torsional friction multiplier
     double lambdaNormal = 0.0;     ///< Σ λ_n of its points this substep
+    /// Whether the pair pushed (Σ λ_n > 0) in the substep before this one: it was touching, so
+    /// it starts no collision in the restitution sweeps (contact_restitution.h).
+    bool pushedBefore = false;
 
     // Static friction anchors of a patch that spans an area, kept from first touch while it
     // sticks (across substeps and frames): the patch centre on body 0 and the point of body 1

@@ -67,8 +67,8 @@ struct RestitutionScratch {
 /// Contact::collisionPass of those the velocity pass gives their collision impulse (see
 /// above). Returns whether any contact takes that pass; when none does (no collision in the
 /// window) every contact is left as it was and the velocity pass is exactly the paper's.
-bool findRestitutionImpulses(std::span<const ContactPair> pairs, std::span<Contact> contacts,
-                             const Body* bodies, size_t bodyCount, double h, double gravity,
-                             RestitutionScratch& scratch);
+bool findRestitutionImpulses(std::span<const uint32_t> touching, std::span<const ContactPair> pairs,
+                             std::span<Contact> contacts, const Body* bodies, size_t bodyCount, double h,
+                             double gravity, RestitutionScratch& scratch);
 
 }  // namespace substep

@@ -445,6 +445,7 @@ void World::collectContactPairs(double dt) {
             pair.anchor1 = old.anchor1;
             pair.turnAnchor = old.turnAnchor;
             pair.anchored = old.anchored;
+            pair.lambdaNormal = old.lambdaNormal;  // its last substep's push, for pushedBefore
         }
         contactPairs_.push_back(pair);
     }
@@ -523,6 +524,7 @@ void World::findPairContacts(const uint32_t* order, size_t first, size_t last, b
         const bool apart =
             std::isfinite(reach) && (pose0.position - pose1.position).squaredNorm() > reach * reach;
         pair.first = static_cast<uint32_t>(out.size());
+        pair.pushedBefore = pair.lambdaNormal > 0.0;
         pair.lambdaNormal = pair.lambdaTangent1 = pair.lambdaTangent2 = pair.lambdaTwist = 0.0;
         // Spheres on spheres and planes (a pile's pairs) write their point straight into `out`.
         const int spherePoints =
@@ -692,7 +694,7 @@ void World::solveVelocities(double h) {
         // through touching bodies whatever their order (contact_restitution.h). Their impulses add
         // up in any order, so they all go in before Eq. 34 sets the other contacts' velocities.
         const bool collided = settings_.sweptRestitution &&
-                              findRestitutionImpulses(contactPairs_, contacts_, bodies_.data(), bodies_.size(), h,
+                              findRestitutionImpulses(touchingPairs_, contactPairs_, contacts_, bodies_.data(), bodies_.size(), h,
                                                       gravity, restitutionScratch_);
         if (collided)
             for (const uint32_t p : touchingPairs_) {
