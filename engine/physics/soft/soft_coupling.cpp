@@ -195,6 +195,9 @@ void SoftSystem::collectCandidates(std::span<const Body> bodies, double dt, doub
             const Body& b = bodies[bi];
             if (!b.alive || !b.collide || b.shape.type == ShapeType::None) continue;
             if (!canCollide(ShapeType::Sphere, b.shape.type)) continue;
+            // The filters, as two rigid bodies' (Body::filtersMeet).
+            if ((soft.collisionGroup & b.collisionMask) == 0 || (b.collisionGroup & soft.collisionMask) == 0)
+                continue;
             // Attached particles sit on (or in) the body: they are held, not pushed out.
             if (std::find(soft.attachedBodies.begin(), soft.attachedBodies.end(), bi) != soft.attachedBodies.end())
                 continue;
