@@ -32,7 +32,7 @@ namespace substep::scenes::rc_car {
 
 namespace {
 
-/// Collision filter: the car's colliding parts (chassis, rims) do not meet one another.
+/// Collision filter: the car's colliding parts (chassis, rims, tyres) do not meet one another.
 constexpr uint32_t kCarGroup = 2;
 
 // The terrain (m).
@@ -108,6 +108,8 @@ SoftBodyDef tyreDef(const Vec3& centre, const Quat& rimOrientation, const Vec3& 
                        .staticFriction = kTyreFriction,
                        .dynamicFriction = 0.9 * kTyreFriction,
                        .particleRadius = kParticleRadius,
+                       .collisionGroup = kCarGroup,
+                       .collisionMask = ~kCarGroup,
                        .attachments = {SoftAttachmentDef{.particles = SoftAttachmentParticles::Inner}}};
 }
 

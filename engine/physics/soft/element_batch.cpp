@@ -13,15 +13,96 @@ namespace {
 using namespace simd;
 static_assert(kLanes == kBatchLanes);
 
-/// A lane's Newton step turned more than this (rad²) or met a matrix that is not positive
-/// definite: the lane's rotation is finished by extractRotation (as its second iteration would
-/// be: what is left after a step of 1e-3 rad is about its square).
+/// A lane's first Newton step turned more than this (rad²): it takes a second step, as
+/// extractRotation would (what is left after a step of 1e-3 rad is about its square, below
+/// rounding after the second); a second step over it goes to extractRotation.
 constexpr double kLaneTurn2 = 1e-6;
+/// A first step over this (rad², 0.1 rad), or a matrix that is not positive definite: the lane
+/// goes to extractRotation, which turns such steps by their exact angle.
+constexpr double kLaneFar2 = 0.01;
 
 /// Square roots in place, lane by lane (vectorised with -fno-math-errno).
 [[gnu::always_inline]] inline void squareRoot(Lanes& v) {
     for (int l = 0; l < kLanes; ++l)
         v[l] = std::sqrt(v[l]);
+}
+
+/// Per lane, all bits set or none: the result of comparing Lanes.
+using Mask = decltype(Lanes{} < Lanes{});
+
+[[gnu::always_inline]] inline bool anyLane(const Mask& m) { return (m[0] | m[1] | m[2] | m[3]) != 0; }
+
+/// The rotation matrices of the lanes' unit quaternions.
+[[gnu::always_inline]] inline void rotationMatrix(const Lanes& w, const Lanes& qx, const Lanes& qy,
+                                                  const Lanes& qz, Lanes& r00, Lanes& r01, Lanes& r02,
+                                                  Lanes& r10, Lanes& r11, Lanes& r12, Lanes& r20,
+                                                  Lanes& r21, Lanes& r22) {
+    r00 = 1 - 2 * (qy * qy + qz * qz), r01 = 2 * (qx * qy - w * qz), r02 = 2 * (qx * qz + w * qy);
+    r10 = 2 * (qx * qy + w * qz), r11 = 1 - 2 * (qx * qx + qz * qz), r12 = 2 * (qy * qz - w * qx);
+    r20 = 2 * (qx * qz - w * qy), r21 = 2 * (qy * qz + w * qx), r22 = 1 - 2 * (qx * qx + qy * qy);
+}
+
+/// One Newton step of extractRotation (shape_matching.h) for the lanes' A and rotation R: with
+/// B = Rᵀ A = S + [u]×, the turn t (in R's frame) solving (tr S 1 − S) t = 2u, and where
+/// tr S 1 − S is positive definite (t is 0 where it is not).
+[[gnu::always_inline]] inline void newtonTurn(const Lanes (&am)[3][3], const Lanes& spread, const Lanes& r00,
+                                              const Lanes& r01, const Lanes& r02, const Lanes& r10,
+                                              const Lanes& r11, const Lanes& r12, const Lanes& r20,
+                                              const Lanes& r21, const Lanes& r22, Lanes& tx, Lanes& ty,
+                                              Lanes& tz, Mask& definite) {
+    const Lanes zero = {}, one = zero + 1.0;
+    const Lanes b00 = r00 * am[0][0] + r10 * am[1][0] + r20 * am[2][0];
+    const Lanes b01 = r00 * am[0][1] + r10 * am[1][1] + r20 * am[2][1];
+    const Lanes b02 = r00 * am[0][2] + r10 * am[1][2] + r20 * am[2][2];
+    const Lanes b10 = r01 * am[0][0] + r11 * am[1][0] + r21 * am[2][0];
+    const Lanes b11 = r01 * am[0][1] + r11 * am[1][1] + r21 * am[2][1];
+    const Lanes b12 = r01 * am[0][2] + r11 * am[1][2] + r21 * am[2][2];
+    const Lanes b20 = r02 * am[0][0] + r12 * am[1][0] + r22 * am[2][0];
+    const Lanes b21 = r02 * am[0][1] + r12 * am[1][1] + r22 * am[2][1];
+    const Lanes b22 = r02 * am[0][2] + r12 * am[1][2] + r22 * am[2][2];
+    const Lanes ux = b21 - b12, uy = b02 - b20, uz = b10 - b01;  // 2u
+    const Lanes trace = b00 + b11 + b22;
+    const Lanes m00 = trace - b00, m11 = trace - b11, m22 = trace - b22;
+    const Lanes m01 = -0.5 * (b01 + b10), m02 = -0.5 * (b02 + b20), m12 = -0.5 * (b12 + b21);
+    const Lanes c00 = m11 * m22 - m12 * m12, c01 = m02 * m12 - m01 * m22, c02 = m01 * m12 - m02 * m11;
+    const Lanes c11 = m00 * m22 - m02 * m02, c12 = m01 * m02 - m00 * m12, c22 = m00 * m11 - m01 * m01;
+    const Lanes det = m00 * c00 + m01 * c01 + m02 * c02;
+    const Lanes floor = 1e-6 * (trace < 0 ? -trace : trace) + 1e-9 * spread;
+    definite = (m00 > floor) & (c22 > floor * floor) & (det > floor * floor * floor);
+    const Lanes inverse = definite ? one / det : zero;
+    tx = (c00 * ux + c01 * uy + c02 * uz) * inverse;
+    ty = (c01 * ux + c11 * uy + c12 * uz) * inverse;
+    tz = (c02 * ux + c12 * uy + c22 * uz) * inverse;
+}
+
+/// Turns the lanes' quaternions q by ω = R t (world) as integrateRotation does, q + ½ (0, s ω) q
+/// renormalised, with `halfScale` = ½ s (s its tan(|θ|/2)/(|θ|/2) series). The new norm is
+/// 1 + ε, ε ≤ |½ s ω|² plus the rounding of |q|: lanes in `exact` divide by its square root,
+/// the others (ε below 1e-6) take 1/sqrt(1 + ε) by its series, whose ε³ terms are under 1e-18.
+/// Lanes in `still` keep their quaternion bit for bit.
+[[gnu::always_inline]] inline void turnLanes(const Lanes& r00, const Lanes& r01, const Lanes& r02,
+                                             const Lanes& r10, const Lanes& r11, const Lanes& r12,
+                                             const Lanes& r20, const Lanes& r21, const Lanes& r22,
+                                             const Lanes& tx, const Lanes& ty, const Lanes& tz,
+                                             const Lanes& halfScale, const Mask& still, const Mask& exact,
+                                             Lanes& w, Lanes& qx, Lanes& qy, Lanes& qz) {
+    const Lanes ox = (r00 * tx + r01 * ty + r02 * tz) * halfScale;  // ½ s ω
+    const Lanes oy = (r10 * tx + r11 * ty + r12 * tz) * halfScale;
+    const Lanes oz = (r20 * tx + r21 * ty + r22 * tz) * halfScale;
+    const Lanes nw = w - ox * qx - oy * qy - oz * qz;
+    const Lanes nx = qx + ox * w + oy * qz - oz * qy;
+    const Lanes ny = qy - ox * qz + oy * w + oz * qx;
+    const Lanes nz = qz + ox * qy - oy * qx + oz * w;
+    const Lanes squared = nw * nw + nx * nx + ny * ny + nz * nz;
+    const Lanes epsilon = squared - 1.0;
+    Lanes norm = 1.0 - epsilon * (0.5 - 0.375 * epsilon);
+    if (anyLane(exact)) {
+        Lanes root = squared;
+        squareRoot(root);
+        norm = exact ? 1.0 / root : norm;
+    }
+    w = still ? w : nw * norm, qx = still ? qx : nx * norm;
+    qy = still ? qy : ny * norm, qz = still ? qz : nz * norm;
 }
 
 static_assert(sizeof(Quat) == 4 * sizeof(double), "rotations are read as packed (x, y, z, w)");
@@ -61,8 +142,9 @@ static_assert(sizeof(Quat) == 4 * sizeof(double), "rotations are read as packed 
 /// inverse masses, ℓ² and α_e read from the batch, one warm-started Newton step of the rotation
 /// extraction, the deviations and the XPBD update (Eq. 4), and the corners scattered back.
 template <bool Contiguous>
-[[gnu::always_inline]] inline void solveBatch(const ElementBatch& batch,
-                                              const ElementArrays& arrays, double invH2) {
+[[gnu::always_inline]] inline uint32_t solveBatch(const ElementBatch& batch,
+                                                  const ElementArrays& arrays, double invH2) {
+    uint32_t handedOver = 0;
     const uint32_t first = batch.firstElement;
     const int lanes = static_cast<int>(batch.lanes);
     double* const pos = arrays.positions.data()->data();
@@ -106,78 +188,57 @@ template <bool Contiguous>
         for (int c = 0; c < 3; ++c)
             am[r][c] *= 0.125;
 
-    // One Newton step of extractRotation from the warm start (selects instead of branches).
-    Lanes r00 = 1 - 2 * (qy * qy + qz * qz), r01 = 2 * (qx * qy - w * qz),
-          r02 = 2 * (qx * qz + w * qy);
-    Lanes r10 = 2 * (qx * qy + w * qz), r11 = 1 - 2 * (qx * qx + qz * qz),
-          r12 = 2 * (qy * qz - w * qx);
-    Lanes r20 = 2 * (qx * qz - w * qy), r21 = 2 * (qy * qz + w * qx),
-          r22 = 1 - 2 * (qx * qx + qy * qy);
+    // Newton steps of extractRotation from the warm start (selects instead of branches): one,
+    // and a second for the lanes whose first turned more than 1e-3 rad; the rest (a turn over
+    // 0.1 rad, an inverted or collapsed shape, a second step still over 1e-3 rad) go to
+    // extractRotation itself.
     const Lanes zero = {}, one = zero + 1.0;
-    Lanes handOver;  // all bits set where the lane goes to extractRotation
+    Lanes r00, r01, r02, r10, r11, r12, r20, r21, r22;
+    rotationMatrix(w, qx, qy, qz, r00, r01, r02, r10, r11, r12, r20, r21, r22);
+    Lanes tx, ty, tz;
+    Mask definite;
+    newtonTurn(am, spread, r00, r01, r02, r10, r11, r12, r20, r21, r22, tx, ty, tz, definite);
+    Lanes angle2 = tx * tx + ty * ty + tz * tz;
+    // Not definite, a turn over 0.1 rad or NaN: extractRotation from the warm start.
+    Mask handOver = ~definite | (angle2 > kLaneFar2) | (angle2 != angle2);
+    // A turn over 1e-3 rad: a second step follows (what is left after a step is about its square).
+    const Mask again = ~handOver & (angle2 > kLaneTurn2);
     {
-        // B = Rᵀ A.
-        const Lanes b00 = r00 * am[0][0] + r10 * am[1][0] + r20 * am[2][0];
-        const Lanes b01 = r00 * am[0][1] + r10 * am[1][1] + r20 * am[2][1];
-        const Lanes b02 = r00 * am[0][2] + r10 * am[1][2] + r20 * am[2][2];
-        const Lanes b10 = r01 * am[0][0] + r11 * am[1][0] + r21 * am[2][0];
-        const Lanes b11 = r01 * am[0][1] + r11 * am[1][1] + r21 * am[2][1];
-        const Lanes b12 = r01 * am[0][2] + r11 * am[1][2] + r21 * am[2][2];
-        const Lanes b20 = r02 * am[0][0] + r12 * am[1][0] + r22 * am[2][0];
-        const Lanes b21 = r02 * am[0][1] + r12 * am[1][1] + r22 * am[2][1];
-        const Lanes b22 = r02 * am[0][2] + r12 * am[1][2] + r22 * am[2][2];
-        const Lanes ux = b21 - b12, uy = b02 - b20, uz = b10 - b01;  // 2u
-        const Lanes trace = b00 + b11 + b22;
-        const Lanes m00 = trace - b00, m11 = trace - b11, m22 = trace - b22;
-        const Lanes m01 = -0.5 * (b01 + b10), m02 = -0.5 * (b02 + b20), m12 = -0.5 * (b12 + b21);
-        const Lanes c00 = m11 * m22 - m12 * m12, c01 = m02 * m12 - m01 * m22,
-                    c02 = m01 * m12 - m02 * m11;
-        const Lanes c11 = m00 * m22 - m02 * m02, c12 = m01 * m02 - m00 * m12,
-                    c22 = m00 * m11 - m01 * m01;
-        const Lanes det = m00 * c00 + m01 * c01 + m02 * c02;
-        const Lanes floor = 1e-6 * (trace < 0 ? -trace : trace) + 1e-9 * spread;
-        const auto definite = (m00 > floor) & (c22 > floor * floor) & (det > floor * floor * floor);
-        const Lanes inverse = definite ? one / det : zero;
-        const Lanes tx = (c00 * ux + c01 * uy + c02 * uz) * inverse;
-        const Lanes ty = (c01 * ux + c11 * uy + c12 * uz) * inverse;
-        const Lanes tz = (c02 * ux + c12 * uy + c22 * uz) * inverse;
-        const Lanes angle2 = tx * tx + ty * ty + tz * tz;
-        // Not definite, a turn over 1e-3 rad or NaN: the lane goes to extractRotation.
-        const auto over = ~definite | (angle2 > kLaneTurn2) | (angle2 != angle2);
-        handOver = over ? one : zero;
-        // integrateRotation's small-angle series (|θ|/2 below 5e-4 here); a converged lane
-        // (angle2 ≤ 1e-24) stays put, as in extractRotation.
+        // integrateRotation's small-angle series (|θ|/2 below 5e-4 here, 0.05 in the lanes that
+        // step again, which take its next term too); a converged lane (angle2 ≤ 1e-24) stays
+        // put, as in extractRotation.
         const Lanes half2 = 0.25 * angle2;
         const Lanes series = 0.5 * (1.0 + half2 * (1.0 / 3.0 + half2 * (2.0 / 15.0)));
-        const auto still = over | (angle2 <= 1e-24);
-        const Lanes scale = still ? zero : series;
-        const Lanes ox = (r00 * tx + r01 * ty + r02 * tz) * scale;  // ½ scale ω, ω = R turn
-        const Lanes oy = (r10 * tx + r11 * ty + r12 * tz) * scale;
-        const Lanes oz = (r20 * tx + r21 * ty + r22 * tz) * scale;
-        const Lanes nw = w - ox * qx - oy * qy - oz * qz;
-        const Lanes nx = qx + ox * w + oy * qz - oz * qy;
-        const Lanes ny = qy - ox * qz + oy * w + oz * qx;
-        const Lanes nz = qz + ox * qy - oy * qx + oz * w;
-        // 1/|q + dq| by its series in ε = |q + dq|² − 1 (dq ⟂ q, so ε ≤ |dq|² + the rounding
-        // of |q|, below 1e-6): ε³ terms are under 1e-18, and no square root or division.
-        const Lanes epsilon = (nw * nw + nx * nx + ny * ny + nz * nz) - 1.0;
-        const Lanes norm = 1.0 - epsilon * (0.5 - 0.375 * epsilon);
-        // A lane that did not move keeps its rotation bit for bit.
-        w = still ? w : nw * norm, qx = still ? qx : nx * norm;
-        qy = still ? qy : ny * norm, qz = still ? qz : nz * norm;
-        r00 = 1 - 2 * (qy * qy + qz * qz), r01 = 2 * (qx * qy - w * qz), r02 = 2 * (qx * qz + w * qy);
-        r10 = 2 * (qx * qy + w * qz), r11 = 1 - 2 * (qx * qx + qz * qz), r12 = 2 * (qy * qz - w * qx);
-        r20 = 2 * (qx * qz - w * qy), r21 = 2 * (qy * qz + w * qx), r22 = 1 - 2 * (qx * qx + qy * qy);
+        const Lanes longSeries = 0.5 * (1.0 + half2 * (1.0 / 3.0 + half2 * (2.0 / 15.0 + half2 * (17.0 / 315.0))));
+        const Mask still = handOver | (angle2 <= 1e-24);
+        const Lanes scale = still ? zero : again ? longSeries : series;
+        turnLanes(r00, r01, r02, r10, r11, r12, r20, r21, r22, tx, ty, tz, scale, still, again, w, qx, qy, qz);
+        rotationMatrix(w, qx, qy, qz, r00, r01, r02, r10, r11, r12, r20, r21, r22);
     }
-    // A lane handed over kept its warm start in (w, qx, qy, qz): extractRotation starts from it.
+    if (anyLane(again)) {
+        newtonTurn(am, spread, r00, r01, r02, r10, r11, r12, r20, r21, r22, tx, ty, tz, definite);
+        angle2 = tx * tx + ty * ty + tz * tz;
+        // Still over 1e-3 rad (or no longer definite): extractRotation goes on from the first step.
+        handOver |= again & (~definite | (angle2 > kLaneTurn2) | (angle2 != angle2));
+        const Lanes half2 = 0.25 * angle2;
+        const Lanes series = 0.5 * (1.0 + half2 * (1.0 / 3.0 + half2 * (2.0 / 15.0)));
+        const Mask still = ~again | handOver | (angle2 <= 1e-24);
+        const Lanes scale = still ? zero : series;
+        turnLanes(r00, r01, r02, r10, r11, r12, r20, r21, r22, tx, ty, tz, scale, still, Mask{}, w, qx, qy, qz);
+        rotationMatrix(w, qx, qy, qz, r00, r01, r02, r10, r11, r12, r20, r21, r22);
+    }
+    // A lane handed over kept its warm start (or its first step) in (w, qx, qy, qz):
+    // extractRotation starts from it.
     if constexpr (Contiguous) storeRotations(arrays.rotations[first].coeffs().data(), w, qx, qy, qz);
     for (int l = 0; l < lanes; ++l) {
         const uint32_t e = first + static_cast<uint32_t>(l);
-        if (handOver[l] == 0.0) {
+        if (handOver[l] == 0) {
             if constexpr (!Contiguous) arrays.rotations[e] = Quat(w[l], qx[l], qy[l], qz[l]);
             continue;
         }
-        // The rare lane: the whole extraction from its warm start, as the scalar sweep does it.
+        // The rare lane: the extraction from there, as the scalar sweep does it.
+        if constexpr (!Contiguous) arrays.rotations[e] = Quat(w[l], qx[l], qy[l], qz[l]);
+        ++handedOver;
         Mat3 matrix;
         for (int r = 0; r < 3; ++r)
             for (int c = 0; c < 3; ++c)
@@ -230,7 +291,7 @@ template <bool Contiguous>
         std::memcpy(&arrays.lambda[first], &lambda, sizeof lambda);
         for (int j = 0; j < 8; ++j)
             storePoints(pos + 3 * size_t(batch.particle[j][0]), px[j], py[j], pz[j]);
-        return;
+        return handedOver;
     }
     for (int l = 0; l < lanes; ++l)
         arrays.lambda[first + static_cast<uint32_t>(l)] = lambda[l];
@@ -240,7 +301,7 @@ template <bool Contiguous>
                 double* p = pos + 3 * size_t(batch.particle[j][l]);
                 p[0] = px[j][l], p[1] = py[j][l], p[2] = pz[j][l];
             }
-        return;
+        return handedOver;
     }
     for (int l = 0; l < lanes; ++l) {
         const uint32_t e = first + static_cast<uint32_t>(l);
@@ -266,6 +327,7 @@ template <bool Contiguous>
         for (int j = 0; j < 8; ++j)
             arrays.positions[element[j]] = corners[j];
     }
+    return handedOver;
 }
 
 }  // namespace
@@ -324,11 +386,13 @@ void appendBatches(const ElementArrays& arrays, std::span<const uint32_t> wave, 
     }
 }
 
-[[gnu::target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")]] void solveElementBatches(
+[[gnu::target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")]] uint32_t solveElementBatches(
     std::span<const ElementBatch> batches, const ElementArrays& arrays, double invH2) {
+    uint32_t handedOver = 0;
     for (const ElementBatch& batch : batches)
-        batch.contiguous ? solveBatch<true>(batch, arrays, invH2)
-                         : solveBatch<false>(batch, arrays, invH2);
+        handedOver += batch.contiguous ? solveBatch<true>(batch, arrays, invH2)
+                                       : solveBatch<false>(batch, arrays, invH2);
+    return handedOver;
 }
 
 }  // namespace substep

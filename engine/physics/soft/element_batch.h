@@ -8,10 +8,11 @@
 /// order (the order decides how fast a stiff lattice converges: a sweep bottom to top carries a
 /// push through a whole column). Elements of one wave share no particle; runs of up to four
 /// consecutive elements of one wave form a batch, projected side by side, one per SIMD lane. The
-/// kernel is the one of shape_matching.h (Eq. 4 on C = sqrt(Σ ⅛ |x_j − c − R q_j|²)) with one
-/// warm-started Newton step of the rotation extraction in the lanes; the rare element that needs
-/// more (a turn over 1e-3 rad, an inverted or collapsed shape) and the optional volume constraint
-/// run through the scalar functions of shape_matching.h.
+/// kernel is the one of shape_matching.h (Eq. 4 on C = sqrt(Σ ⅛ |x_j − c − R q_j|²)) with one or
+/// two warm-started Newton steps of the rotation extraction in the lanes (two where the first
+/// turns more than 1e-3 rad, as extractRotation does); the rare element that needs more (a turn
+/// over 0.1 rad, a second step over 1e-3 rad, an inverted or collapsed shape) and the optional
+/// volume constraint run through the scalar functions of shape_matching.h.
 
 #include "physics/math.h"
 #include "physics/soft/lattice.h"
@@ -69,8 +70,8 @@ void appendBatches(const ElementArrays& arrays, std::span<const uint32_t> wave, 
                    uint32_t count, std::vector<ElementBatch>& batches);
 
 /// One Gauss-Seidel sweep of the shape-matching (and volume) constraints over the batches, with
-/// α̃ = α_e invH2.
-void solveElementBatches(std::span<const ElementBatch> batches, const ElementArrays& arrays,
+/// α̃ = α_e invH2. Returns how many elements' rotations the lanes handed to extractRotation.
+uint32_t solveElementBatches(std::span<const ElementBatch> batches, const ElementArrays& arrays,
                          double invH2);
 
 }  // namespace substep

@@ -67,6 +67,11 @@ struct SoftBodyDef {
     double restitution = 0.0;
     double particleRadius = 0.01;     ///< m: particles collide as spheres of this radius
     bool collide = true;
+    /// Collision filter against rigid bodies, as BodyDef's (Box2D's category and mask bits): a
+    /// particle meets a rigid body only when each one's group is in the other's mask. The
+    /// defaults let it meet every body. (A soft body never meets the bodies it is attached to.)
+    uint32_t collisionGroup = 1;
+    uint32_t collisionMask = ~0u;
     std::vector<SoftAttachmentDef> attachments;
 };
 

@@ -68,15 +68,87 @@ inline Vec3 attachmentImpulse(double& lambda, double alphaTilde, const Vec3& del
     return factor * delta;
 }
 
-/// A lower bound on the gap between a sphere (centre p) and a static shape of world bounds
-/// `bounds`: its distance to the bounds, or for a heightfield, solid below its surface (and so
-/// beyond its bounds), its height above the highest sample. (The narrowphase's points are not
-/// the nearest: a heightfield reports the triangles under the sphere.)
-double staticGap(const Shape& shape, const Pose& pose, const Aabb& bounds, const Vec3& p, double radius) {
-    if (shape.type == ShapeType::Heightfield)
-        return shape.heightfield ? pose.applyInverse(p).y() - shape.heightfield->maxHeight - radius : 0.0;
-    return (bounds.min - p).cwiseMax(p - bounds.max).cwiseMax(0.0).norm() - radius;
+/// The highest sample of the heightfield cells that reach into the local x–z box [lo, hi] (the
+/// surface over a cell lies between its corners' samples), or −∞ where the box misses the field
+/// (nothing is solid there). A box over more than 4096 samples takes the field's maximum.
+double highestSampleUnder(const HeightfieldData& field, const Vec3& lo, const Vec3& hi) {
+    // The cells' range as HeightfieldData::forTrianglesIn takes it.
+    const auto range = [](double a, double b, double origin, double cell, int cells, int& first, int& last) {
+        const double i0 = std::floor((a - origin) / cell), i1 = std::floor((b - origin) / cell);
+        if (!(i1 >= 0.0) || !(i0 <= cells - 1)) return false;  // also rejects NaN
+        first = static_cast<int>(std::max(i0, 0.0));
+        last = static_cast<int>(std::min(i1, static_cast<double>(cells - 1)));
+        return true;
+    };
+    int i0, i1, j0, j1;
+    if (!range(lo.x(), hi.x(), -0.5 * field.sizeX, field.cellX(), field.columns - 1, i0, i1) ||
+        !range(lo.z(), hi.z(), -0.5 * field.sizeZ, field.cellZ(), field.rows - 1, j0, j1))
+        return -std::numeric_limits<double>::infinity();
+    if ((i1 - i0 + 2) * (j1 - j0 + 2) > 4096) return field.maxHeight;
+    double highest = -std::numeric_limits<double>::infinity();
+    for (int j = j0; j <= j1 + 1; ++j)
+        for (int i = i0; i <= i1 + 1; ++i)
+            highest = std::max(highest, field.heights[j * field.columns + i]);
+    return highest;
 }
+
+/// Lower bounds on the gap between a particle's sphere and a static shape, for the particles of
+/// one soft body in a frame (all inside `softBox`, world). The narrowphase's points are not a
+/// bound (a heightfield reports the triangles under the sphere), so each shape gets its own:
+/// - a box: the distance to it, in its frame;
+/// - a plane: the height above it;
+/// - a heightfield, solid below its surface: in its frame, the height above the highest sample
+///   under the soft body's box, or, for solid outside that column, the distance to the column's
+///   side, whichever is less (or the height above the field's highest sample, if larger);
+/// - anything else: the distance to its world bounds.
+class StaticGap {
+public:
+    StaticGap(const Shape& shape, const Pose& pose, const Aabb& bounds, const Aabb& softBox, double radius)
+        : shape_(shape), pose_(pose), bounds_(bounds), radius_(radius) {
+        if (shape.type != ShapeType::Heightfield || !shape.heightfield) return;
+        for (int corner = 0; corner < 8; ++corner)
+            column_.grow(pose.applyInverse(Vec3(corner & 1 ? softBox.max.x() : softBox.min.x(),
+                                                corner & 2 ? softBox.max.y() : softBox.min.y(),
+                                                corner & 4 ? softBox.max.z() : softBox.min.z())));
+        highest_ = highestSampleUnder(*shape.heightfield, column_.min, column_.max);
+    }
+
+    double operator()(const Vec3& p) const {
+        switch (shape_.type) {
+            case ShapeType::Box: {
+                const Vec3 local = pose_.applyInverse(p);
+                return (local.cwiseAbs() - 0.5 * shape_.size).cwiseMax(0.0).norm() - radius_;
+            }
+            case ShapeType::Plane: return shape_.normal.dot(p) - shape_.offset - radius_;
+            case ShapeType::Heightfield: {
+                if (!shape_.heightfield) return 0.0;
+                const Vec3 local = pose_.applyInverse(p);
+                const double side = std::min({local.x() - column_.min.x(), column_.max.x() - local.x(),
+                                              local.z() - column_.min.z(), column_.max.z() - local.z()});
+                // The old bound, the height above the whole field's highest sample, can be the
+                // larger where a soft body's box overhangs its column.
+                return std::max(local.y() - shape_.heightfield->maxHeight, std::min(local.y() - highest_, side)) -
+                       radius_;
+            }
+            default: return (bounds_.min - p).cwiseMax(p - bounds_.max).cwiseMax(0.0).norm() - radius_;
+        }
+    }
+
+    /// Whether the bound is the distance itself, or close to it where it matters (a heightfield's
+    /// near its surface): the bound alone then decides a particle's candidacy.
+    bool tight() const {
+        return shape_.type == ShapeType::Box || shape_.type == ShapeType::Plane ||
+               shape_.type == ShapeType::Heightfield;
+    }
+
+private:
+    const Shape& shape_;
+    Pose pose_;
+    Aabb bounds_;
+    double radius_;
+    Aabb column_;  ///< heightfield: the soft body's box in its frame
+    double highest_ = 0.0;
+};
 
 }  // namespace
 
@@ -173,9 +245,13 @@ void SoftSystem::solveAttachments(SolverContext& ctx) {
 }
 
 void SoftSystem::collectCandidates(std::span<const Body> bodies, double dt, double margin, const Vec3& gravity) {
-    // Once per frame: every particle whose sphere may reach a rigid shape during the frame,
-    // found by the narrowphase itself with a margin for the frame's motion (a particle's
-    // speed twice over, for the corrections that move it, and the body's sweep).
+    // Once per frame: every particle whose sphere may reach a rigid shape during the frame, with
+    // a margin for the frame's motion (a particle's speed twice over, for the corrections that
+    // move it, and the body's sweep). Each soft body's box is tested against each rigid body's
+    // first; then each particle, against a static shape by a lower bound on its gap (StaticGap;
+    // where that bound is the distance or near it, the bound alone decides, and a candidate
+    // that cannot touch costs the substeps one comparison each), against a moving one by the
+    // narrowphase itself.
     candidates_.clear();
     const double fall = gravity.norm() * dt * dt;
     ContactManifold manifold;
@@ -195,6 +271,9 @@ void SoftSystem::collectCandidates(std::span<const Body> bodies, double dt, doub
             const Body& b = bodies[bi];
             if (!b.alive || !b.collide || b.shape.type == ShapeType::None) continue;
             if (!canCollide(ShapeType::Sphere, b.shape.type)) continue;
+            // The filters, as two rigid bodies' (Body::filtersMeet).
+            if ((soft.collisionGroup & b.collisionMask) == 0 || (b.collisionGroup & soft.collisionMask) == 0)
+                continue;
             // Attached particles sit on (or in) the body: they are held, not pushed out.
             if (std::find(soft.attachedBodies.begin(), soft.attachedBodies.end(), bi) != soft.attachedBodies.end())
                 continue;
@@ -207,15 +286,32 @@ void SoftSystem::collectCandidates(std::span<const Body> bodies, double dt, doub
             const Aabb staticBounds = shapeBounds(b.shape, pose.position, pose.rotation);
             const Aabb bodyBox = staticBounds.inflated(sweep);
             if (!bodyBox.overlaps(softBox)) continue;
+            if (still) {
+                const StaticGap gapOf(b.shape, pose, staticBounds, softBox, soft.radius);
+                const bool decides = gapOf.tight();
+                for (uint32_t i = first; i < end; ++i) {
+                    const double reachOut = margin + 2.0 * dt * v_[i].norm() + fall;
+                    const Aabb point = Aabb{x_[i], x_[i]}.inflated(soft.radius + reachOut);
+                    if (!point.overlaps(bodyBox)) continue;
+                    const double gap = gapOf(x_[i]);
+                    if (gap > reachOut) continue;  // the narrowphase would find nothing
+                    if (!decides) {
+                        collide(probe, Pose{x_[i], Quat::Identity()}, b.shape, pose, reachOut, manifold);
+                        if (manifold.count == 0) continue;
+                    }
+                    candidates_.push_back({.particle = i, .body = bi, .softBody = s, .gap = gap, .origin = x_[i]});
+                }
+                continue;
+            }
             for (uint32_t i = first; i < end; ++i) {
                 const double reachOut = margin + 2.0 * dt * v_[i].norm() + sweep + fall;
                 const Aabb point = Aabb{x_[i], x_[i]}.inflated(soft.radius + reachOut);
                 if (!point.overlaps(bodyBox)) continue;
                 collide(probe, Pose{x_[i], Quat::Identity()}, b.shape, pose, reachOut, manifold);
                 if (manifold.count == 0) continue;
-                const double gap = still ? staticGap(b.shape, pose, staticBounds, x_[i], soft.radius)
-                                         : -std::numeric_limits<double>::infinity();  // never skipped
-                candidates_.push_back({.particle = i, .body = bi, .softBody = s, .gap = gap, .origin = x_[i]});
+                // Never skipped: a moving body's gap changes with its own motion too.
+                candidates_.push_back({.particle = i, .body = bi, .softBody = s,
+                                       .gap = -std::numeric_limits<double>::infinity(), .origin = x_[i]});
             }
         }
     }

@@ -34,6 +34,8 @@ SoftBodyId SoftSystem::create(const SoftBodyDef& def, std::span<const Body> bodi
     data.restitution = def.restitution;
     data.radius = def.particleRadius;
     data.collide = def.collide;
+    data.collisionGroup = def.collisionGroup;
+    data.collisionMask = def.collisionMask;
     data.preserveVolume = def.preserveVolume;
     data.alive = true;
     data.generation = generation;

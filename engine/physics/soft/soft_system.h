@@ -97,6 +97,7 @@ private:
         double staticFriction = 0.5, dynamicFriction = 0.3, restitution = 0.0;
         double radius = 0.01, mass = 0.0;
         bool collide = true, preserveVolume = false, alive = false;
+        uint32_t collisionGroup = 1, collisionMask = ~0u;  ///< SoftBodyDef's filter
         uint32_t generation = 0;
         std::vector<std::array<uint32_t, 4>> quads;  ///< boundary faces, body-local indices
         /// Rigid bodies it is attached to: its particles do not collide with them.

@@ -2,7 +2,8 @@
 // element's wave is later than those of the earlier elements it touches, and a sweep of batches
 // gives what projecting the elements one after the other in the lattice's order with the scalar
 // functions of shape_matching.h gives, on deformed, turned and flat elements, rigid and soft,
-// with and without the volume constraint, through the contiguous loads (a tyre's batches) and the gathers.
+// with and without the volume constraint, through the contiguous loads (a tyre's batches) and the gathers,
+// and a rolling wheel's turns per substep finished in the lanes (two Newton steps) with its result.
 #include "physics/soft/element_batch.h"
 #include "physics/soft/shape_matching.h"
 
@@ -202,6 +203,45 @@ TEST(ElementBatch, ContiguousBatchesProjectLikeOneElementAfterTheOther) {
     EXPECT_GT(share, 0.75);
     // Any tyre with more than eight cells around has some.
     EXPECT_GT(expectBatchesProjectLikeTheScalarSweep(buildTyreLattice(0.3, 0.2, 0.1, {9, 2, 1}), false), 0.0);
+}
+
+TEST(ElementBatch, TurnsOfARollingWheelStayInTheLanes) {
+    // A rolling wheel's elements turn about ω h = 20 rad/s x 0.83 ms = 0.017 rad per substep
+    // beyond their warm start. Elements stretched without a turn (their polar rotation the
+    // identity, the warm start) and then turned by 0.005 to 0.05 rad: the lanes finish all but
+    // a few of them in two Newton steps, as extractRotation does, with the scalar sweep's
+    // result (one step alone handed every one over: its first step turns over 1e-3 rad); turned by
+    // 0.3 rad (beyond 0.1) they go to extractRotation, with the same result.
+    const Mat3 axes = Quat(Eigen::AngleAxisd(0.7, Vec3(1, -1, 2).normalized())).toRotationMatrix();
+    const Mat3 stretch = axes * Vec3(1.02, 0.98, 1.0).asDiagonal() * axes.transpose();  // symmetric
+    for (const Lattice& lattice : {buildTyreLattice(0.3, 0.2, 0.15, {44, 5, 5}), buildBoxLattice(Vec3(0.3, 0.2, 0.4), {3, 2, 4})}) {
+        for (const double angle : {0.005, 0.017, 0.05, 0.3}) {
+            Elements batched(lattice, true, false);
+            Elements scalar(lattice, false, false);
+            const Mat3 turn = Quat(Eigen::AngleAxisd(angle, Vec3(2, 1, -1).normalized())).toRotationMatrix();
+            double size = 0.0;
+            for (Vec3& p : batched.x) {
+                p = turn * stretch * p;
+                size = std::max(size, p.norm());
+            }
+            scalar.x = batched.x;
+            std::vector<ElementBatch> batches;
+            appendBatches(batched.arrays(), batched.wave, 0, static_cast<uint32_t>(batched.elements.size()), batches);
+            const double invH2 = 1200.0 * 1200.0;
+            const uint32_t handedOver = solveElementBatches(batches, batched.arrays(), invH2);
+            scalarSweep(scalar, invH2);
+            if (angle < 0.1) {
+                // (The sweep's own corrections turn a few elements further.)
+                EXPECT_LE(100 * handedOver, batched.elements.size()) << angle << " rad";
+            } else {
+                EXPECT_GT(2 * handedOver, batched.elements.size()) << angle << " rad";
+            }
+            double largest = 0.0;
+            for (size_t i = 0; i < batched.x.size(); ++i)
+                largest = std::max(largest, (batched.x[i] - scalar.x[i]).norm());
+            EXPECT_LT(largest, 1e-12 * size) << angle << " rad";
+        }
+    }
 }
 
 }  // namespace
