@@ -294,6 +294,47 @@ void SoftSystem::groupContactPatches() {
 }
 
 void SoftSystem::solveContacts(SolverContext& ctx) {
+    if (patchFriction_) solveContactsPerPatch(ctx);
+    else solveContactsPerParticle(ctx);
+}
+
+void SoftSystem::solveContactsPerParticle(SolverContext& ctx) {
+    for (ParticleContact& c : contacts_) {
+        const Body& b = ctx.bodies[c.body];
+        const Vec3& n = c.normal;
+        Vec3& x = x_[c.particle];
+        const double w = invMass_[c.particle];
+        Vec3 r = b.q * c.local1;
+        // Eq. 26: d = (p1 − p0)·n with p0 the particle's surface point.
+        double depth = (b.x + r - (x - c.radius * n)).dot(n);
+        if (depth > 0.0 && ctx.capPushOut) {
+            const double approach = -(v_[c.particle] - pointVelocity(b, r)).dot(n);
+            depth = std::min(depth, ctx.h * std::max(approach, kPushOutSpeed));
+        }
+        if (!(depth > 0.0)) continue;
+        const double deltaLambda = depth / (w + bodyInverseMass(b, r, n));  // Eqs. 2-4, α = 0
+        c.lambdaNormal += deltaLambda;
+        x += (w * deltaLambda) * n;
+        if (b.invMass > 0.0) applyImpulse(ctx, c.body, 0, -deltaLambda * n, r.cross(-deltaLambda * n), Vec3::Zero());
+        if (!(c.staticFriction > 0.0)) continue;
+        // Eqs. 27-28: undo the tangential motion of the particle relative to the body's point
+        // during the substep while λ_t stays within μ_s λ_n.
+        r = b.q * c.local1;
+        const Vec3 motion = (x - xPrev_[c.particle]) - (b.x + r - previousPoint(b, c.local1));
+        const Vec3 slip = motion - motion.dot(n) * n;
+        const double length = slip.norm();
+        if (!(length > kDirectionEpsilon)) continue;
+        const Vec3 t = slip / length;
+        const double deltaTangent = length / (w + bodyInverseMass(b, r, t));
+        if (c.lambdaTangent + deltaTangent > c.staticFriction * c.lambdaNormal) continue;
+        c.lambdaTangent += deltaTangent;
+        c.frictionImpulse -= deltaTangent * t;
+        x -= (w * deltaTangent) * t;
+        if (b.invMass > 0.0) applyImpulse(ctx, c.body, 0, deltaTangent * t, r.cross(deltaTangent * t), Vec3::Zero());
+    }
+}
+
+void SoftSystem::solveContactsPerPatch(SolverContext& ctx) {
     groupContactPatches();
     // Eq. 26 for every contact first, so that static friction is judged on the patch's whole
     // normal multiplier of this substep.
@@ -401,7 +442,8 @@ void SoftSystem::solveContacts(SolverContext& ctx) {
 
 void SoftSystem::solveContactVelocities(Body* bodies, double h, double gravity) {
     const double restingSpeed = 2.0 * gravity * h;
-    for (const ParticleContact& c : contacts_) {
+    for (size_t k = 0; k < contacts_.size(); ++k) {
+        const ParticleContact& c = contacts_[k];
         if (!(c.lambdaNormal > 0.0)) continue;
         Body& b = bodies[c.body];
         const Vec3& n = c.normal;
@@ -414,8 +456,10 @@ void SoftSystem::solveContactVelocities(Body* bodies, double h, double gravity) 
         const double e = std::abs(vnBefore) <= restingSpeed ? 0.0 : c.restitution;
         const double change = std::max(-e * vnBefore, 0.0) - vn;
         if (std::abs(change) > kRestingSpeed) applyVelocityChange(v, w, b, r, change * n);
-        // A contact whose patch took its friction in the solve (held, or slid at μ_d) has had it.
-        if (!(c.dynamicFriction > 0.0) || c.lambdaTangent > 0.0) continue;
+        // A contact of a sliding patch had its μ_d in the solve.
+        if (!(c.dynamicFriction > 0.0) || (patchFriction_ && c.lambdaTangent > 0.0 && k < contactPatch_.size() &&
+                                             patches_[contactPatch_[k]].kept < 1.0))
+            continue;
         // Eq. 30 (ERRATA item 2's units): slip removed by at most h μ_d |f_n| = μ_d λ_n / h.
         const Vec3 relative = v - pointVelocity(b, r);
         const Vec3 slip = relative - relative.dot(n) * n;

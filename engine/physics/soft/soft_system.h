@@ -56,6 +56,8 @@ public:
     /// stage's corrections, substep_corrections.h).
     void solveAttachments(SolverContext& ctx);
     void solveContacts(SolverContext& ctx);
+    /// Static friction per contact patch (WorldSettings::softPatchFriction) or per particle.
+    void setPatchFriction(bool on) { patchFriction_ = on; }
     void deriveVelocities(double h);
     /// The contacts' restitution and dynamic friction.
     void solveVelocities(Body* bodies, double h, double gravity);
@@ -156,6 +158,10 @@ private:
 
     /// Sorts this substep's contacts into patches (patches_, contactPatch_).
     void groupContactPatches();
+    /// solveContacts with static friction judged contact by contact (the paper's), or over
+    /// each patch.
+    void solveContactsPerParticle(SolverContext& ctx);
+    void solveContactsPerPatch(SolverContext& ctx);
     void solveContactVelocities(Body* bodies, double h, double gravity);
     /// The element arrays as the batch kernel reads them.
     ElementArrays elementArrays();
@@ -187,6 +193,7 @@ private:
     std::vector<Attachment> attachments_;
     std::vector<Candidate> candidates_;
     std::vector<ParticleContact> contacts_;
+    bool patchFriction_ = false;
     std::vector<ContactPatch> patches_;
     std::vector<uint32_t> contactPatch_;  ///< per contact: its patch
     std::vector<Vec3> frictionStep_;      ///< per contact: this iteration's static friction impulse
