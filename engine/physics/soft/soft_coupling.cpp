@@ -359,7 +359,42 @@ void SoftSystem::findContacts(std::span<const Body> bodies, double margin) {
     }
 }
 
+void SoftSystem::groupContactPatches() {
+    // Contacts come grouped by soft body, then rigid body (the candidates' order), so the last
+    // patch is nearly always the one; any other order still finds its patch.
+    patches_.clear();
+    contactPatch_.resize(contacts_.size());
+    frictionStep_.assign(contacts_.size(), Vec3::Zero());
+    uint32_t owner = 0, ownerFirst = 0, ownerEnd = 0;
+    for (size_t k = 0; k < contacts_.size(); ++k) {
+        const ParticleContact& c = contacts_[k];
+        if (c.particle < ownerFirst || c.particle >= ownerEnd) {
+            for (uint32_t s = 0; s < bodies_.size(); ++s) {
+                const SoftBodyData& soft = bodies_[s];
+                if (soft.alive && c.particle >= soft.firstParticle && c.particle < soft.firstParticle + soft.particleCount) {
+                    owner = s, ownerFirst = soft.firstParticle, ownerEnd = soft.firstParticle + soft.particleCount;
+                    break;
+                }
+            }
+        }
+        size_t patch = patches_.size();
+        while (patch > 0 && (patches_[patch - 1].softBody != owner || patches_[patch - 1].body != c.body))
+            --patch;
+        if (patch == 0) {
+            patches_.push_back({.softBody = owner, .body = c.body, .staticFriction = c.staticFriction,
+                                .dynamicFriction = c.dynamicFriction});
+            patch = patches_.size();
+        }
+        contactPatch_[k] = static_cast<uint32_t>(patch - 1);
+    }
+}
+
 void SoftSystem::solveContacts(SolverContext& ctx) {
+    if (patchFriction_) solveContactsPerPatch(ctx);
+    else solveContactsPerParticle(ctx);
+}
+
+void SoftSystem::solveContactsPerParticle(SolverContext& ctx) {
     for (ParticleContact& c : contacts_) {
         const Body& b = ctx.bodies[c.body];
         const Vec3& n = c.normal;
@@ -395,9 +430,116 @@ void SoftSystem::solveContacts(SolverContext& ctx) {
     }
 }
 
+void SoftSystem::solveContactsPerPatch(SolverContext& ctx) {
+    groupContactPatches();
+    // Eq. 26 for every contact first, so that static friction is judged on the patch's whole
+    // normal multiplier of this substep.
+    for (ParticleContact& c : contacts_) {
+        const Body& b = ctx.bodies[c.body];
+        const Vec3& n = c.normal;
+        Vec3& x = x_[c.particle];
+        const double w = invMass_[c.particle];
+        const Vec3 r = b.q * c.local1;
+        // Eq. 26: d = (p1 − p0)·n with p0 the particle's surface point.
+        double depth = (b.x + r - (x - c.radius * n)).dot(n);
+        if (depth > 0.0 && ctx.capPushOut) {
+            const double approach = -(v_[c.particle] - pointVelocity(b, r)).dot(n);
+            depth = std::min(depth, ctx.h * std::max(approach, kPushOutSpeed));
+        }
+        if (!(depth > 0.0)) continue;
+        const double deltaLambda = depth / (w + bodyInverseMass(b, r, n));  // Eqs. 2-4, α = 0
+        c.lambdaNormal += deltaLambda;
+        x += (w * deltaLambda) * n;
+        if (b.invMass > 0.0) applyImpulse(ctx, c.body, 0, -deltaLambda * n, r.cross(-deltaLambda * n), Vec3::Zero());
+    }
+    // Each patch's load: Σ λ_n, its λ_n-weighted centre and normal, and Σ λ_n ρ (ρ a particle's
+    // distance from the centre across the normal), the twist μ_s holds per unit μ_s.
+    for (size_t k = 0; k < contacts_.size(); ++k) {
+        const ParticleContact& c = contacts_[k];
+        ContactPatch& patch = patches_[contactPatch_[k]];
+        patch.normal += c.lambdaNormal;
+        patch.centre += c.lambdaNormal * x_[c.particle];
+        patch.direction += c.lambdaNormal * c.normal;
+    }
+    for (ContactPatch& patch : patches_) {
+        if (!(patch.normal > 0.0)) continue;
+        patch.centre /= patch.normal;
+        const double length = patch.direction.norm();
+        patch.direction = length > kDirectionEpsilon ? Vec3(patch.direction / length) : Vec3::Zero();
+    }
+    for (size_t k = 0; k < contacts_.size(); ++k) {
+        const ParticleContact& c = contacts_[k];
+        ContactPatch& patch = patches_[contactPatch_[k]];
+        if (!(c.lambdaNormal > 0.0) || !(patch.staticFriction > 0.0)) continue;
+        const Vec3 offset = x_[c.particle] - patch.centre;
+        patch.reach += c.lambdaNormal * (offset - offset.dot(patch.direction) * patch.direction).norm();
+    }
+    // Eqs. 27-28 for each pushing contact: the tangential motion of the particle relative to
+    // the body's point during the substep is undone ...
+    for (size_t k = 0; k < contacts_.size(); ++k) {
+        ParticleContact& c = contacts_[k];
+        if (!(c.lambdaNormal > 0.0) || !(patches_[contactPatch_[k]].staticFriction > 0.0)) continue;
+        const Body& b = ctx.bodies[c.body];
+        const Vec3& n = c.normal;
+        Vec3& x = x_[c.particle];
+        const double w = invMass_[c.particle];
+        const Vec3 r = b.q * c.local1;
+        const Vec3 motion = (x - xPrev_[c.particle]) - (b.x + r - previousPoint(b, c.local1));
+        const Vec3 slip = motion - motion.dot(n) * n;
+        const double length = slip.norm();
+        if (!(length > kDirectionEpsilon)) continue;
+        const Vec3 t = slip / length;
+        const double deltaTangent = length / (w + bodyInverseMass(b, r, t));
+        const Vec3 impulse = -deltaTangent * t;  // on the particle
+        c.lambdaTangent += deltaTangent;
+        c.frictionImpulse += impulse;
+        frictionStep_[k] = impulse;
+        x += w * impulse;
+        if (b.invMass > 0.0) applyImpulse(ctx, c.body, 0, -impulse, r.cross(-impulse), Vec3::Zero());
+    }
+    // ... and kept whole where the patch's static friction, its force and its twist about the
+    // patch's normal, stays within μ_s Σλ_n and μ_s Σλ_n ρ (combined as an ellipse): a patch
+    // holds or slides as one, whatever share of the load each particle carries while the body
+    // settles. Particle by particle, the least loaded ones (uphill on a slope) let go first and
+    // a soft box slid off well below atan(μ_s).
+    for (size_t k = 0; k < contacts_.size(); ++k) {
+        const ParticleContact& c = contacts_[k];
+        ContactPatch& patch = patches_[contactPatch_[k]];
+        patch.force += c.frictionImpulse;
+        patch.twist += (x_[c.particle] - patch.centre).cross(c.frictionImpulse).dot(patch.direction);
+    }
+    for (ContactPatch& patch : patches_) {
+        const double forceLimit = patch.staticFriction * patch.normal;
+        // A twist limit of at least μ_s Σλ_n × 1 µm: a one-point patch holds no twist worth
+        // the name, and the ratio stays finite.
+        const double twistLimit = patch.staticFriction * std::max(patch.reach, 1e-6 * patch.normal);
+        const double force = patch.force.norm() / forceLimit;
+        const double twist = patch.twist / twistLimit;
+        const double ratio = std::sqrt(force * force + twist * twist);
+        // A patch past the limit slides, and keeps μ_d / μ_s of that, scaled back onto the
+        // limit: kinetic friction μ_d Σλ_n at the position level. Eq. 30 in the velocity pass
+        // would change the particles' velocities only, not take back the slip the elements'
+        // pull made within the substep, and a box that broke loose slid on with less than μ_d.
+        patch.kept = forceLimit > 0.0 ? (ratio <= 1.0 ? 1.0 : patch.dynamicFriction / (patch.staticFriction * ratio)) : 0.0;
+    }
+    for (size_t k = 0; k < contacts_.size(); ++k) {
+        const double kept = patches_[contactPatch_[k]].kept;
+        if (kept >= 1.0 || frictionStep_[k].isZero(0.0)) continue;
+        const Vec3 impulse = (1.0 - kept) * frictionStep_[k];  // the part taken back
+        ParticleContact& c = contacts_[k];
+        const Body& b = ctx.bodies[c.body];
+        const Vec3 r = b.q * c.local1;
+        c.lambdaTangent -= impulse.norm();
+        c.frictionImpulse -= impulse;
+        x_[c.particle] -= invMass_[c.particle] * impulse;
+        if (b.invMass > 0.0) applyImpulse(ctx, c.body, 0, impulse, r.cross(impulse), Vec3::Zero());
+    }
+}
+
 void SoftSystem::solveContactVelocities(Body* bodies, double h, double gravity) {
     const double restingSpeed = 2.0 * gravity * h;
-    for (const ParticleContact& c : contacts_) {
+    for (size_t k = 0; k < contacts_.size(); ++k) {
+        const ParticleContact& c = contacts_[k];
         if (!(c.lambdaNormal > 0.0)) continue;
         Body& b = bodies[c.body];
         const Vec3& n = c.normal;
@@ -410,7 +552,10 @@ void SoftSystem::solveContactVelocities(Body* bodies, double h, double gravity) 
         const double e = std::abs(vnBefore) <= restingSpeed ? 0.0 : c.restitution;
         const double change = std::max(-e * vnBefore, 0.0) - vn;
         if (std::abs(change) > kRestingSpeed) applyVelocityChange(v, w, b, r, change * n);
-        if (!(c.dynamicFriction > 0.0)) continue;
+        // A contact of a sliding patch had its μ_d in the solve.
+        if (!(c.dynamicFriction > 0.0) || (patchFriction_ && c.lambdaTangent > 0.0 && k < contactPatch_.size() &&
+                                             patches_[contactPatch_[k]].kept < 1.0))
+            continue;
         // Eq. 30 (ERRATA item 2's units): slip removed by at most h μ_d |f_n| = μ_d λ_n / h.
         const Vec3 relative = v - pointVelocity(b, r);
         const Vec3 slip = relative - relative.dot(n) * n;

@@ -56,6 +56,8 @@ public:
     /// stage's corrections, substep_corrections.h).
     void solveAttachments(SolverContext& ctx);
     void solveContacts(SolverContext& ctx);
+    /// Static friction per contact patch (WorldSettings::softPatchFriction) or per particle.
+    void setPatchFriction(bool on) { patchFriction_ = on; }
     void deriveVelocities(double h);
     /// The contacts' restitution and dynamic friction.
     void solveVelocities(Body* bodies, double h, double gravity);
@@ -139,6 +141,28 @@ private:
         Vec3 frictionImpulse = Vec3::Zero();  ///< Σ of the static friction's impulses on the particle
     };
 
+    /// One soft body's contacts with one rigid body in a substep: their static friction holds
+    /// or lets go together (solveContacts).
+    struct ContactPatch {
+        uint32_t softBody = 0;
+        uint32_t body = 0;
+        double staticFriction = 0.0;
+        double dynamicFriction = 0.0;
+        double normal = 0.0;             ///< Σ λ_n
+        Vec3 centre = Vec3::Zero();      ///< λ_n-weighted centre of the particles
+        Vec3 direction = Vec3::Zero();   ///< λ_n-weighted mean normal, unit
+        double reach = 0.0;              ///< Σ λ_n ρ, ρ a particle's distance from the centre across the normal
+        Vec3 force = Vec3::Zero();       ///< Σ static friction impulse on the particles
+        double twist = 0.0;              ///< its moment about the centre along `direction`
+        double kept = 0.0;               ///< the share of this iteration's static friction kept
+    };
+
+    /// Sorts this substep's contacts into patches (patches_, contactPatch_).
+    void groupContactPatches();
+    /// solveContacts with static friction judged contact by contact (the paper's), or over
+    /// each patch.
+    void solveContactsPerParticle(SolverContext& ctx);
+    void solveContactsPerPatch(SolverContext& ctx);
     void solveContactVelocities(Body* bodies, double h, double gravity);
     /// The element arrays as the batch kernel reads them.
     ElementArrays elementArrays();
@@ -170,6 +194,10 @@ private:
     std::vector<Attachment> attachments_;
     std::vector<Candidate> candidates_;
     std::vector<ParticleContact> contacts_;
+    bool patchFriction_ = false;
+    std::vector<ContactPatch> patches_;
+    std::vector<uint32_t> contactPatch_;  ///< per contact: its patch
+    std::vector<Vec3> frictionStep_;      ///< per contact: this iteration's static friction impulse
     std::vector<Pose> poses_;  ///< per rigid body with candidates: its shape pose this substep
 };
 
