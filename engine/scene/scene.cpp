@@ -44,7 +44,8 @@ SceneInstance buildScene(const SceneDescription& description) {
                                                .iterations = description.iterations,
                                                .sleeping = description.sleeping,
                                                .jointProjection = description.jointProjection,
-                                               .sweptRestitution = description.sweptRestitution}));
+                                               .sweptRestitution = description.sweptRestitution,
+                                               .softPatchFriction = description.softPatchFriction}));
     ecs::Registry& registry = instance.registry;
 
     // One entity per body, in order; named ones are remembered for joints.

@@ -59,6 +59,8 @@ struct SceneDescription {
     JointProjection jointProjection = WorldSettings{}.jointProjection;
     /// WorldSettings::sweptRestitution (the file's `restitution`: "swept" or "paper").
     bool sweptRestitution = WorldSettings{}.sweptRestitution;
+    /// WorldSettings::softPatchFriction (the file's `soft_friction`: "patch" or "particle").
+    bool softPatchFriction = WorldSettings{}.softPatchFriction;
     std::vector<SceneBody> bodies;
     std::vector<SceneJoint> joints;
     std::vector<SceneSoftBody> softBodies;

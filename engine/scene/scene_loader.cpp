@@ -68,7 +68,7 @@ struct FileCloser {
 std::vector<std::string> topLevelKeys() {
     std::vector<std::string> allowed = {
         "substep_scene", "name", "description", "gravity", "dt", "substeps", "iterations", "sleeping",
-        "joint_projection", "restitution"};
+        "joint_projection", "restitution", "soft_friction"};
     for (const SceneSection& section : kSceneSections)
         allowed.emplace_back(section.key);
     return allowed;
@@ -159,6 +159,14 @@ SceneDescription readScene(const Validator& v, const Json& root) {
         if (name != "swept" && name != "paper")
             v.fail(r->path, "expected \"swept\" or \"paper\", got \"" + name + "\"");
         scene.sweptRestitution = name == "swept";
+    }
+    // Extension: soft bodies' static friction judged over each contact patch, or per particle
+    // (WorldSettings::softPatchFriction).
+    if (auto f = top.get("soft_friction")) {
+        const std::string name = v.string(*f);
+        if (name != "patch" && name != "particle")
+            v.fail(f->path, "expected \"patch\" or \"particle\", got \"" + name + "\"");
+        scene.softPatchFriction = name == "patch";
     }
 
     SceneReading reading{v, scene, {}, {}};

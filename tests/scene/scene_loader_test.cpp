@@ -253,7 +253,7 @@ TEST(SceneLoader, TopLevelKeysAreListedInOrder) {
     // The world settings, then the section readers' keys in their table's order.
     EXPECT_TRUE(failsAt(scene(R"("zzz": 1)"), "zzz",
                         "unknown key (expected substep_scene, name, description, gravity, dt, "
-                        "substeps, iterations, sleeping, joint_projection, restitution, bodies, joints, soft_bodies or "
+                        "substeps, iterations, sleeping, joint_projection, restitution, soft_friction, bodies, joints, soft_bodies or "
                         "camera)"));
 }
 
@@ -290,6 +290,18 @@ TEST(SceneLoader, RestitutionIsThePapersByDefaultOrSwept) {
     EXPECT_FALSE(buildScene(parseSceneText(scene(R"("restitution": "paper")"), "t.json")).world().settings().sweptRestitution);
     EXPECT_TRUE(buildScene(parseSceneText(scene(R"("restitution": "swept")"), "t.json")).world().settings().sweptRestitution);
     EXPECT_FALSE(buildScene(parseSceneText(scene(""), "t.json")).world().settings().sweptRestitution);
+}
+
+TEST(SceneLoader, SoftFrictionIsPerParticleByDefaultOrOverThePatch) {
+    EXPECT_FALSE(parseSceneText(scene(""), "s.json").softPatchFriction);
+    EXPECT_TRUE(parseSceneText(scene(R"("soft_friction": "patch")"), "s.json").softPatchFriction);
+    EXPECT_FALSE(parseSceneText(scene(R"("soft_friction": "particle")"), "s.json").softPatchFriction);
+    EXPECT_TRUE(failsAt(scene(R"("soft_friction": "patches")"), "soft_friction",
+                        "expected \"patch\" or \"particle\", got \"patches\""));
+    EXPECT_TRUE(failsAt(scene(R"("soft_friction": true)"), "soft_friction", "must be a string, got true"));
+    // The world built from the scene uses what the file chose.
+    EXPECT_TRUE(buildScene(parseSceneText(scene(R"("soft_friction": "patch")"), "t.json")).world().settings().softPatchFriction);
+    EXPECT_FALSE(buildScene(parseSceneText(scene(""), "t.json")).world().settings().softPatchFriction);
 }
 
 TEST(SceneLoader, SectionsAreReadInTheirOrderNotTheFiles) {
