@@ -1,4 +1,4 @@
-// The RC car's script (the scene is built in rc_car.cpp): the 20 s autopilot lap, the driver's
+// The RC car's script (the scene is built in rc_car.cpp): the autopilot's laps (rc_car_autopilot.cpp), the driver's
 // knobs (throttle, steering, compliances of the tyres, the servo and the suspension), the
 // readouts (speed, steering commanded against reached, tyre deflection) and the camera that
 // follows the chassis. It acts only through components: the rear axles' motors and the servo's
@@ -6,6 +6,7 @@
 // creation) with new ones around the rims as they are.
 
 #include "scenes/rc_car.h"
+#include "scenes/rc_car_autopilot.h"
 
 #include "scenes/scenes.h"
 
@@ -28,42 +29,6 @@ constexpr double kDegree = M_PI / 180.0;
 /// rad/s²: the motors' target speed changes at most this fast (3 m/s² of the car).
 constexpr double kWheelAcceleration = 40.0;
 
-/// One key of the autopilot's lap: from `time` on, the commands move linearly to these values
-/// over kAutopilotBlend.
-struct LapKey {
-    double time;      ///< s
-    double throttle;  ///< −1 … 1
-    double steer;     ///< degrees, positive left
-};
-/// Settle; forward over the bumps, planks, curb and ramp; a left turn while slowing; back in
-/// reverse steering right; forward again steering left; then again from the first straight.
-constexpr std::array<LapKey, 7> kLap{{
-    {0.0, 0.0, 0.0},
-    {0.5, 0.7, 0.0},
-    {6.0, 0.4, 14.0},
-    {8.5, 0.0, 0.0},
-    {9.5, -0.5, -10.0},
-    {14.5, 0.0, 0.0},
-    {15.5, 0.6, 8.0},
-}};
-constexpr double kLapPeriod = 20.0;
-constexpr double kAutopilotBlend = 0.4;  ///< s
-
-/// The autopilot's (throttle, steering in degrees) at time t.
-std::pair<double, double> autopilot(double t) {
-    // After the first lap the settling key is skipped: the lap restarts from its first straight.
-    if (t >= kLapPeriod) t = kLap[1].time + std::fmod(t - kLapPeriod, kLapPeriod - kLap[1].time);
-    std::pair<double, double> command{kLap[0].throttle, kLap[0].steer};
-    for (size_t i = 1; i < kLap.size(); ++i) {
-        if (t < kLap[i].time) break;
-        const double u = std::min(1.0, (t - kLap[i].time) / kAutopilotBlend);
-        const std::pair<double, double> previous{kLap[i - 1].throttle, kLap[i - 1].steer};
-        command = {previous.first + u * (kLap[i].throttle - previous.first),
-                   previous.second + u * (kLap[i].steer - previous.second)};
-    }
-    return command;
-}
-
 class RcCarScript : public SceneScript {
   public:
     std::unique_ptr<SceneScript> clone() const override { return std::make_unique<RcCarScript>(*this); }
@@ -81,7 +46,7 @@ class RcCarScript : public SceneScript {
                           .max = kMaxSteer / kDegree,
                           .format = "%.1f"});
         autopilot_ = addKnob({.name = "autopilot",
-                              .label = "autopilot (20 s lap)",
+                              .label = "autopilot (a lap out and back)",
                               .kind = SceneKnob::Kind::Toggle,
                               .value = 1.0});
         brake_ = addKnob({.name = "brake",
@@ -132,6 +97,7 @@ class RcCarScript : public SceneScript {
         kingpins_ = {scene.jointNamed("kingpin_fl"), scene.jointNamed("kingpin_fr")};
         wheelSpeed_ = 0.0;
         motorsOn_ = false;
+        pilot_ = Autopilot{};
         tyresBuiltWith_ = kTyreCompliance;
         applyCompliances(scene);
         command(scene, 0.0, 0.0);
@@ -149,7 +115,12 @@ class RcCarScript : public SceneScript {
         observeTyres(scene);
         double throttle = knob(throttle_);
         double steer = knob(steer_);
-        if (toggled(autopilot_)) std::tie(throttle, steer) = autopilot(time);
+        if (toggled(autopilot_)) {
+            const ecs::Transform& chassis = scene.registry.get<ecs::Transform>(chassis_);
+            const DriveCommand drive = pilot_.drive(time, chassis.position, headingOf(chassis.rotation * Vec3::UnitX()));
+            throttle = drive.throttle;
+            steer = drive.steer;
+        }
         command(scene, throttle, steer * kDegree, dt);
     }
 
@@ -276,6 +247,7 @@ class RcCarScript : public SceneScript {
     double steerTarget_ = std::numeric_limits<double>::quiet_NaN();  ///< rad, last given to the servo
     double tyresBuiltWith_ = kTyreCompliance;
     double deflection_ = 0.0;  ///< m
+    Autopilot pilot_;
 };
 
 }  // namespace

@@ -5,7 +5,7 @@
 // sliding above it (the friction threshold with the load on the braked rear axle); coasting to a
 // stop with energy only decreasing; and the rolling radius (ω times the axle's height matches
 // the chassis' speed). Every figure is measured on the bodies' states, not read from the
-// script's readouts. The 20 s lap is rc_car_soak_test.cpp (label `stability`).
+// script's readouts. Two whole laps are rc_car_soak_test.cpp (label `stability`).
 
 #include "scenes/live_scene.h"
 #include "scenes/rc_car.h"
