@@ -50,6 +50,26 @@ inline Vec3 previousPoint(const Body& b, const Vec3& local) {
     return b.xPrev + (b.rotates() ? Vec3(b.qPrev * local) : local);
 }
 
+/// Eq. 26 for one particle contact: pushes the particle at x (inverse mass w, velocity v) out
+/// of body `body` along n, whose surface point is kept at `local1` in the body's frame (Eqs. 2-4,
+/// α = 0), the depth capped as the rigid contacts' push-out is. Returns Δλ_n, 0 when apart.
+double pushOut(SolverContext& ctx, uint32_t body, const Vec3& local1, const Vec3& n, double radius, Vec3& x,
+               double w, const Vec3& v) {
+    const Body& b = ctx.bodies[body];
+    const Vec3 r = b.q * local1;
+    // d = (p1 − p0)·n with p0 the particle's surface point.
+    double depth = (b.x + r - (x - radius * n)).dot(n);
+    if (depth > 0.0 && ctx.capPushOut) {
+        const double approach = -(v - pointVelocity(b, r)).dot(n);
+        depth = std::min(depth, ctx.h * std::max(approach, kPushOutSpeed));
+    }
+    if (!(depth > 0.0)) return 0.0;
+    const double deltaLambda = depth / (w + bodyInverseMass(b, r, n));
+    x += (w * deltaLambda) * n;
+    if (b.invMass > 0.0) applyImpulse(ctx, body, 0, -deltaLambda * n, r.cross(-deltaLambda * n), Vec3::Zero());
+    return deltaLambda;
+}
+
 /// Eq. 4 for an attachment whose particle is `delta` short of the body's point (c = |delta|,
 /// c2 = c²), multiplier lambda (updated) and compliance term α̃ = α / h², between generalised
 /// inverse masses w + w_body = wLinear + angular / c² (Eqs. 2-3: `angular` is
@@ -400,22 +420,13 @@ void SoftSystem::solveContactsPerParticle(SolverContext& ctx) {
         const Vec3& n = c.normal;
         Vec3& x = x_[c.particle];
         const double w = invMass_[c.particle];
-        Vec3 r = b.q * c.local1;
-        // Eq. 26: d = (p1 − p0)·n with p0 the particle's surface point.
-        double depth = (b.x + r - (x - c.radius * n)).dot(n);
-        if (depth > 0.0 && ctx.capPushOut) {
-            const double approach = -(v_[c.particle] - pointVelocity(b, r)).dot(n);
-            depth = std::min(depth, ctx.h * std::max(approach, kPushOutSpeed));
-        }
-        if (!(depth > 0.0)) continue;
-        const double deltaLambda = depth / (w + bodyInverseMass(b, r, n));  // Eqs. 2-4, α = 0
-        c.lambdaNormal += deltaLambda;
-        x += (w * deltaLambda) * n;
-        if (b.invMass > 0.0) applyImpulse(ctx, c.body, 0, -deltaLambda * n, r.cross(-deltaLambda * n), Vec3::Zero());
+        const double pushed = pushOut(ctx, c.body, c.local1, n, c.radius, x, w, v_[c.particle]);
+        if (!(pushed > 0.0)) continue;
+        c.lambdaNormal += pushed;
         if (!(c.staticFriction > 0.0)) continue;
         // Eqs. 27-28: undo the tangential motion of the particle relative to the body's point
         // during the substep while λ_t stays within μ_s λ_n.
-        r = b.q * c.local1;
+        const Vec3 r = b.q * c.local1;
         const Vec3 motion = (x - xPrev_[c.particle]) - (b.x + r - previousPoint(b, c.local1));
         const Vec3 slip = motion - motion.dot(n) * n;
         const double length = slip.norm();
@@ -435,22 +446,9 @@ void SoftSystem::solveContactsPerPatch(SolverContext& ctx) {
     // Eq. 26 for every contact first, so that static friction is judged on the patch's whole
     // normal multiplier of this substep.
     for (ParticleContact& c : contacts_) {
-        const Body& b = ctx.bodies[c.body];
-        const Vec3& n = c.normal;
-        Vec3& x = x_[c.particle];
-        const double w = invMass_[c.particle];
-        const Vec3 r = b.q * c.local1;
-        // Eq. 26: d = (p1 − p0)·n with p0 the particle's surface point.
-        double depth = (b.x + r - (x - c.radius * n)).dot(n);
-        if (depth > 0.0 && ctx.capPushOut) {
-            const double approach = -(v_[c.particle] - pointVelocity(b, r)).dot(n);
-            depth = std::min(depth, ctx.h * std::max(approach, kPushOutSpeed));
-        }
-        if (!(depth > 0.0)) continue;
-        const double deltaLambda = depth / (w + bodyInverseMass(b, r, n));  // Eqs. 2-4, α = 0
-        c.lambdaNormal += deltaLambda;
-        x += (w * deltaLambda) * n;
-        if (b.invMass > 0.0) applyImpulse(ctx, c.body, 0, -deltaLambda * n, r.cross(-deltaLambda * n), Vec3::Zero());
+        const double pushed =
+            pushOut(ctx, c.body, c.local1, c.normal, c.radius, x_[c.particle], invMass_[c.particle], v_[c.particle]);
+        if (pushed > 0.0) c.lambdaNormal += pushed;
     }
     // Each patch's load: Σ λ_n, its λ_n-weighted centre and normal, and Σ λ_n ρ (ρ a particle's
     // distance from the centre across the normal), the twist μ_s holds per unit μ_s.
