@@ -70,6 +70,20 @@ double pushOut(SolverContext& ctx, uint32_t body, const Vec3& local1, const Vec3
     return deltaLambda;
 }
 
+/// Eqs. 27-28 for one particle contact: the particle's tangential motion during the substep
+/// relative to the body's point at r (kept at `local1`), as a direction t and the Δλ_t that
+/// undoes it. False when it did not slip.
+bool staticSlip(const Body& b, const Vec3& r, const Vec3& local1, const Vec3& n, const Vec3& x, const Vec3& xPrev,
+                double w, Vec3& t, double& deltaTangent) {
+    const Vec3 motion = (x - xPrev) - (b.x + r - previousPoint(b, local1));
+    const Vec3 slip = motion - motion.dot(n) * n;
+    const double length = slip.norm();
+    if (!(length > kDirectionEpsilon)) return false;
+    t = slip / length;
+    deltaTangent = length / (w + bodyInverseMass(b, r, t));
+    return true;
+}
+
 /// Eq. 4 for an attachment whose particle is `delta` short of the body's point (c = |delta|,
 /// c2 = c²), multiplier lambda (updated) and compliance term α̃ = α / h², between generalised
 /// inverse masses w + w_body = wLinear + angular / c² (Eqs. 2-3: `angular` is
@@ -427,12 +441,9 @@ void SoftSystem::solveContactsPerParticle(SolverContext& ctx) {
         // Eqs. 27-28: undo the tangential motion of the particle relative to the body's point
         // during the substep while λ_t stays within μ_s λ_n.
         const Vec3 r = b.q * c.local1;
-        const Vec3 motion = (x - xPrev_[c.particle]) - (b.x + r - previousPoint(b, c.local1));
-        const Vec3 slip = motion - motion.dot(n) * n;
-        const double length = slip.norm();
-        if (!(length > kDirectionEpsilon)) continue;
-        const Vec3 t = slip / length;
-        const double deltaTangent = length / (w + bodyInverseMass(b, r, t));
+        Vec3 t;
+        double deltaTangent;
+        if (!staticSlip(b, r, c.local1, n, x, xPrev_[c.particle], w, t, deltaTangent)) continue;
         if (c.lambdaTangent + deltaTangent > c.staticFriction * c.lambdaNormal) continue;
         c.lambdaTangent += deltaTangent;
         c.frictionImpulse -= deltaTangent * t;
@@ -482,12 +493,9 @@ void SoftSystem::solveContactsPerPatch(SolverContext& ctx) {
         Vec3& x = x_[c.particle];
         const double w = invMass_[c.particle];
         const Vec3 r = b.q * c.local1;
-        const Vec3 motion = (x - xPrev_[c.particle]) - (b.x + r - previousPoint(b, c.local1));
-        const Vec3 slip = motion - motion.dot(n) * n;
-        const double length = slip.norm();
-        if (!(length > kDirectionEpsilon)) continue;
-        const Vec3 t = slip / length;
-        const double deltaTangent = length / (w + bodyInverseMass(b, r, t));
+        Vec3 t;
+        double deltaTangent;
+        if (!staticSlip(b, r, c.local1, n, x, xPrev_[c.particle], w, t, deltaTangent)) continue;
         const Vec3 impulse = -deltaTangent * t;  // on the particle
         c.lambdaTangent += deltaTangent;
         c.frictionImpulse += impulse;
