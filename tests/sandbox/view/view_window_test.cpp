@@ -50,6 +50,13 @@ wait_files() {  # until N files match the glob
   done
   echo "TIMEOUT waiting for $1 of $2"; exit 1
 }
+pause_at_frame() {  # Space; says "paused <title>" and sets n to the frame it paused at
+  xdotool key space
+  local t
+  t=$(wait_title 'paused at frame')
+  n=$(echo "$t" | sed -n 's/.*paused at frame \([0-9]*\).*/\1/p')
+  echo "paused $t"
+}
 shoot() {  # Shift+P (the view alone) once it has settled, until N shots are written
   sleep 0.5
   xdotool key shift+p
@@ -87,6 +94,13 @@ class ViewWindowTest : public CommandTest {
         return shots;
     }
 
+    /// The script's output lines by their first word ("paused ...", "back ..."); the last wins.
+    static std::map<std::string, std::string> saidLines(const std::string& out) {
+        std::map<std::string, std::string> said;
+        for (const std::string& line : lines(out)) said[line.substr(0, line.find(' '))] = line;
+        return said;
+    }
+
     /// The frame in a title "Substep - cradle (paused at frame 42, t = ...)".
     static long long pausedFrame(const std::string& line) {
         std::smatch match;
@@ -111,9 +125,7 @@ xdotool key space
 echo "second $(wait_title 'paused at frame')"
 )sh");
     ASSERT_NE(out.find("DONE"), std::string::npos) << out;
-    const std::vector<std::string> output = lines(out);
-    std::map<std::string, std::string> said;
-    for (const std::string& line : output) said[line.substr(0, line.find(' '))] = line;
+    std::map<std::string, std::string> said = saidLines(out);
     const long long first = pausedFrame(said["first"]);
     ASSERT_GE(first, 0) << out;
     EXPECT_EQ(pausedFrame(said["still"]), first) << "a paused scene must not step: " << out;
@@ -211,10 +223,7 @@ TEST_F(ViewWindowTest, ScrubbingBackTenFramesAndSteppingOnRedrawsTheSameState) {
     // from the timeline; S x 10 steps anew from there (the kept later frames dropped) back to
     // frame N, whose view must be the same picture, pixel for pixel.
     const std::string out = drive("view cradle --size 1000x700", R"sh(
-xdotool key space
-t=$(wait_title 'paused at frame')
-n=$(echo "$t" | sed -n 's/.*paused at frame \([0-9]*\).*/\1/p')
-echo "paused $t"
+pause_at_frame
 shoot 1
 xdotool key --delay 30 Left Left Left Left Left Left Left Left Left Left
 echo "back $(wait_title "paused at frame $((n - 10)),")"
@@ -278,10 +287,7 @@ TEST_F(ViewWindowTest, SubstepKeysAdvanceTheSubstepCounterAndTheFinishedFrameIsT
     // draws the corrections' lime arrows; S finishes the frame, and frame N's view is the
     // whole-frame one pixel for pixel (both with the last substep's arrows, as recording was on).
     const std::string out = drive("view cradle --size 1000x700", R"sh(
-xdotool key space
-t=$(wait_title 'paused at frame')
-n=$(echo "$t" | sed -n 's/.*paused at frame \([0-9]*\).*/\1/p')
-echo "paused $t"
+pause_at_frame
 shoot 1
 xdotool key period
 echo "one $(wait_title "paused at frame $n, substep 1/")"
@@ -300,8 +306,7 @@ echo "finished $(wait_title "paused at frame $n, t")"
 shoot 4
 )sh");
     ASSERT_NE(out.find("DONE"), std::string::npos) << out;
-    std::map<std::string, std::string> said;
-    for (const std::string& line : lines(out)) said[line.substr(0, line.find(' '))] = line;
+    std::map<std::string, std::string> said = saidLines(out);
     const long long n = pausedFrame(said["paused"]);
     ASSERT_GT(n, 0) << out;
     EXPECT_NE(said["one"].find("substep 1/"), std::string::npos) << out;
@@ -338,10 +343,7 @@ TEST_F(ViewWindowTest, TheCarsKeysSteerWhilePlayingAndStepSubstepsWhilePaused) {
     // Shift+Right steers and leaves the run playing (it used to steer and step a substep).
     const std::string out = drive("view rc_car --size 1000x700", R"sh(
 sleep 1
-xdotool key space
-t=$(wait_title 'paused at frame')
-n=$(echo "$t" | sed -n 's/.*paused at frame \([0-9]*\).*/\1/p')
-echo "paused $t"
+pause_at_frame
 shoot 1
 xdotool key shift+Right
 echo "substep $(wait_title "paused at frame $n, substep 1/")"
@@ -357,8 +359,7 @@ sleep 0.5
 echo "playing $(title)"
 )sh");
     ASSERT_NE(out.find("DONE"), std::string::npos) << out;
-    std::map<std::string, std::string> said;
-    for (const std::string& line : lines(out)) said[line.substr(0, line.find(' '))] = line;
+    std::map<std::string, std::string> said = saidLines(out);
     const long long n = pausedFrame(said["paused"]);
     ASSERT_GT(n, 0) << out;
     EXPECT_NE(said["substep"].find("substep 1/"), std::string::npos) << out;
