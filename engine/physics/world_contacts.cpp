@@ -1,0 +1,217 @@
+/// The world's contact finding, once per frame and once per substep: the broadphase's candidate
+/// pairs filtered into contact pairs that keep last frame's friction anchors, the lists of awake
+/// bodies and pairs while some sleep, and the narrowphase's points (serial or in chunks of
+/// pairs on the worker pool, joined in the serial order).
+
+#include "physics/world.h"
+
+#include "physics/step_cancellation.h"
+
+#include "physics/collision/narrowphase.h"
+#include "physics/collision/shape_bounds.h"
+#include "physics/contact_spheres.h"
+#include "physics/worker_pool.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace substep {
+namespace {
+
+/// Pairs per chunk of a parallel narrowphase: enough work to outweigh handing a chunk out.
+constexpr size_t kPairsPerChunk = 64;
+
+}  // namespace
+
+void World::listAwake(bool newPairs) {
+    const uint64_t changes = sleep_.changes();
+    if (changes != awakeBodiesListedAt_ || bodies_.size() != awakeBodiesListedFor_) {
+        awakeBodies_.clear();
+        for (uint32_t i = 0; i < bodies_.size(); ++i)
+            if (sleepFlags_[i] == 0) awakeBodies_.push_back(i);
+        awakeBodiesListedAt_ = changes;
+        awakeBodiesListedFor_ = bodies_.size();
+    }
+    if (newPairs || changes != awakePairsListedAt_) {
+        // A sleeping island's pairs (the other body sleeps or is static) are left out: they
+        // report no contact points and keep their static friction anchors for when it wakes.
+        awakePairs_.clear();
+        for (uint32_t p = 0; p < contactPairs_.size(); ++p) {
+            const ContactPair& pair = contactPairs_[p];
+            if ((sleepFlags_[pair.body0] | sleepFlags_[pair.body1]) == 0) awakePairs_.push_back(p);
+        }
+        awakePairsListedAt_ = changes;
+    }
+}
+
+void World::collectContactPairs(double dt) {
+    // Last frame's pairs keep their static friction anchors (contact.h) when they are found
+    // again; both lists are sorted by (body0, body1).
+    previousPairs_.swap(contactPairs_);
+    contactPairs_.clear();
+    contacts_.clear();
+    touchingPairs_.clear();
+    if (collidingBodies_ < 2) return;  // nothing can touch: no broadphase at all
+    if (jointsChanged_) {
+        jointsChanged_ = false;
+        jointExclusions_.clear();
+        for (const Joint& joint : joints_) {
+            if (!joint.alive || joint.collide || joint.body0 == joint.body1) continue;
+            jointExclusions_.push_back({std::min(joint.body0, joint.body1), std::max(joint.body0, joint.body1)});
+        }
+        std::sort(jointExclusions_.begin(), jointExclusions_.end(),
+                  [](const BodyPair& a, const BodyPair& b) {
+                      return a.body0 != b.body0 ? a.body0 < b.body0 : a.body1 < b.body1;
+                  });
+    }
+    // Sleeping bodies keep their boxes and their pairs with one another (broadphase.h).
+    const bool anyAsleep = sleepingActive() && sleep_.sleepingCount() > 0;
+    broadphase_.update(bodies_, dt, 2.0, anyAsleep ? sleep_.flags() : nullptr);
+    reaches_.assign(bodies_.size(), 0.0);
+    poses_.resize(bodies_.size());
+    size_t previous = 0;
+    droppedContactPairs_ = 0;
+    for (const BodyPair& candidate : broadphase_.pairs()) {
+        // Bounded work per frame: beyond the cap, pairs are dropped (deterministically, the
+        // last in sorted order) and counted for a warning.
+        if (contactPairs_.size() >= kMaxContactPairs) {
+            ++droppedContactPairs_;
+            continue;
+        }
+        const bool joined = std::binary_search(
+            jointExclusions_.begin(), jointExclusions_.end(), candidate,
+            [](const BodyPair& a, const BodyPair& b) {
+                return a.body0 != b.body0 ? a.body0 < b.body0 : a.body1 < b.body1;
+            });
+        if (joined) continue;
+        const Body& b0 = bodies_[candidate.body0];
+        const Body& b1 = bodies_[candidate.body1];
+        if (!canCollide(b0.shape.type, b1.shape.type) || !Body::filtersMeet(b0, b1)) continue;
+        reaches_[candidate.body0] = shapeReach(b0.shape);
+        reaches_[candidate.body1] = shapeReach(b1.shape);
+        // Paper 3.5: a pair's coefficients are the averages of its bodies'.
+        ContactPair pair{.body0 = candidate.body0,
+                         .body1 = candidate.body1,
+                         .staticFriction = 0.5 * (b0.staticFriction + b1.staticFriction),
+                         .dynamicFriction = 0.5 * (b0.dynamicFriction + b1.dynamicFriction),
+                         .restitution = 0.5 * (b0.restitution + b1.restitution)};
+        while (previous < previousPairs_.size() &&
+               (previousPairs_[previous].body0 < pair.body0 ||
+                (previousPairs_[previous].body0 == pair.body0 && previousPairs_[previous].body1 < pair.body1)))
+            ++previous;
+        if (previous < previousPairs_.size() && previousPairs_[previous].body0 == pair.body0 &&
+            previousPairs_[previous].body1 == pair.body1) {
+            const ContactPair& old = previousPairs_[previous];
+            pair.anchor0 = old.anchor0;
+            pair.anchor1 = old.anchor1;
+            pair.turnAnchor = old.turnAnchor;
+            pair.anchored = old.anchored;
+            pair.lambdaNormal = old.lambdaNormal;  // its last substep's push, for pushedBefore
+        }
+        contactPairs_.push_back(pair);
+    }
+}
+
+void World::findContacts(bool sleeping) {
+    contacts_.clear();
+    // Each colliding body's shape pose, once per substep rather than once per pair; while some
+    // sleep, the awake bodies' and pairs' lists alone are visited.
+    const auto pose = [&](uint32_t i) {
+        if (reaches_[i] > 0.0) poses_[i] = {bodies_[i].userPosition(), bodies_[i].userOrientation()};
+    };
+    if (sleepFlags_) {
+        for (const uint32_t i : awakeBodies_) pose(i);
+    } else {
+        for (uint32_t i = 0; i < bodies_.size(); ++i) pose(i);
+    }
+    const uint32_t* order = sleepFlags_ ? awakePairs_.data() : nullptr;
+    const size_t pairs = sleepFlags_ ? awakePairs_.size() : contactPairs_.size();
+    const int threads = std::clamp(settings_.threads, 1, 64);
+    if (threads == 1 || pairs < 2 * kPairsPerChunk) {
+        findPairContacts(order, 0, pairs, sleeping, contacts_);
+        listTouchingPairs();
+        return;
+    }
+    // In parallel: each chunk of pairs finds its contacts into its own list, and the lists are
+    // joined in chunk order, so the contacts are the serial ones, in the serial order.
+    if (!pool_ || pool_->threads() != threads) pool_ = std::make_unique<WorkerPool>(threads);
+    const size_t chunks = (pairs + kPairsPerChunk - 1) / kPairsPerChunk;
+    if (chunkContacts_.size() < chunks) chunkContacts_.resize(chunks);
+    pool_->parallelFor(static_cast<int>(chunks), [&](int chunk) {
+        const size_t first = static_cast<size_t>(chunk) * kPairsPerChunk;
+        chunkContacts_[chunk].clear();
+        findPairContacts(order, first, std::min(pairs, first + kPairsPerChunk), sleeping,
+                         chunkContacts_[chunk]);
+    });
+    for (size_t chunk = 0; chunk < chunks; ++chunk) {
+        const auto offset = static_cast<uint32_t>(contacts_.size());
+        const size_t first = chunk * kPairsPerChunk;
+        for (size_t k = first; k < std::min(pairs, first + kPairsPerChunk); ++k)
+            contactPairs_[order ? order[k] : k].first += offset;
+        contacts_.insert(contacts_.end(), chunkContacts_[chunk].begin(), chunkContacts_[chunk].end());
+    }
+    listTouchingPairs();
+}
+
+void World::listTouchingPairs() {
+    // Most of a frame's pairs have no point in a given substep (a pile's: half of them): the
+    // solve and the velocity pass visit only those that have, in pair order.
+    touchingPairs_.clear();
+    if (sleepFlags_) {
+        for (const uint32_t p : awakePairs_)
+            if (contactPairs_[p].count > 0) touchingPairs_.push_back(p);
+    } else {
+        for (uint32_t p = 0; p < contactPairs_.size(); ++p)
+            if (contactPairs_[p].count > 0) touchingPairs_.push_back(p);
+    }
+}
+
+void World::findPairContacts(const uint32_t* order, size_t first, size_t last, bool sleeping,
+                             std::vector<Contact>& out) {
+    ContactManifold manifold;
+    for (size_t k = first; k < last; ++k) {
+        const size_t p = order ? order[k] : k;
+        ContactPair& pair = contactPairs_[p];
+        // The step ends at the substep loop's check. Asked every kPairsPerChunk pairs: the
+        // flag is an atomic load, and a frame's pairs are thousands.
+        if ((k - first) % kPairsPerChunk == 0 && stepCancellationRequested()) break;
+        const Body& b0 = bodies_[pair.body0];
+        const Body& b1 = bodies_[pair.body1];
+        const Pose& pose0 = poses_[pair.body0];
+        const Pose& pose1 = poses_[pair.body1];
+        // Bounding spheres first: most of a frame's candidate pairs are not touching in a
+        // given substep, and this test costs a fraction of the narrowphase.
+        const double reach = reaches_[pair.body0] + reaches_[pair.body1] + settings_.contactMargin;
+        const bool apart =
+            std::isfinite(reach) && (pose0.position - pose1.position).squaredNorm() > reach * reach;
+        pair.first = static_cast<uint32_t>(out.size());
+        pair.pushedBefore = pair.lambdaNormal > 0.0;
+        pair.lambdaNormal = pair.lambdaTangent1 = pair.lambdaTangent2 = pair.lambdaTwist = 0.0;
+        // Spheres on spheres and planes (a pile's pairs) write their point straight into `out`.
+        const int spherePoints =
+            apart ? 0 : appendSpherePairContacts(b0, pose0, b1, pose1, settings_.contactMargin, out);
+        if (spherePoints >= 0) {
+            pair.count = static_cast<uint32_t>(spherePoints);
+            if (spherePoints == 0) pair.anchored = false;  // apart: the next touch anchors anew
+            if (sleeping && spherePoints > 0) pairTouched_[p] = 1;
+            continue;
+        }
+        collide(b0.shape, pose0, b1.shape, pose1, settings_.contactMargin, manifold);
+        pair.count = static_cast<uint32_t>(manifold.count);
+        if (manifold.count == 0) pair.anchored = false;  // apart: the next touch anchors anew
+        if (sleeping && manifold.count > 0) pairTouched_[p] = 1;
+        // Paper 3.5: the points are kept in the bodies' frames (r1, r2), so the position solve
+        // measures the depth on the poses as other corrections leave them.
+        const Quat q0Inverse = b0.q.conjugate();
+        const Quat q1Inverse = b1.q.conjugate();
+        for (int i = 0; i < manifold.count; ++i) {
+            const ContactPoint& point = manifold.points[i];
+            out.push_back({.local0 = q0Inverse * (point.point0 - b0.x),
+                           .local1 = q1Inverse * (point.point1 - b1.x),
+                           .normal = point.normal,
+                           .feature = point.feature});
+        }
+    }
+}
+
+}  // namespace substep
