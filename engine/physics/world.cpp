@@ -170,6 +170,16 @@ BodyId World::createBody(const BodyDef& def) {
     }
     if (collides(body)) ++collidingBodies_;
     sleep_.resize(bodies_.size());
+    if (frame_.open) {
+        // Created between substeps (a script or the window's substep view): the frame's
+        // per-body scratch grows with it, and the sleep flags the substeps read may have moved.
+        // It is not posed for contacts (reach 0) and joins the pairs next frame.
+        if (reaches_.size() < bodies_.size()) reaches_.resize(bodies_.size(), 0.0);
+        if (poses_.size() < bodies_.size()) poses_.resize(bodies_.size());
+        if (settings_.solver == SolverType::Jacobi && jacobiDeltas_.size() < bodies_.size())
+            jacobiDeltas_.resize(bodies_.size(), JacobiDelta{});
+        if (sleepFlags_) sleepFlags_ = sleep_.flags();
+    }
     return {index, body.generation};
 }
 

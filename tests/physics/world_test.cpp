@@ -313,6 +313,45 @@ namespace {
 // Eq. 32 on a joint whose damping is set after creation (a viewer slider, a scene knob): a ball
 // spinning at 10 rad/s on a ball joint at its centre decays as e^(-μ t), 0.067 rad/s after 1 s
 // at μ = 5 1/s. It used to keep spinning: whether any joint damped was decided at creation.
+/// Bodies created between substeps (a script or the window's substep view) join the open
+/// frame: each falls freely for the substeps left, g (n − k) h, and lands next frame, while a
+/// sleeping box stays asleep; with the Jacobi solver too. Forty bodies make the world's arrays
+/// reallocate mid-frame (the frame's per-body scratch and the sleep flags once read past their
+/// end: the asan stage runs this test).
+TEST(WorldRobustnessTest, BodiesCreatedBetweenSubstepsJoinTheFrame) {
+    for (const SolverType solver : {SolverType::GaussSeidel, SolverType::Jacobi}) {
+        SCOPED_TRACE(solver == SolverType::Jacobi ? "Jacobi" : "Gauss-Seidel");
+        const int substeps = 20;
+        World world({.gravity = Vec3(0, -10, 0), .substeps = substeps, .solver = solver, .sleeping = true});
+        world.createBody({.shape = planeShape(Vec3::UnitY(), 0.0), .type = BodyType::Static});
+        const BodyId box = world.createBody(boxDef(Vec3(0.2, 0.2, 0.2), 1.0, Vec3(0, 0.1, 0)));
+        for (int frame = 0; frame < 240 && !world.isAsleep(box); ++frame) world.step(kDt);
+        ASSERT_TRUE(world.isAsleep(box));
+
+        const int before = 5;
+        world.beginFrame(kDt);
+        for (int k = 0; k < before; ++k) world.substep();
+        std::vector<BodyId> balls;
+        for (int i = 0; i < 40; ++i)
+            balls.push_back(world.createBody(
+                {.shape = sphereShape(0.05), .mass = 1.0, .position = Vec3(1.0 + 0.2 * (i % 8), 0.5 + 0.2 * (i / 8), 0)}));
+        while (world.substep()) {
+        }
+        world.endFrame();
+        const double h = kDt / substeps;
+        for (const BodyId ball : balls)
+            EXPECT_NEAR(world.body(ball).v.y(), -10.0 * (substeps - before) * h, 1e-9);  // v from (x − x_prev) / h
+        EXPECT_TRUE(world.isAsleep(box));
+
+        for (int frame = 0; frame < 120; ++frame) world.step(kDt);
+        for (const BodyId ball : balls) {
+            ASSERT_TRUE(world.body(ball).x.allFinite());
+            EXPECT_GT(world.body(ball).x.y(), 0.05 - 2e-3);  // landed, resting on the plane
+        }
+        EXPECT_TRUE(world.isAsleep(box));
+    }
+}
+
 TEST(WorldDampingTest, DampingSetOnALiveJointActs) {
     World world(WorldSettings{.gravity = Vec3::Zero()});
     const BodyId ball = world.createBody(
