@@ -652,7 +652,7 @@ void solveContactVelocities(const ContactPair& pair, std::span<const Contact> co
     system.assemble();
     double x[kMaxPatchRows] = {};
     bool active[kMaxPatchRows];
-    std::fill(active, active + system.count(), true);
+    std::fill(std::begin(active), std::end(active), true);  // the whole array: GCC 12 cannot bound count()
     system.solve(active, rhs, x);
     if (tangentRow >= 0) {
         // Friction beyond its bound is held at the bound, and the normal rows solved again.
