@@ -428,15 +428,32 @@ void SoftSystem::solveContacts(SolverContext& ctx) {
     else solveContactsPerParticle(ctx);
 }
 
+double SoftSystem::takeHeldImpulse(SolverContext& ctx, ParticleContact& c) {
+    double& held = heldImpulse_[c.particle];
+    if (!(held > 0.0)) return 0.0;
+    const double taken = held;
+    held = 0.0;
+    c.lambdaNormal += taken;
+    const Body& b = ctx.bodies[c.body];
+    if (b.invMass > 0.0) {
+        const Vec3 r = b.q * c.local1;
+        applyImpulse(ctx, c.body, 0, -taken * c.normal, r.cross(-taken * c.normal), Vec3::Zero());
+    }
+    return taken;
+}
+
 void SoftSystem::solveContactsPerParticle(SolverContext& ctx) {
     for (ParticleContact& c : contacts_) {
         const Body& b = ctx.bodies[c.body];
         const Vec3& n = c.normal;
         Vec3& x = x_[c.particle];
         const double w = invMass_[c.particle];
+        // The elements' push this particle's normal did not take first (a moving body
+        // receives it), then Eq. 26.
+        const double held = takeHeldImpulse(ctx, c);
         const double pushed = pushOut(ctx, c.body, c.local1, n, c.radius, x, w, v_[c.particle]);
-        if (!(pushed > 0.0)) continue;
-        c.lambdaNormal += pushed;
+        if (!(pushed > 0.0) && !(held > 0.0)) continue;
+        if (pushed > 0.0) c.lambdaNormal += pushed;
         if (!(c.staticFriction > 0.0)) continue;
         // Eqs. 27-28: undo the tangential motion of the particle relative to the body's point
         // during the substep while λ_t stays within μ_s λ_n.
@@ -457,6 +474,7 @@ void SoftSystem::solveContactsPerPatch(SolverContext& ctx) {
     // Eq. 26 for every contact first, so that static friction is judged on the patch's whole
     // normal multiplier of this substep.
     for (ParticleContact& c : contacts_) {
+        takeHeldImpulse(ctx, c);
         const double pushed =
             pushOut(ctx, c.body, c.local1, c.normal, c.radius, x_[c.particle], invMass_[c.particle], v_[c.particle]);
         if (pushed > 0.0) c.lambdaNormal += pushed;

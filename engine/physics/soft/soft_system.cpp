@@ -112,6 +112,7 @@ SoftBodyId SoftSystem::create(const SoftBodyDef& def, std::span<const Body> bodi
     }
     appendBatches(elementArrays(), std::span(elementWave_).subspan(data.firstElement),
                   data.firstElement, data.elementCount, batches_);
+    indexParticleBatches();
     addAttachments(def, data, lattice, bodies);
 
     uint32_t index;
@@ -178,7 +179,10 @@ ElementArrays SoftSystem::elementArrays() {
             .volumeCompliance = volumeCompliance_,
             .lambda = lambda_,
             .volumeLambda = volumeLambda_,
-            .invMass = invMass_};
+            .invMass = invMass_,
+            .holdNormals = holdNormal_,
+            .heldBatches = heldBatches_,
+            .heldImpulse = heldImpulse_};
 }
 
 void SoftSystem::rebuildBatches() {
@@ -188,6 +192,50 @@ void SoftSystem::rebuildBatches() {
         if (body.alive)
             appendBatches(arrays, std::span(elementWave_).subspan(body.firstElement),
                           body.firstElement, body.elementCount, batches_);
+    indexParticleBatches();
+}
+
+void SoftSystem::indexParticleBatches() {
+    const size_t particles = x_.size();
+    holdNormal_.assign(particles, Vec3::Zero());
+    heldImpulse_.assign(particles, 0.0);
+    heldParticles_.clear();
+    heldBatches_.assign(batches_.size(), 0);
+    // Counting sort of the (particle, batch) pairs by particle.
+    particleBatchStart_.assign(particles + 1, 0);
+    for (const ElementBatch& batch : batches_)
+        for (uint32_t l = 0; l < batch.lanes; ++l)
+            for (int j = 0; j < 8; ++j) ++particleBatchStart_[batch.particle[j][l] + 1];
+    for (size_t i = 0; i < particles; ++i) particleBatchStart_[i + 1] += particleBatchStart_[i];
+    particleBatches_.resize(particleBatchStart_[particles]);
+    std::vector<uint32_t> next(particleBatchStart_.begin(), particleBatchStart_.end() - 1);
+    for (uint32_t b = 0; b < batches_.size(); ++b)
+        for (uint32_t l = 0; l < batches_[b].lanes; ++l)
+            for (int j = 0; j < 8; ++j) particleBatches_[next[batches_[b].particle[j][l]]++] = b;
+}
+
+void SoftSystem::holdContactParticles() {
+    for (const uint32_t i : heldParticles_) {
+        holdNormal_[i] = Vec3::Zero();
+        heldImpulse_[i] = 0.0;
+        for (uint32_t k = particleBatchStart_[i]; k < particleBatchStart_[i + 1]; ++k) heldBatches_[particleBatches_[k]] = 0;
+    }
+    heldParticles_.clear();
+    if (!heldContacts_) return;
+    // Every particle with a contact (touching, or within the margin: holding only those touching
+    // after the prediction, a particle an element had lifted off by a hair was pushed in by
+    // the next substep's elements and the tyres jittered) is held along its contacts' normal
+    // (their sum, normalised).
+    for (const ParticleContact& c : contacts_) {
+        Vec3& n = holdNormal_[c.particle];
+        if (n.isZero(0.0)) heldParticles_.push_back(c.particle);
+        n += c.normal;
+    }
+    for (const uint32_t i : heldParticles_) {
+        const double length = holdNormal_[i].norm();
+        holdNormal_[i] = length > kDirectionEpsilon ? Vec3(holdNormal_[i] / length) : Vec3::Zero();
+        for (uint32_t k = particleBatchStart_[i]; k < particleBatchStart_[i + 1]; ++k) heldBatches_[particleBatches_[k]] = 1;
+    }
 }
 
 bool SoftSystem::isValid(SoftBodyId id) const {
