@@ -281,7 +281,6 @@ void World::beginFrame(double dt) {
     if (sleeping) pairTouched_.assign(contactPairs_.size(), 0);
     const bool soft = hasSoftBodies();
     if (soft) soft_->setPatchFriction(settings_.softPatchFriction);
-    if (soft) soft_->setHeldContacts(settings_.softHeldContacts);
     if (soft) soft_->collectCandidates(bodies_, dt, settings_.contactMargin, settings_.gravity);
     lap(stepTimes_.broadphase);
     frame_ = {.open = true, .dt = dt, .h = h, .substeps = substeps, .done = 0, .sleeping = sleeping, .soft = soft};
@@ -303,7 +302,7 @@ bool World::substep() {
     if (!contactPairs_.empty()) findContacts(frame_.sleeping);
     else touchingPairs_.clear();
     if (soft) soft_->findContacts(bodies_, settings_.contactMargin);
-    if (soft) soft_->holdContactParticles();  // none unless softHeldContacts
+    if (soft) soft_->holdContactParticles();  // none unless SoftSystem::setHeldContacts
     lap(stepTimes_.narrowphase);
     for (int i = 0; i < settings_.iterations; ++i) solvePositions(h);
     lap(stepTimes_.solve);

@@ -91,14 +91,6 @@ struct WorldSettings {
     /// abruptly, and the energy readout at rest flickers by 1.5 % of the kinetic energy it had
     /// (1 % is the bound).
     bool softPatchFriction = false;
-    /// Soft bodies' particles held by their contacts in the element projection: a particle
-    /// touching a rigid shape takes no element correction into it (its inverse mass along the
-    /// contact normal is 0 there, element_batch.h) and the contact carries that push, so loaded
-    /// particles stay on the surface instead of sinking millimetres into it. Off by default:
-    /// the sag moves into the elements above the contact (1-iteration XPBD through light
-    /// particles), a 2 kg rim on a test tyre keeps bouncing at 20 substeps, and rc_car's
-    /// coasting and wheel-spin tests fail (docs/SOFT_BODIES.md, "Loaded particles").
-    bool softHeldContacts = false;
 };
 
 /// Where the last step's time went (ms), when WorldSettings::measureTime is on.
