@@ -87,19 +87,19 @@ bool staticSlip(const Body& b, const Vec3& r, const Vec3& local1, const Vec3& n,
 /// Eq. 4 for an attachment whose particle is `delta` short of the body's point (c = |delta|,
 /// c2 = c²), multiplier lambda (updated) and compliance term α̃ = α / h², between generalised
 /// inverse masses w + w_body = wLinear + angular / c² (Eqs. 2-3: `angular` is
-/// (r × delta)ᵀ I⁻¹ (r × delta), 0 when wLinear holds the whole sum). Returns the impulse
-/// Δλ n = Δλ delta / c. Written over c² (Δλ = c² (c − α̃ λ) / ((wLinear + α̃) c² + angular)),
-/// a hard attachment's impulse waits for one division and no square root: the rim's run of
-/// attachments is a chain, each correction moving the body the next one starts from.
-inline Vec3 attachmentImpulse(double& lambda, double alphaTilde, const Vec3& delta, double c2,
-                              double wLinear, double angular) {
+/// (r × delta)ᵀ I⁻¹ (r × delta), 0 when wLinear holds the whole sum). Returns the factor f of
+/// the impulse Δλ n = Δλ delta / c = f delta. Written over c² (Δλ = c² (c − α̃ λ) /
+/// ((wLinear + α̃) c² + angular)), a hard attachment's impulse waits for one division and no
+/// square root: the rim's run of attachments is a chain, each correction moving the body the
+/// next one starts from.
+inline double attachmentImpulse(double& lambda, double alphaTilde, double c2, double wLinear, double angular) {
     const double denominator = (wLinear + alphaTilde) * c2 + angular;
     const double c = std::sqrt(c2);
     const double deltaLambda = c2 * (c - alphaTilde * lambda) / denominator;  // Eq. 4
     const double factor =
         alphaTilde == 0.0 ? c2 / denominator : (c2 - alphaTilde * lambda * c) / denominator;
     lambda += deltaLambda;
-    return factor * delta;
+    return factor;
 }
 
 /// The highest sample of the heightfield cells that reach into the local x–z box [lo, hi] (the
@@ -228,7 +228,7 @@ void SoftSystem::solveAttachments(SolverContext& ctx) {
             const Vec3 n = delta / c;
             const double w = invMass_[a.particle];
             const double wb = bodyInverseMass(b, r, n);
-            const Vec3 p = attachmentImpulse(a.lambda, a.compliance * ctx.invH2, delta, c * c, w + wb, 0.0);
+            const Vec3 p = attachmentImpulse(a.lambda, a.compliance * ctx.invH2, c * c, w + wb, 0.0) * delta;
             x_[a.particle] += w * p;                                                    // Eq. 6
             if (wb > 0.0) applyImpulse(ctx, a.body, 0, -p, r.cross(-p), Vec3::Zero());  // Eqs. 7-9
         }
@@ -264,12 +264,14 @@ void SoftSystem::solveAttachments(SolverContext& ctx) {
             if (!(c2 > kDirectionEpsilon * kDirectionEpsilon)) continue;
             const double w = invMass_[a.particle];
             const Vec3 rd = r.cross(delta);
-            const double angular = rd.dot(inverseInertia * rd);  // Eqs. 2-3, times c²
-            const Vec3 p = attachmentImpulse(a.lambda, a.compliance * ctx.invH2, delta, c2,
-                                             w + inverseMass, angular);
-            x_[a.particle] += w * p;                // Eq. 6
-            position -= inverseMass * p;            // Eq. 7, the body receiving −p
-            turned -= inverseInertia * r.cross(p);  // Eq. 8
+            const Vec3 spin = inverseInertia * rd;
+            const double angular = rd.dot(spin);  // Eqs. 2-3, times c²
+            // p = f delta, so I⁻¹ (r × p) = f I⁻¹ (r × delta): the body's turn reuses what
+            // its inverse mass took, one multiplication after the division on the chain.
+            const double factor = attachmentImpulse(a.lambda, a.compliance * ctx.invH2, c2, w + inverseMass, angular);
+            x_[a.particle] += (w * factor) * delta;       // Eq. 6
+            position -= (inverseMass * factor) * delta;   // Eq. 7, the body receiving −p
+            turned -= factor * spin;                      // Eq. 8
         }
         if (moves) {
             b.x = position;
