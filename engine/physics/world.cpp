@@ -312,6 +312,7 @@ bool World::substep() {
     if (!contactPairs_.empty()) findContacts(frame_.sleeping);
     else touchingPairs_.clear();
     if (soft) soft_->findContacts(bodies_, settings_.contactMargin);
+    if (soft) soft_->holdContactParticles();  // none unless SoftSystem::setHeldContacts
     lap(stepTimes_.narrowphase);
     for (int i = 0; i < settings_.iterations; ++i) solvePositions(h);
     lap(stepTimes_.solve);

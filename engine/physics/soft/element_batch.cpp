@@ -141,7 +141,7 @@ static_assert(sizeof(Quat) == 4 * sizeof(double), "rotations are read as packed 
 /// them as rows and transposes them), the rest offsets,
 /// inverse masses, ℓ² and α_e read from the batch, one warm-started Newton step of the rotation
 /// extraction, the deviations and the XPBD update (Eq. 4), and the corners scattered back.
-template <bool Contiguous>
+template <bool Contiguous, bool Held>
 [[gnu::always_inline]] inline uint32_t solveBatch(const ElementBatch& batch,
                                                   const ElementArrays& arrays, double invH2) {
     uint32_t handedOver = 0;
@@ -259,20 +259,43 @@ template <bool Contiguous>
     for (int j = 0; j < 8; ++j) {
         Lanes rx, ry, rz, wj;
         load(rx, batch.rest[0][j]), load(ry, batch.rest[1][j]), load(rz, batch.rest[2][j]);
-        load(wj, batch.invMass[j]);
         dx[j] = px[j] - cx - (r00 * rx + r01 * ry + r02 * rz);
         dy[j] = py[j] - cy - (r10 * rx + r11 * ry + r12 * rz);
         dz[j] = pz[j] - cz - (r20 * rx + r21 * ry + r22 * rz);
         const Lanes squared = dx[j] * dx[j] + dy[j] * dy[j] + dz[j] * dz[j];
         sum += squared;
-        weighted += wj * squared;  // Σ w_j |∇_j C|² = weighted / (64 C²)
+        if constexpr (!Held) {
+            load(wj, batch.invMass[j]);
+            weighted += wj * squared;  // Σ w_j |∇_j C|² = weighted / (64 C²)
+        }
+    }
+    Lanes c = 0.125 * sum;
+    squareRoot(c);
+    // Held corners (a contact holds them, element_batch.h): where the correction
+    // Δx_j = w_j ∇_j C Δλ would push one into its contact (Δλ (n·d_j) < 0; Δλ has the sign of
+    // −C − α̃ λ), its inverse mass along n is 0: d_j loses its normal part, both in the update
+    // and in Σ w_j |∇_j C|² (W_j = w_j (1 − n nᵀ)). The part taken out, Δλ (n·d_j) / (8 C),
+    // goes to the contact (heldImpulse).
+    Lanes blocked[8];
+    if constexpr (Held) {
+        const Lanes numerator = -c - alpha * lambda;
+        for (int j = 0; j < 8; ++j) {
+            Lanes nx, ny, nz, wj;
+            for (int l = 0; l < kLanes; ++l) {
+                const Vec3& n = arrays.holdNormals[batch.particle[j][l]];
+                nx[l] = n.x(), ny[l] = n.y(), nz[l] = n.z();
+            }
+            const Lanes along = nx * dx[j] + ny * dy[j] + nz * dz[j];
+            blocked[j] = numerator * along < 0.0 ? along : zero;
+            dx[j] -= blocked[j] * nx, dy[j] -= blocked[j] * ny, dz[j] -= blocked[j] * nz;
+            load(wj, batch.invMass[j]);
+            weighted += wj * (dx[j] * dx[j] + dy[j] * dy[j] + dz[j] * dz[j]);
+        }
     }
     Lanes step;
     {
         // C ≤ 1e-12 ℓ (C² ≤ 1e-24 ℓ²): already at the goal.
         const auto active = (sum > 8e-24 * spread) & (weighted > 0.0);
-        Lanes c = 0.125 * sum;
-        squareRoot(c);
         const Lanes cc = active ? c : one;
         // Δλ = (−C − α̃ λ) / (weighted / (64 C²) + α̃) and the step Δλ / (8 C), by one division.
         const Lanes scaled = weighted / (8.0 * cc) + 8.0 * alpha * cc;  // (8 C) × denominator
@@ -285,6 +308,13 @@ template <bool Contiguous>
         load(wj, batch.invMass[j]);
         const Lanes move = step * wj;
         px[j] += move * dx[j], py[j] += move * dy[j], pz[j] += move * dz[j];
+    }
+    if constexpr (Held) {
+        for (int j = 0; j < 8; ++j) {
+            const Lanes pushed = step * blocked[j];  // ≤ 0: the impulse along n it did not take
+            for (int l = 0; l < lanes; ++l)
+                if (pushed[l] != 0.0) arrays.heldImpulse[batch.particle[j][l]] -= pushed[l];
+        }
     }
 
     if constexpr (Contiguous) {
@@ -313,15 +343,27 @@ template <bool Contiguous>
             // The optional volume constraint, after the element's shape matching.
             std::array<Vec3, 8> gradient;
             const double cv = volumeError(corners, arrays.volumeGradients[e], gradient);
+            const double alphaV = arrays.volumeCompliance[e] * invH2;
+            std::array<double, 8> volumeBlocked{};  // held corners: as the shape matching's, above
+            if constexpr (Held) {
+                const double numerator = -cv - alphaV * arrays.volumeLambda[e];
+                for (int j = 0; j < 8; ++j) {
+                    const Vec3& n = arrays.holdNormals[element[j]];
+                    const double along = n.dot(gradient[j]);
+                    if (numerator * along < 0.0) volumeBlocked[j] = along, gradient[j] -= along * n;
+                }
+            }
             double wv = 0.0;
             for (int j = 0; j < 8; ++j)
                 wv += arrays.invMass[element[j]] * gradient[j].squaredNorm();
-            const double alphaV = arrays.volumeCompliance[e] * invH2;
             if (wv + alphaV > 1e-30 && std::isfinite(cv)) {
                 const double deltaLambda = (-cv - alphaV * arrays.volumeLambda[e]) / (wv + alphaV);
                 arrays.volumeLambda[e] += deltaLambda;
                 for (int j = 0; j < 8; ++j)
                     corners[j] += (arrays.invMass[element[j]] * deltaLambda) * gradient[j];
+                if constexpr (Held)
+                    for (int j = 0; j < 8; ++j)
+                        if (volumeBlocked[j] != 0.0) arrays.heldImpulse[element[j]] -= deltaLambda * volumeBlocked[j];
             }
         }
         for (int j = 0; j < 8; ++j)
@@ -389,9 +431,16 @@ void appendBatches(const ElementArrays& arrays, std::span<const uint32_t> wave, 
 [[gnu::target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")]] uint32_t solveElementBatches(
     std::span<const ElementBatch> batches, const ElementArrays& arrays, double invH2) {
     uint32_t handedOver = 0;
-    for (const ElementBatch& batch : batches)
-        handedOver += batch.contiguous ? solveBatch<true>(batch, arrays, invH2)
-                                       : solveBatch<false>(batch, arrays, invH2);
+    const bool anyHeld = !arrays.heldBatches.empty();
+    for (size_t b = 0; b < batches.size(); ++b) {
+        const ElementBatch& batch = batches[b];
+        if (anyHeld && arrays.heldBatches[b] != 0) [[unlikely]]
+            handedOver += batch.contiguous ? solveBatch<true, true>(batch, arrays, invH2)
+                                           : solveBatch<false, true>(batch, arrays, invH2);
+        else
+            handedOver += batch.contiguous ? solveBatch<true, false>(batch, arrays, invH2)
+                                           : solveBatch<false, false>(batch, arrays, invH2);
+    }
     return handedOver;
 }
 

@@ -58,6 +58,17 @@ struct ElementArrays {
     std::span<double> lambda;
     std::span<double> volumeLambda;
     std::span<const double> invMass;  ///< per particle
+    /// Per particle: the unit normal of the contact holding it, zero for a free particle (empty:
+    /// none held). A held particle does not take an element's correction along its normal into
+    /// the contact: its inverse mass along the normal is 0 for it (W_j = w_j (1 − n nᵀ)), so the
+    /// element corrects its other corners as if the particle stood on the ground, and the
+    /// contact carries the element's push (`heldImpulse`).
+    std::span<const Vec3> holdNormals = {};
+    /// Per batch: 1 where a corner is held (the kernel reads holdNormals only there).
+    std::span<const uint8_t> heldBatches = {};
+    /// Per particle: Σ of the elements' pushes into its contact that a held particle did not
+    /// take (positional impulses, kg m, like λ); solveContacts adds them to the contact's λ_n.
+    std::span<double> heldImpulse = {};
 };
 
 /// Each element's wave (0, 1, ...): one more than the largest wave of the earlier elements it
@@ -70,7 +81,8 @@ void appendBatches(const ElementArrays& arrays, std::span<const uint32_t> wave, 
                    uint32_t count, std::vector<ElementBatch>& batches);
 
 /// One Gauss-Seidel sweep of the shape-matching (and volume) constraints over the batches, with
-/// α̃ = α_e invH2. Returns how many elements' rotations the lanes handed to extractRotation.
+/// α̃ = α_e invH2; batches with a held corner (arrays.heldBatches) project it with zero inverse
+/// mass along its contact normal where the correction would push it into the contact. Returns how many elements' rotations the lanes handed to extractRotation.
 uint32_t solveElementBatches(std::span<const ElementBatch> batches, const ElementArrays& arrays,
                          double invH2);
 

@@ -157,4 +157,26 @@ rigidModeMoments(const Vec3* x, const Vec3* v, const double* m, uint32_t count) 
     }
 }
 
+static_assert(sizeof(Quat) == 4 * sizeof(double), "rotations are read as packed (x, y, z, w)");
+
+[[gnu::target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")]] void turnRotations(Quat* rotations,
+                                                                                       uint32_t count,
+                                                                                       const Quat& turn) {
+    // turn q with q = (x, y, z, w) in one vector: the product's four terms are the turn's
+    // coefficients (signed, broadcast or permuted) times q, q's lanes permuted:
+    // x' = tw qx + tx qw + ty qz − tz qy, y' = tw qy + ty qw + tz qx − tx qz,
+    // z' = tw qz + tz qw + tx qy − ty qx, w' = tw qw − tx qx − ty qy − tz qz.
+    const double tx = turn.x(), ty = turn.y(), tz = turn.z(), tw = turn.w();
+    const Lanes a = {tw, tw, tw, tw}, b = {tx, ty, tz, -tx}, c = {ty, tz, tx, -ty}, d = {-tz, -tx, -ty, -tz};
+    double* q = rotations->coeffs().data();
+    for (uint32_t i = 0; i < count; ++i, q += 4) {
+        Lanes v;
+        load(v, q);
+        const Lanes wwwx = __builtin_shufflevector(v, v, 3, 3, 3, 0);
+        const Lanes zxyy = __builtin_shufflevector(v, v, 2, 0, 1, 1);
+        const Lanes yzxz = __builtin_shufflevector(v, v, 1, 2, 0, 2);
+        store(q, a * v + b * wwwx + c * zxyy + d * yzxz);
+    }
+}
+
 }  // namespace substep

@@ -57,6 +57,10 @@ void deriveOnArc(const Vec3* x, const Vec3* xPrev, Vec3* v, Vec3* vPrev, uint32_
                  double invH, const Mat3& spin, const Vec3& centre, const Mat3& turnBack,
                  const Vec3& centrePrev);
 
+/// Turns `count` rotations by `turn` (q = turn q): the elements' warm starts follow their body's
+/// predicted turn (SoftSystem::integrate). Each quaternion in one vector of four lanes.
+void turnRotations(Quat* rotations, uint32_t count, const Quat& turn);
+
 /// The spin ω whose turn by h ω keeps the angular momentum L of a body of inertia I: the
 /// inertia turns with the body, so L after the turn is Rot(h ω) I ω, and ω solves
 /// I ω = Rot(−h ω) L (a fixed point, contracting by about h |ω| per iteration: two or three

@@ -87,19 +87,19 @@ bool staticSlip(const Body& b, const Vec3& r, const Vec3& local1, const Vec3& n,
 /// Eq. 4 for an attachment whose particle is `delta` short of the body's point (c = |delta|,
 /// c2 = c²), multiplier lambda (updated) and compliance term α̃ = α / h², between generalised
 /// inverse masses w + w_body = wLinear + angular / c² (Eqs. 2-3: `angular` is
-/// (r × delta)ᵀ I⁻¹ (r × delta), 0 when wLinear holds the whole sum). Returns the impulse
-/// Δλ n = Δλ delta / c. Written over c² (Δλ = c² (c − α̃ λ) / ((wLinear + α̃) c² + angular)),
-/// a hard attachment's impulse waits for one division and no square root: the rim's run of
-/// attachments is a chain, each correction moving the body the next one starts from.
-inline Vec3 attachmentImpulse(double& lambda, double alphaTilde, const Vec3& delta, double c2,
-                              double wLinear, double angular) {
+/// (r × delta)ᵀ I⁻¹ (r × delta), 0 when wLinear holds the whole sum). Returns the factor f of
+/// the impulse Δλ n = Δλ delta / c = f delta. Written over c² (Δλ = c² (c − α̃ λ) /
+/// ((wLinear + α̃) c² + angular)), a hard attachment's impulse waits for one division and no
+/// square root: the rim's run of attachments is a chain, each correction moving the body the
+/// next one starts from.
+inline double attachmentImpulse(double& lambda, double alphaTilde, double c2, double wLinear, double angular) {
     const double denominator = (wLinear + alphaTilde) * c2 + angular;
     const double c = std::sqrt(c2);
     const double deltaLambda = c2 * (c - alphaTilde * lambda) / denominator;  // Eq. 4
     const double factor =
         alphaTilde == 0.0 ? c2 / denominator : (c2 - alphaTilde * lambda * c) / denominator;
     lambda += deltaLambda;
-    return factor * delta;
+    return factor;
 }
 
 /// The highest sample of the heightfield cells that reach into the local x–z box [lo, hi] (the
@@ -228,7 +228,7 @@ void SoftSystem::solveAttachments(SolverContext& ctx) {
             const Vec3 n = delta / c;
             const double w = invMass_[a.particle];
             const double wb = bodyInverseMass(b, r, n);
-            const Vec3 p = attachmentImpulse(a.lambda, a.compliance * ctx.invH2, delta, c * c, w + wb, 0.0);
+            const Vec3 p = attachmentImpulse(a.lambda, a.compliance * ctx.invH2, c * c, w + wb, 0.0) * delta;
             x_[a.particle] += w * p;                                                    // Eq. 6
             if (wb > 0.0) applyImpulse(ctx, a.body, 0, -p, r.cross(-p), Vec3::Zero());  // Eqs. 7-9
         }
@@ -264,12 +264,14 @@ void SoftSystem::solveAttachments(SolverContext& ctx) {
             if (!(c2 > kDirectionEpsilon * kDirectionEpsilon)) continue;
             const double w = invMass_[a.particle];
             const Vec3 rd = r.cross(delta);
-            const double angular = rd.dot(inverseInertia * rd);  // Eqs. 2-3, times c²
-            const Vec3 p = attachmentImpulse(a.lambda, a.compliance * ctx.invH2, delta, c2,
-                                             w + inverseMass, angular);
-            x_[a.particle] += w * p;                // Eq. 6
-            position -= inverseMass * p;            // Eq. 7, the body receiving −p
-            turned -= inverseInertia * r.cross(p);  // Eq. 8
+            const Vec3 spin = inverseInertia * rd;
+            const double angular = rd.dot(spin);  // Eqs. 2-3, times c²
+            // p = f delta, so I⁻¹ (r × p) = f I⁻¹ (r × delta): the body's turn reuses what
+            // its inverse mass took, one multiplication after the division on the chain.
+            const double factor = attachmentImpulse(a.lambda, a.compliance * ctx.invH2, c2, w + inverseMass, angular);
+            x_[a.particle] += (w * factor) * delta;       // Eq. 6
+            position -= (inverseMass * factor) * delta;   // Eq. 7, the body receiving −p
+            turned -= factor * spin;                      // Eq. 8
         }
         if (moves) {
             b.x = position;
@@ -428,15 +430,32 @@ void SoftSystem::solveContacts(SolverContext& ctx) {
     else solveContactsPerParticle(ctx);
 }
 
+double SoftSystem::takeHeldImpulse(SolverContext& ctx, ParticleContact& c) {
+    double& held = heldImpulse_[c.particle];
+    if (!(held > 0.0)) return 0.0;
+    const double taken = held;
+    held = 0.0;
+    c.lambdaNormal += taken;
+    const Body& b = ctx.bodies[c.body];
+    if (b.invMass > 0.0) {
+        const Vec3 r = b.q * c.local1;
+        applyImpulse(ctx, c.body, 0, -taken * c.normal, r.cross(-taken * c.normal), Vec3::Zero());
+    }
+    return taken;
+}
+
 void SoftSystem::solveContactsPerParticle(SolverContext& ctx) {
     for (ParticleContact& c : contacts_) {
         const Body& b = ctx.bodies[c.body];
         const Vec3& n = c.normal;
         Vec3& x = x_[c.particle];
         const double w = invMass_[c.particle];
+        // The elements' push this particle's normal did not take first (a moving body
+        // receives it), then Eq. 26.
+        const double held = takeHeldImpulse(ctx, c);
         const double pushed = pushOut(ctx, c.body, c.local1, n, c.radius, x, w, v_[c.particle]);
-        if (!(pushed > 0.0)) continue;
-        c.lambdaNormal += pushed;
+        if (!(pushed > 0.0) && !(held > 0.0)) continue;
+        if (pushed > 0.0) c.lambdaNormal += pushed;
         if (!(c.staticFriction > 0.0)) continue;
         // Eqs. 27-28: undo the tangential motion of the particle relative to the body's point
         // during the substep while λ_t stays within μ_s λ_n.
@@ -457,6 +476,7 @@ void SoftSystem::solveContactsPerPatch(SolverContext& ctx) {
     // Eq. 26 for every contact first, so that static friction is judged on the patch's whole
     // normal multiplier of this substep.
     for (ParticleContact& c : contacts_) {
+        takeHeldImpulse(ctx, c);
         const double pushed =
             pushOut(ctx, c.body, c.local1, c.normal, c.radius, x_[c.particle], invMass_[c.particle], v_[c.particle]);
         if (pushed > 0.0) c.lambdaNormal += pushed;

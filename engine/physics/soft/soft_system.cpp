@@ -1,5 +1,6 @@
 #include "physics/soft/soft_system.h"
 
+#include "physics/soft/element_damping.h"
 #include "physics/soft/rigid_mode.h"
 #include "physics/soft/shape_matching.h"
 
@@ -112,6 +113,7 @@ SoftBodyId SoftSystem::create(const SoftBodyDef& def, std::span<const Body> bodi
     }
     appendBatches(elementArrays(), std::span(elementWave_).subspan(data.firstElement),
                   data.firstElement, data.elementCount, batches_);
+    indexParticleBatches();
     addAttachments(def, data, lattice, bodies);
 
     uint32_t index;
@@ -178,7 +180,10 @@ ElementArrays SoftSystem::elementArrays() {
             .volumeCompliance = volumeCompliance_,
             .lambda = lambda_,
             .volumeLambda = volumeLambda_,
-            .invMass = invMass_};
+            .invMass = invMass_,
+            .holdNormals = holdNormal_,
+            .heldBatches = heldBatches_,
+            .heldImpulse = heldImpulse_};
 }
 
 void SoftSystem::rebuildBatches() {
@@ -188,6 +193,50 @@ void SoftSystem::rebuildBatches() {
         if (body.alive)
             appendBatches(arrays, std::span(elementWave_).subspan(body.firstElement),
                           body.firstElement, body.elementCount, batches_);
+    indexParticleBatches();
+}
+
+void SoftSystem::indexParticleBatches() {
+    const size_t particles = x_.size();
+    holdNormal_.assign(particles, Vec3::Zero());
+    heldImpulse_.assign(particles, 0.0);
+    heldParticles_.clear();
+    heldBatches_.assign(batches_.size(), 0);
+    // Counting sort of the (particle, batch) pairs by particle.
+    particleBatchStart_.assign(particles + 1, 0);
+    for (const ElementBatch& batch : batches_)
+        for (uint32_t l = 0; l < batch.lanes; ++l)
+            for (int j = 0; j < 8; ++j) ++particleBatchStart_[batch.particle[j][l] + 1];
+    for (size_t i = 0; i < particles; ++i) particleBatchStart_[i + 1] += particleBatchStart_[i];
+    particleBatches_.resize(particleBatchStart_[particles]);
+    std::vector<uint32_t> next(particleBatchStart_.begin(), particleBatchStart_.end() - 1);
+    for (uint32_t b = 0; b < batches_.size(); ++b)
+        for (uint32_t l = 0; l < batches_[b].lanes; ++l)
+            for (int j = 0; j < 8; ++j) particleBatches_[next[batches_[b].particle[j][l]]++] = b;
+}
+
+void SoftSystem::holdContactParticles() {
+    for (const uint32_t i : heldParticles_) {
+        holdNormal_[i] = Vec3::Zero();
+        heldImpulse_[i] = 0.0;
+        for (uint32_t k = particleBatchStart_[i]; k < particleBatchStart_[i + 1]; ++k) heldBatches_[particleBatches_[k]] = 0;
+    }
+    heldParticles_.clear();
+    if (!heldContacts_) return;
+    // Every particle with a contact (touching, or within the margin: holding only those touching
+    // after the prediction, a particle an element had lifted off by a hair was pushed in by
+    // the next substep's elements and the tyres jittered) is held along its contacts' normal
+    // (their sum, normalised).
+    for (const ParticleContact& c : contacts_) {
+        Vec3& n = holdNormal_[c.particle];
+        if (n.isZero(0.0)) heldParticles_.push_back(c.particle);
+        n += c.normal;
+    }
+    for (const uint32_t i : heldParticles_) {
+        const double length = holdNormal_[i].norm();
+        holdNormal_[i] = length > kDirectionEpsilon ? Vec3(holdNormal_[i] / length) : Vec3::Zero();
+        for (uint32_t k = particleBatchStart_[i]; k < particleBatchStart_[i + 1]; ++k) heldBatches_[particleBatches_[k]] = 1;
+    }
 }
 
 bool SoftSystem::isValid(SoftBodyId id) const {
@@ -229,8 +278,7 @@ void SoftSystem::integrate(double h, const Vec3& gravity) {
         predictOnArc(x_.data() + first, xPrev_.data() + first, v_.data() + first, body.particleCount, gravityStep, h,
                      arc, moments.centre);
         // The elements turn with the body: their rotations' warm start.
-        for (uint32_t e = body.firstElement; e < body.firstElement + body.elementCount; ++e)
-            rotations_[e] = body.turn * rotations_[e];
+        turnRotations(rotations_.data() + body.firstElement, body.elementCount, body.turn);
     }
     std::fill(lambda_.begin(), lambda_.end(), 0.0);
     std::fill(volumeLambda_.begin(), volumeLambda_.end(), 0.0);
@@ -283,56 +331,8 @@ void SoftSystem::solveVelocities(Body* bodies, double h, double gravity) {
 }
 
 void SoftSystem::damp(double dt) {
-    // Per element, each corner's velocity moves towards the element's rigid motion
-    // v̄ + ω × (x − c) (mass-weighted with the particles' masses, ω = I⁻¹ L), by 1 − exp(−k dt):
-    // deformation rates decay at k whatever their direction, rigid motion is untouched, and
-    // each element's momentum and angular momentum are kept.
-    double lastRate = 0.0, fraction = 0.0;  // a body's elements share their rate: one exp
-    for (size_t e = 0; e < elements_.size(); ++e) {
-        const double k = elementDamping_[e];
-        if (!(k > 0.0)) continue;
-        if (k != lastRate) lastRate = k, fraction = 1.0 - std::exp(-k * dt);
-        const HexElement& element = elements_[e];
-        // The corners gathered once: positions, velocities, masses.
-        std::array<Vec3, 8> r, v;
-        std::array<double, 8> m;
-        double mass = 0.0;
-        Vec3 centre = Vec3::Zero(), momentum = Vec3::Zero();
-        for (int j = 0; j < 8; ++j) {
-            const uint32_t i = element[j];
-            m[j] = mass_[i], r[j] = x_[i], v[j] = v_[i];
-            mass += m[j];
-            centre += m[j] * r[j];
-            momentum += m[j] * v[j];
-        }
-        centre /= mass;
-        const Vec3 velocity = momentum / mass;
-        Vec3 angularMomentum = Vec3::Zero();
-        double sxx = 0, syy = 0, szz = 0, sxy = 0, sxz = 0, syz = 0;  // Σ m r rᵀ
-        for (int j = 0; j < 8; ++j) {
-            r[j] -= centre;
-            const Vec3 mr = m[j] * r[j];
-            angularMomentum += mr.cross(v[j] - velocity);
-            sxx += mr.x() * r[j].x(), syy += mr.y() * r[j].y(), szz += mr.z() * r[j].z();
-            sxy += mr.x() * r[j].y(), sxz += mr.x() * r[j].z(), syz += mr.y() * r[j].z();
-        }
-        const double spread = sxx + syy + szz;  // Σ m |r|²
-        // I = Σ m (|r|² 1 − r rᵀ), inverted by its adjugate (symmetric).
-        const double i00 = spread - sxx, i11 = spread - syy, i22 = spread - szz;
-        const double i01 = -sxy, i02 = -sxz, i12 = -syz;
-        const double a00 = i11 * i22 - i12 * i12, a01 = i02 * i12 - i01 * i22, a02 = i01 * i12 - i02 * i11;
-        const double a11 = i00 * i22 - i02 * i02, a12 = i01 * i02 - i00 * i12, a22 = i00 * i11 - i01 * i01;
-        const double det = i00 * a00 + i01 * a01 + i02 * a02;
-        // A collapsed element has no well-defined spin: damp towards its mean velocity only.
-        Vec3 omega = Vec3::Zero();
-        const double trace = i00 + i11 + i22;
-        if (std::abs(det) > 1e-9 * trace * trace * trace) {
-            const Vec3& l = angularMomentum;
-            omega = Vec3(a00 * l.x() + a01 * l.y() + a02 * l.z(), a01 * l.x() + a11 * l.y() + a12 * l.z(),
-                         a02 * l.x() + a12 * l.y() + a22 * l.z()) / det;
-        }
-        for (int j = 0; j < 8; ++j) v_[element[j]] = v[j] + fraction * (velocity + omega.cross(r[j]) - v[j]);
-    }
+    // Each element's deformation rate, its batches' lanes side by side (element_damping.h).
+    dampElementBatches(batches_, {.positions = x_, .velocities = v_, .mass = mass_, .damping = elementDamping_}, dt);
 }
 
 SoftEnergies SoftSystem::energies(const Vec3& gravity) const {

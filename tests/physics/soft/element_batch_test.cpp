@@ -3,13 +3,15 @@
 // gives what projecting the elements one after the other in the lattice's order with the scalar
 // functions of shape_matching.h gives, on deformed, turned and flat elements, rigid and soft,
 // with and without the volume constraint, through the contiguous loads (a tyre's batches) and the gathers,
-// and a rolling wheel's turns per substep finished in the lanes (two Newton steps) with its result.
+// and a rolling wheel's turns per substep finished in the lanes (two Newton steps) with its result;
+// corners held by contacts take no correction into them and hand that push to the contacts.
 #include "physics/soft/element_batch.h"
 #include "physics/soft/shape_matching.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <string>
 
 namespace substep {
 namespace {
@@ -93,11 +95,31 @@ struct Elements {
         }
     }
 
+    /// Particles held by a contact (zero: free), what they were pushed with, and the batches
+    /// with a held corner.
+    std::vector<Vec3> holdNormals;
+    std::vector<double> heldImpulse;
+    std::vector<uint8_t> heldBatches;
+
     ElementArrays arrays() {
-        return {x,          elements,         rest,   volumeGradients, rotations, scale2,
-                compliance, volumeCompliance, lambda, volumeLambda,    invMass};
+        ElementArrays a{x,          elements,         rest,   volumeGradients, rotations, scale2,
+                        compliance, volumeCompliance, lambda, volumeLambda,    invMass};
+        a.holdNormals = holdNormals, a.heldImpulse = heldImpulse, a.heldBatches = heldBatches;
+        return a;
     }
 };
+
+/// Element e's share of a held corner's push into its contact: where the correction
+/// Δx_j = w_j ∇_j C Δλ points into it (Δλ's sign is that of `numerator`), the corner's inverse
+/// mass along n is 0. Takes the normal part out of `gradient` and returns it (0: not held).
+double blockHeld(const Elements& s, uint32_t particle, double numerator, Vec3& gradient) {
+    if (s.holdNormals.empty()) return 0.0;
+    const Vec3& n = s.holdNormals[particle];
+    const double along = n.dot(gradient);
+    if (!(numerator * along < 0.0)) return 0.0;
+    gradient -= along * n;
+    return along;
+}
 
 /// The scalar sweep: each element after the other with extractRotation, Eq. 4 on the
 /// shape-matching error, then the volume constraint.
@@ -108,28 +130,37 @@ void scalarSweep(Elements& s, double invH2) {
             x[j] = s.x[s.elements[e][j]];
         const Mat3 r = extractRotation(shapeMatrix(x, s.rest[e]), s.scale2[e], s.rotations[e]);
         const double c = shapeMatchingError(x, s.rest[e], r, d);
+        const double alpha = s.compliance[e] * invH2;
+        std::array<double, 8> blocked{};
+        for (int j = 0; j < 8; ++j)
+            blocked[j] = blockHeld(s, s.elements[e][j], -c - alpha * s.lambda[e], d[j]);
         double weighted = 0.0;
         for (int j = 0; j < 8; ++j)
             weighted += s.invMass[s.elements[e][j]] * d[j].squaredNorm();
-        const double alpha = s.compliance[e] * invH2;
         if (c > 1e-12 * std::sqrt(s.scale2[e]) && weighted > 0.0) {
             const double deltaLambda =
                 (-c - alpha * s.lambda[e]) / (weighted / (64 * c * c) + alpha);
             s.lambda[e] += deltaLambda;
-            for (int j = 0; j < 8; ++j)
+            for (int j = 0; j < 8; ++j) {
                 x[j] += s.invMass[s.elements[e][j]] * deltaLambda / (8 * c) * d[j];
+                if (blocked[j] != 0.0) s.heldImpulse[s.elements[e][j]] -= deltaLambda / (8 * c) * blocked[j];
+            }
         }
         if (s.volumeCompliance[e] >= 0.0) {
             std::array<Vec3, 8> g;
             const double cv = volumeError(x, s.volumeGradients[e], g);
+            const double alphaV = s.volumeCompliance[e] * invH2;
+            for (int j = 0; j < 8; ++j)
+                blocked[j] = blockHeld(s, s.elements[e][j], -cv - alphaV * s.volumeLambda[e], g[j]);
             double w = 0.0;
             for (int j = 0; j < 8; ++j)
                 w += s.invMass[s.elements[e][j]] * g[j].squaredNorm();
-            const double alphaV = s.volumeCompliance[e] * invH2;
             const double deltaLambda = (-cv - alphaV * s.volumeLambda[e]) / (w + alphaV);
             s.volumeLambda[e] += deltaLambda;
-            for (int j = 0; j < 8; ++j)
+            for (int j = 0; j < 8; ++j) {
                 x[j] += s.invMass[s.elements[e][j]] * deltaLambda * g[j];
+                if (blocked[j] != 0.0) s.heldImpulse[s.elements[e][j]] -= deltaLambda * blocked[j];
+            }
         }
         for (int j = 0; j < 8; ++j)
             s.x[s.elements[e][j]] = x[j];
@@ -240,6 +271,80 @@ TEST(ElementBatch, TurnsOfARollingWheelStayInTheLanes) {
             for (size_t i = 0; i < batched.x.size(); ++i)
                 largest = std::max(largest, (batched.x[i] - scalar.x[i]).norm());
             EXPECT_LT(largest, 1e-12 * size) << angle << " rad";
+        }
+    }
+}
+
+TEST(ElementBatch, HeldCornersTakeNoCorrectionIntoTheirContact) {
+    // The bottom layer of each lattice (and a few particles elsewhere) held by contacts with
+    // tilted normals, the lattice squashed onto them and turned: the batches (held ones through
+    // the kernel's held path) give the scalar sweep's result; no held particle moves into its
+    // contact in any sweep; and the momentum the elements gave the particles, Σ m Δx, is what
+    // they handed the contacts, Σ heldImpulse n (each element's corrections alone sum to zero).
+    const Mat3 turn = Quat(Eigen::AngleAxisd(0.2, Vec3(1, 2, 3).normalized())).toRotationMatrix();
+    const Vec3 normals[3] = {Vec3(0.1, 1, 0).normalized(), Vec3(-0.3, 1, 0.2).normalized(), Vec3(0, 0, 1)};
+    for (const Lattice& lattice : lattices()) {
+        for (const bool volume : {false, true}) {
+            Elements batched(lattice, true, volume);
+            double lowest = batched.x[0].y(), size = 0.0;
+            for (const Vec3& p : batched.x)
+                lowest = std::min(lowest, p.y()), size = std::max(size, p.norm());
+            batched.holdNormals.assign(batched.x.size(), Vec3::Zero());
+            batched.heldImpulse.assign(batched.x.size(), 0.0);
+            int held = 0;
+            for (size_t i = 0; i < batched.x.size(); ++i) {
+                const bool bottom = batched.x[i].y() < lowest + 1e-9;
+                if (bottom || i % 11 == 3) batched.holdNormals[i] = normals[i % 3], ++held;
+                // Squashed towards the bottom by 15 %, with a wobble, then turned a little.
+                Vec3& p = batched.x[i];
+                p.y() = lowest + 0.85 * (p.y() - lowest);
+                p = turn * p + 0.005 * Vec3(std::sin(double(i)), std::cos(3.0 * i), std::sin(5.0 * i));
+            }
+            ASSERT_GT(held, 0);
+            Elements scalar(lattice, false, volume);
+            scalar.x = batched.x, scalar.holdNormals = batched.holdNormals, scalar.heldImpulse = batched.heldImpulse;
+            std::vector<ElementBatch> batches;
+            appendBatches(batched.arrays(), batched.wave, 0, static_cast<uint32_t>(batched.elements.size()), batches);
+            for (const ElementBatch& batch : batches) {
+                bool any = false;
+                for (uint32_t l = 0; l < batch.lanes; ++l)
+                    for (int j = 0; j < 8; ++j) any = any || !batched.holdNormals[batch.particle[j][l]].isZero(0.0);
+                batched.heldBatches.push_back(any ? 1 : 0);
+            }
+            const double invH2 = 1200.0 * 1200.0;
+            double deepest = 0.0, moved = 0.0;
+            for (int sweep = 0; sweep < 5; ++sweep) {
+                const std::vector<Vec3> before = batched.x;
+                solveElementBatches(batches, batched.arrays(), invH2);
+                scalarSweep(scalar, invH2);
+                for (size_t i = 0; i < before.size(); ++i) {
+                    const Vec3 step = batched.x[i] - before[i];
+                    moved = std::max(moved, step.norm());
+                    deepest = std::min(deepest, batched.holdNormals[i].dot(step));
+                }
+            }
+            const std::string label = std::to_string(lattice.elements.size()) + " elements" + (volume ? ", volume" : "");
+            double largest = 0.0, handed = 0.0;
+            Vec3 momentum = Vec3::Zero(), impulse = Vec3::Zero();
+            const Elements start(lattice, true, volume);
+            for (size_t i = 0; i < batched.x.size(); ++i) {
+                largest = std::max(largest, (batched.x[i] - scalar.x[i]).norm());
+                EXPECT_NEAR(batched.heldImpulse[i], scalar.heldImpulse[i], 1e-9 * size) << label;
+                handed += batched.heldImpulse[i];
+                impulse += batched.heldImpulse[i] * batched.holdNormals[i];
+            }
+            // Σ m Δx from the squashed lattice (recomputed from the same deformation).
+            for (size_t i = 0; i < batched.x.size(); ++i) {
+                Vec3 p = start.x[i];
+                p.y() = lowest + 0.85 * (p.y() - lowest);
+                p = turn * p + 0.005 * Vec3(std::sin(double(i)), std::cos(3.0 * i), std::sin(5.0 * i));
+                momentum += (batched.x[i] - p) / batched.invMass[i];
+            }
+            EXPECT_LT(largest, 1e-9 * size) << label;
+            EXPECT_GT(moved, 1e-3 * size) << label;
+            EXPECT_GE(deepest, -1e-12 * size) << label;  // never into a contact
+            EXPECT_GT(handed, 0.0) << label;             // the squash pushed them into it
+            EXPECT_LT((momentum - impulse).norm(), 1e-9 * std::max(1.0, impulse.norm())) << label;
         }
     }
 }

@@ -1,7 +1,8 @@
 // Tests engine/physics/soft/rigid_mode.h and rigid_mode.cpp: a particle set's moments against the
 // closed forms of point masses, the momentum-keeping spin against its defining equation
 // Rot(h ω) I ω = L, and the passes in vector lanes against their formulas particle by particle,
-// for every count of particles left over after the blocks of four.
+// for every count of particles left over after the blocks of four, and the elements' warm starts
+// turned with their body against the quaternion product.
 #include "physics/soft/rigid_mode.h"
 
 #include <gtest/gtest.h>
@@ -153,6 +154,22 @@ TEST(RigidMode, PassesInLanesMatchTheirFormulasForEveryRemainder) {
             EXPECT_EQ(lanes.vPrev[i], scalar.vPrev[i]) << count << " " << i;
         }
         EXPECT_EQ(lanes.x[count], Particles(count + 1).x[count]);  // untouched
+    }
+}
+
+TEST(RigidMode, TurnRotationsIsTheQuaternionProduct) {
+    // The elements' warm starts turned by their body's turn: turn q for each, whatever the
+    // count, against Eigen's product.
+    const Quat turn = Quat(Eigen::AngleAxisd(0.013, Vec3(1, -2, 0.5).normalized()));
+    for (const uint32_t count : {0u, 1u, 5u, 37u}) {
+        std::vector<Quat> rotations, expected;
+        for (uint32_t i = 0; i <= count; ++i) {  // one past the end stays as it was
+            rotations.push_back(Quat(Eigen::AngleAxisd(0.3 * i, Vec3(std::sin(i), 1.0, std::cos(2.0 * i)).normalized())));
+            expected.push_back(i < count ? Quat(turn * rotations.back()) : rotations.back());
+        }
+        turnRotations(rotations.data(), count, turn);
+        for (uint32_t i = 0; i <= count; ++i)
+            EXPECT_LT((rotations[i].coeffs() - expected[i].coeffs()).norm(), 1e-15) << count << " " << i;
     }
 }
 
