@@ -84,11 +84,17 @@ void addSphereContacts(const HeightfieldGrid& grid, const Vec3& c, double r, dou
             const bool nearby = offset.squaredNorm() < 1e16 * reach * reach;
             const Vec3 second[2] = {Vec3(x0, h01, z1), corner11};
             const Vec3 third[2] = {corner11, Vec3(x1, h10, z0)};
+            const Vec3* kept = grid.keptNormals(i, j);
             for (int half = 0; half < 2; ++half) {
-                const Vec3 cross = (second[half] - corner00).cross(third[half] - corner00);
-                const double along = offset.dot(cross);
-                if (nearby && along > 0.0 && along * along > clearly * cross.squaredNorm()) continue;
-                const Vec3 normal = cross.normalized();
+                Vec3 normal;
+                if (kept) {
+                    normal = kept[half];
+                } else {
+                    const Vec3 cross = (second[half] - corner00).cross(third[half] - corner00);
+                    const double along = offset.dot(cross);
+                    if (nearby && along > 0.0 && along * along > clearly * cross.squaredNorm()) continue;
+                    normal = cross.normalized();
+                }
                 if (offset.dot(normal) > reach) continue;  // addSphereTriangleContacts' first test
                 ContactTriangle tri;
                 tri.v[0] = corner00;
@@ -106,14 +112,32 @@ void addSphereContacts(const HeightfieldGrid& grid, const Vec3& c, double r, dou
 
 }  // namespace
 
-HeightfieldGrid::HeightfieldGrid(const HeightfieldData& data)
-    : field(&data),
-      originX(-0.5 * data.sizeX),
-      originZ(-0.5 * data.sizeZ),
-      cellX(data.cellX()),
-      cellZ(data.cellZ()),
-      inverseCellX(1.0 / cellX),
-      inverseCellZ(1.0 / cellZ) {}
+void HeightfieldGrid::reset(const HeightfieldData& data) {
+    field = &data;
+    originX = -0.5 * data.sizeX;
+    originZ = -0.5 * data.sizeZ;
+    cellX = data.cellX();
+    cellZ = data.cellZ();
+    inverseCellX = 1.0 / cellX;
+    inverseCellZ = 1.0 / cellZ;
+    keptColumns_ = keptRows_ = 0;
+    keptNormals_.clear();
+}
+
+void HeightfieldGrid::keepNormals(const Aabb& box, int mostCells) {
+    keptColumns_ = keptRows_ = 0;
+    keptNormals_.clear();
+    int i0, i1, j0, j1;
+    if (!cellRange(box.min.x(), box.max.x(), originX, cellX, inverseCellX, field->columns - 1, i0, i1) ||
+        !cellRange(box.min.z(), box.max.z(), originZ, cellZ, inverseCellZ, field->rows - 1, j0, j1))
+        return;
+    if ((i1 - i0 + 1) * (j1 - j0 + 1) > mostCells) return;
+    for (int j = j0; j <= j1; ++j)
+        for (int i = i0; i <= i1; ++i)
+            for (int half = 0; half < 2; ++half)
+                keptNormals_.push_back(field->triangle(i, j, half).normal);
+    keptI0_ = i0, keptJ0_ = j0, keptColumns_ = i1 - i0 + 1, keptRows_ = j1 - j0 + 1;
+}
 
 void collideSphereHeightfield(const HeightfieldGrid& grid, const Vec3& centre, double r, const Pose& pose,
                               double margin, ContactManifold& out) {
@@ -157,10 +181,16 @@ double heightfieldGapBound(const HeightfieldGrid& grid, const Vec3& p, double re
             const double x0 = grid.originX + i * grid.cellX, x1 = grid.originX + (i + 1) * grid.cellX;
             const Vec3 corner00(x0, h00, z0), corner11(x1, h11, z1);
             const Vec3 offset = p - corner00;
-            const Vec3 cross0 = (Vec3(x0, h01, z1) - corner00).cross(corner11 - corner00);
-            const Vec3 cross1 = (corner11 - corner00).cross(Vec3(x1, h10, z0) - corner00);
-            const double above0 = offset.dot(cross0) / cross0.norm();
-            const double above1 = offset.dot(cross1) / cross1.norm();
+            double above0, above1;
+            if (const Vec3* kept = grid.keptNormals(i, j)) {
+                above0 = offset.dot(kept[0]);
+                above1 = offset.dot(kept[1]);
+            } else {
+                const Vec3 cross0 = (Vec3(x0, h01, z1) - corner00).cross(corner11 - corner00);
+                const Vec3 cross1 = (corner11 - corner00).cross(Vec3(x1, h10, z0) - corner00);
+                above0 = offset.dot(cross0) / cross0.norm();
+                above1 = offset.dot(cross1) / cross1.norm();
+            }
             bound = std::min(bound, std::max(aboveSamples, std::min(above0, above1)));
         }
     }

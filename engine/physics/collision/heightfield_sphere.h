@@ -12,16 +12,38 @@
 #include "physics/collision/contact_manifold.h"
 #include "physics/collision/heightfield.h"
 
+#include <vector>
+
 namespace substep {
 
-/// A field's grid constants, which a run of queries on one field shares.
-struct HeightfieldGrid {
-    explicit HeightfieldGrid(const HeightfieldData& field);
+/// A field's grid constants, which a run of queries on one field shares, and optionally the unit
+/// normals of a block of its cells' triangles, which the queries there then read instead of
+/// computing (a soft body's particles meet the same few cells all frame).
+class HeightfieldGrid {
+public:
+    HeightfieldGrid() = default;
+    explicit HeightfieldGrid(const HeightfieldData& data) { reset(data); }
 
-    const HeightfieldData* field;
-    double originX, originZ;  ///< the low corner of cell (0, 0)
-    double cellX, cellZ;      ///< as HeightfieldData::cellX, cellZ compute them
-    double inverseCellX, inverseCellZ;
+    /// Points the grid at `data` and forgets the kept normals (their storage stays).
+    void reset(const HeightfieldData& data);
+    /// Keeps the normals of the triangles of the cells under `box` (x–z, the field's frame), as
+    /// HeightfieldData::triangle computes them, if they are at most `mostCells`; else none.
+    void keepNormals(const Aabb& box, int mostCells);
+    /// The two kept normals of cell (i, j) (half 0, half 1), or null where none are kept.
+    const Vec3* keptNormals(int i, int j) const {
+        const unsigned di = static_cast<unsigned>(i - keptI0_), dj = static_cast<unsigned>(j - keptJ0_);
+        if (di >= static_cast<unsigned>(keptColumns_) || dj >= static_cast<unsigned>(keptRows_)) return nullptr;
+        return &keptNormals_[2 * (dj * static_cast<unsigned>(keptColumns_) + di)];
+    }
+
+    const HeightfieldData* field = nullptr;
+    double originX = 0.0, originZ = 0.0;  ///< the low corner of cell (0, 0)
+    double cellX = 1.0, cellZ = 1.0;      ///< as HeightfieldData::cellX, cellZ compute them
+    double inverseCellX = 1.0, inverseCellZ = 1.0;
+
+private:
+    int keptI0_ = 0, keptJ0_ = 0, keptColumns_ = 0, keptRows_ = 0;
+    std::vector<Vec3> keptNormals_;  ///< 2 per cell, row by row
 };
 
 /// The sphere–heightfield narrowphase (collide_curved.h's collideSphereHeightfield) for a sphere

@@ -10,10 +10,13 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <optional>
 
 namespace substep {
 namespace {
+
+/// A soft body's box over more heightfield cells than this keeps none of their normals
+/// (HeightfieldGrid::keepNormals): a big body over a fine grid. A tyre's box covers a few.
+constexpr int kMostKeptCells = 256;
 
 /// The speed (m/s) at which an overlap the motion does not explain is pushed out: the rigid
 /// contacts' value (contact.cpp), so a particle created sunk into the ground rises gently.
@@ -142,15 +145,17 @@ double highestSampleUnder(const HeightfieldData& field, const Vec3& lo, const Ve
 /// - anything else: the distance to its world bounds.
 class StaticGap {
 public:
-    StaticGap(const Shape& shape, const Pose& pose, const Aabb& bounds, const Aabb& softBox, double radius)
-        : shape_(shape), pose_(pose), bounds_(bounds), radius_(radius) {
-        if (shape.type != ShapeType::Heightfield || !shape.heightfield) return;
-        grid_.emplace(*shape.heightfield);
+    /// `grid`: a heightfield's, which keeps the normals of the cells under the soft body's box.
+    StaticGap(const Shape& shape, const Pose& pose, const Aabb& bounds, const Aabb& softBox, double radius,
+              HeightfieldGrid* grid)
+        : shape_(shape), pose_(pose), bounds_(bounds), radius_(radius), grid_(grid) {
+        if (shape.type != ShapeType::Heightfield || !shape.heightfield || !grid) return;
         for (int corner = 0; corner < 8; ++corner)
             column_.grow(pose.applyInverse(Vec3(corner & 1 ? softBox.max.x() : softBox.min.x(),
                                                 corner & 2 ? softBox.max.y() : softBox.min.y(),
                                                 corner & 4 ? softBox.max.z() : softBox.min.z())));
         highest_ = highestSampleUnder(*shape.heightfield, column_.min, column_.max);
+        grid->keepNormals(column_, kMostKeptCells);
     }
 
     /// The bound for a particle at p that may move by `reach` in the frame (beyond it, the
@@ -163,7 +168,7 @@ public:
             }
             case ShapeType::Plane: return shape_.normal.dot(p) - shape_.offset - radius_;
             case ShapeType::Heightfield: {
-                if (!shape_.heightfield) return 0.0;
+                if (!shape_.heightfield || !grid_) return 0.0;
                 const Vec3 local = pose_.applyInverse(p);
                 const double side = std::min({local.x() - column_.min.x(), column_.max.x() - local.x(),
                                               local.z() - column_.min.z(), column_.max.z() - local.z()});
@@ -192,7 +197,7 @@ private:
     double radius_;
     Aabb column_;  ///< heightfield: the soft body's box in its frame
     double highest_ = 0.0;
-    std::optional<HeightfieldGrid> grid_;  ///< heightfield: its grid
+    HeightfieldGrid* grid_;  ///< heightfield: its grid
 };
 
 }  // namespace
@@ -298,6 +303,8 @@ void SoftSystem::collectCandidates(std::span<const Body> bodies, double dt, doub
     // that cannot touch costs the substeps one comparison each), against a moving one by the
     // narrowphase itself.
     candidates_.clear();
+    for (FieldGrid& slot : fieldGrids_) slot.field.reset();
+    fieldGridCount_ = 0;
     const double fall = gravity.norm() * dt * dt;
     ContactManifold manifold;
     for (uint32_t s = 0; s < bodies_.size(); ++s) {
@@ -332,7 +339,15 @@ void SoftSystem::collectCandidates(std::span<const Body> bodies, double dt, doub
             const Aabb bodyBox = staticBounds.inflated(sweep);
             if (!bodyBox.overlaps(softBox)) continue;
             if (still) {
-                const StaticGap gapOf(b.shape, pose, staticBounds, softBox, soft.radius);
+                HeightfieldGrid* grid = nullptr;
+                if (b.shape.type == ShapeType::Heightfield && b.shape.heightfield) {
+                    if (fieldGridCount_ == fieldGrids_.size()) fieldGrids_.emplace_back();
+                    FieldGrid& slot = fieldGrids_[fieldGridCount_++];
+                    slot.softBody = s, slot.body = bi, slot.field = b.shape.heightfield;
+                    slot.grid.reset(*slot.field);
+                    grid = &slot.grid;
+                }
+                const StaticGap gapOf(b.shape, pose, staticBounds, softBox, soft.radius, grid);
                 const bool decides = gapOf.tight();
                 for (uint32_t i = first; i < end; ++i) {
                     const double reachOut = margin + 2.0 * dt * v_[i].norm() + fall;
@@ -369,7 +384,8 @@ void SoftSystem::findContacts(std::span<const Body> bodies, double margin) {
     uint32_t probeBody = UINT32_MAX;
     Pose pose;
     Shape probe;
-    std::optional<HeightfieldGrid> grid;
+    const HeightfieldGrid* grid = nullptr;
+    HeightfieldGrid ownGrid;  // a heightfield's without candidates kept by collectCandidates
     double staticFriction = 0.0, dynamicFriction = 0.0, restitution = 0.0;
     // Candidates come grouped by soft body, then rigid body: poses and probes are made once
     // per group.
@@ -386,8 +402,18 @@ void SoftSystem::findContacts(std::span<const Body> bodies, double margin) {
             probeBody = candidate.softBody;
             pose = {b.userPosition(), b.userOrientation()};
             probe = sphereShape(soft.radius);
-            grid.reset();
-            if (b.shape.type == ShapeType::Heightfield && b.shape.heightfield) grid.emplace(*b.shape.heightfield);
+            grid = nullptr;
+            if (b.shape.type == ShapeType::Heightfield && b.shape.heightfield) {
+                for (size_t g = 0; g < fieldGridCount_ && !grid; ++g) {
+                    const FieldGrid& slot = fieldGrids_[g];
+                    if (slot.softBody == candidate.softBody && slot.body == candidate.body && slot.field == b.shape.heightfield)
+                        grid = &slot.grid;
+                }
+                if (!grid) {
+                    ownGrid.reset(*b.shape.heightfield);
+                    grid = &ownGrid;
+                }
+            }
             // Paper 3.5: a pair's coefficients are the averages of its bodies'.
             staticFriction = 0.5 * (soft.staticFriction + b.staticFriction);
             dynamicFriction = 0.5 * (soft.dynamicFriction + b.dynamicFriction);

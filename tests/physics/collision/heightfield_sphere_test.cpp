@@ -72,6 +72,15 @@ Vec3 pointNear(const HeightfieldData& field, std::mt19937& rng, double r) {
     return {x, y, z};
 }
 
+/// A box (the field's frame) over a random block of cells, part of it beyond the field at times.
+Aabb someCells(const HeightfieldData& field, std::mt19937& rng) {
+    std::uniform_real_distribution<double> unit(-0.7, 0.7);
+    Aabb box;
+    box.grow(Vec3(unit(rng) * field.sizeX, 0.0, unit(rng) * field.sizeZ));
+    box.grow(Vec3(unit(rng) * field.sizeX, 1.0, unit(rng) * field.sizeZ));
+    return box;
+}
+
 Pose randomPose(std::mt19937& rng, bool turned) {
     std::uniform_real_distribution<double> unit(-1.0, 1.0);
     Pose pose{Vec3(unit(rng), unit(rng), unit(rng)) * 20.0, Quat::Identity()};
@@ -85,7 +94,9 @@ TEST(HeightfieldSphere, GivesTheTriangleByTriangleContactsBitForBit) {
     int withContacts = 0, several = 0, cases = 0;
     for (int f = 0; f < 400; ++f) {
         const auto field = randomField(rng, f % 4);
-        const HeightfieldGrid grid(*field);
+        HeightfieldGrid grid(*field);
+        // Half the fields keep the normals of a block of cells, as a soft body's grid does.
+        if (f % 2 == 1) grid.keepNormals(someCells(*field, rng), 256);
         const Pose pose = randomPose(rng, f % 3 == 0);
         for (int k = 0; k < 200; ++k) {
             // Radii from a thousandth of a cell to two cells.
@@ -112,6 +123,25 @@ TEST(HeightfieldSphere, GivesTheTriangleByTriangleContactsBitForBit) {
     EXPECT_GT(withContacts, cases / 4);
     EXPECT_GT(several, cases / 50);
     EXPECT_LT(withContacts, cases);
+}
+
+TEST(HeightfieldSphere, KeepsTheNormalsOfTheCellsUnderABox) {
+    const auto field = makeHeightfield(5, 4, {0, 1, 0, 2, 0, 0, 3, 0, 1, 0, 2, 0, 0, 1, 0, 0, 0, 2, 0, 1}, 4.0, 3.0);
+    HeightfieldGrid grid(*field);
+    EXPECT_EQ(grid.keptNormals(1, 1), nullptr);
+    // x in [-0.5, 0.5] reaches cells 1 and 2 (lines at -1, 0, 1), z in [0.2, 0.4] cell 1 (-0.5 to 0.5).
+    grid.keepNormals({Vec3(-0.5, 0, 0.2), Vec3(0.5, 0, 0.4)}, 8);
+    for (int j = 0; j < 3; ++j)
+        for (int i = 0; i < 4; ++i) {
+            const Vec3* kept = grid.keptNormals(i, j);
+            ASSERT_EQ(kept != nullptr, (i == 1 || i == 2) && j == 1) << i << " " << j;
+            if (!kept) continue;
+            EXPECT_TRUE(sameBits(kept[0], field->triangle(i, j, 0).normal));
+            EXPECT_TRUE(sameBits(kept[1], field->triangle(i, j, 1).normal));
+        }
+    // More cells than allowed: none kept.
+    grid.keepNormals({Vec3(-2, 0, -1.5), Vec3(2, 0, 1.5)}, 11);
+    EXPECT_EQ(grid.keptNormals(1, 2), nullptr);
 }
 
 TEST(HeightfieldSphere, MissesAFieldItIsNotOver) {
@@ -161,7 +191,8 @@ TEST(HeightfieldSphere, GapBoundNeverExceedsTheDistance) {
     int tight = 0;
     for (int f = 0; f < 100; ++f) {
         const auto field = randomField(rng, f % 4);
-        const HeightfieldGrid grid(*field);
+        HeightfieldGrid grid(*field);
+        if (f % 2 == 1) grid.keepNormals(someCells(*field, rng), 256);
         const double cell = std::min(field->cellX(), field->cellZ());
         for (int k = 0; k < 100; ++k) {
             const double reach = cell * 3.0 * unit(rng);
@@ -184,7 +215,8 @@ TEST(HeightfieldSphere, GapBoundHidesNoContact) {
     int skipped = 0;
     for (int f = 0; f < 200; ++f) {
         const auto field = randomField(rng, f % 4);
-        const HeightfieldGrid grid(*field);
+        HeightfieldGrid grid(*field);
+        if (f % 2 == 1) grid.keepNormals(someCells(*field, rng), 256);
         const double cell = std::min(field->cellX(), field->cellZ());
         for (int k = 0; k < 100; ++k) {
             const double r = cell * 0.05 * (0.1 + unit(rng)), margin = 0.2 * r;
