@@ -2,8 +2,11 @@
 // (the paper's most expensive part of the rolling ball sculpture) and the pair functions.
 #include <benchmark/benchmark.h>
 
+#include "../physics/collision/heightfield_reference.h"
+
 #include "physics/collision/collide_curved.h"
 #include "physics/collision/heightfield.h"
+#include "physics/collision/heightfield_sphere.h"
 #include "physics/collision/mesh_collider.h"
 #include "physics/collision/spline_tube.h"
 
@@ -210,6 +213,40 @@ void BM_BoxHeightfield(benchmark::State& state) {
     }
 }
 BENCHMARK(BM_BoxHeightfield);
+
+/// rc_car's case: 5 mm particles over 10 cm cells of bumps, their centres from 1.5 radii under
+/// the surface to 2.5 above it (the candidates a substep tests). /0 the triangle-by-triangle
+/// reference (the narrowphase before heightfield_sphere.cpp), /1 straight from the heights, /2
+/// also with the cells' normals kept (as a soft body's grid keeps those under it).
+void BM_ParticleHeightfield(benchmark::State& state) {
+    const int n = 161;
+    std::vector<double> heights;
+    const auto surface = [](double x, double z) { return 0.015 * std::sin(3.5 * x) * std::sin(3.5 * x) * (0.6 + 0.4 * std::cos(4.5 * z)); };
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i)
+            heights.push_back(surface(-8.0 + 0.1 * i, -8.0 + 0.1 * j));
+    const auto field = makeHeightfield(n, n, heights, 16.0, 16.0);
+    HeightfieldGrid grid(*field);
+    if (state.range(0) == 2) grid.keepNormals({Vec3(-8, 0, -8), Vec3(8, 0, 8)}, n * n);
+    const double r = 0.005, margin = 0.002;
+    std::mt19937 rng(14);
+    std::uniform_real_distribution<double> across(-6.0, 6.0), lift(-1.5 * r, 2.5 * r);
+    std::vector<Vec3> centres;
+    for (int k = 0; k < 1024; ++k) {
+        const double x = across(rng), z = across(rng);
+        centres.emplace_back(x, surface(x, z) + lift(rng), z);
+    }
+    const Pose pose;
+    ContactManifold m;
+    size_t k = 0;
+    for (auto _ : state) {
+        const Vec3& c = centres[k++ & 1023];
+        if (state.range(0) == 0) reference::collideSphereHeightfield(*field, c, r, pose, margin, m);
+        else collideSphereHeightfield(grid, c, r, pose, margin, m);
+        benchmark::DoNotOptimize(m.count);
+    }
+}
+BENCHMARK(BM_ParticleHeightfield)->Arg(0)->Arg(1)->Arg(2);
 
 }  // namespace
 }  // namespace substep

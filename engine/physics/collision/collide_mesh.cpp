@@ -6,6 +6,7 @@
 #include "physics/collision/collide_curved.h"
 #include "physics/collision/contact_buffer.h"
 #include "physics/collision/heightfield.h"
+#include "physics/collision/heightfield_sphere.h"
 #include "physics/collision/mesh_collider.h"
 #include "physics/collision/triangle_contact.h"
 
@@ -103,7 +104,8 @@ void collideBoxMesh(const Shape& a, const Pose& pa, const Shape& b, const Pose& 
 void collideSphereHeightfield(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb,
                               double margin, ContactManifold& out) {
     out.clear();
-    if (b.heightfield) sphereAgainst(HeightfieldSource{*b.heightfield}, a, pa, pb, margin, out);
+    // sphereAgainst's points, bit for bit, without a triangle object per cell (heightfield_sphere.h).
+    if (b.heightfield) collideSphereHeightfield(HeightfieldGrid(*b.heightfield), pa.position, a.radius, pb, margin, out);
 }
 
 void collideCapsuleHeightfield(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb,

@@ -6,6 +6,7 @@ target_sources(substep_physics PRIVATE
   collision/spline_tube.cpp
   collision/mesh_collider.cpp
   collision/heightfield.cpp
+  collision/heightfield_sphere.cpp
   collision/triangle_contact.cpp
   collision/collide_spline.cpp
   collision/collide_mesh.cpp

@@ -2,6 +2,7 @@
 // (Eqs. 26-30 and 34), each particle standing in for a body with w = 1/m and no rotation
 // (paper section 4).
 #include "physics/collision/heightfield.h"
+#include "physics/collision/heightfield_sphere.h"
 #include "physics/collision/narrowphase.h"
 #include "physics/collision/shape_bounds.h"
 #include "physics/soft/soft_system.h"
@@ -12,6 +13,10 @@
 
 namespace substep {
 namespace {
+
+/// A soft body's box over more heightfield cells than this keeps none of their normals
+/// (HeightfieldGrid::keepNormals): a big body over a fine grid. A tyre's box covers a few.
+constexpr int kMostKeptCells = 256;
 
 /// The speed (m/s) at which an overlap the motion does not explain is pushed out: the rigid
 /// contacts' value (contact.cpp), so a particle created sunk into the ground rises gently.
@@ -133,21 +138,29 @@ double highestSampleUnder(const HeightfieldData& field, const Vec3& lo, const Ve
 /// - a plane: the height above it;
 /// - a heightfield, solid below its surface: in its frame, the height above the highest sample
 ///   under the soft body's box, or, for solid outside that column, the distance to the column's
-///   side, whichever is less (or the height above the field's highest sample, if larger);
+///   side, whichever is less (or the height above the field's highest sample, if larger); where
+///   that leaves the particle within reach, the height above the planes of the cells within its
+///   own reach (heightfieldGapBound), which on sloping cells is the distance, not the cells'
+///   highest sample 5 mm above it;
 /// - anything else: the distance to its world bounds.
 class StaticGap {
 public:
-    StaticGap(const Shape& shape, const Pose& pose, const Aabb& bounds, const Aabb& softBox, double radius)
-        : shape_(shape), pose_(pose), bounds_(bounds), radius_(radius) {
-        if (shape.type != ShapeType::Heightfield || !shape.heightfield) return;
+    /// `grid`: a heightfield's, which keeps the normals of the cells under the soft body's box.
+    StaticGap(const Shape& shape, const Pose& pose, const Aabb& bounds, const Aabb& softBox, double radius,
+              HeightfieldGrid* grid)
+        : shape_(shape), pose_(pose), bounds_(bounds), radius_(radius), grid_(grid) {
+        if (shape.type != ShapeType::Heightfield || !shape.heightfield || !grid) return;
         for (int corner = 0; corner < 8; ++corner)
             column_.grow(pose.applyInverse(Vec3(corner & 1 ? softBox.max.x() : softBox.min.x(),
                                                 corner & 2 ? softBox.max.y() : softBox.min.y(),
                                                 corner & 4 ? softBox.max.z() : softBox.min.z())));
         highest_ = highestSampleUnder(*shape.heightfield, column_.min, column_.max);
+        grid->keepNormals(column_, kMostKeptCells);
     }
 
-    double operator()(const Vec3& p) const {
+    /// The bound for a particle at p that may move by `reach` in the frame (beyond it, the
+    /// bound is no tighter than `reach`).
+    double operator()(const Vec3& p, double reach) const {
         switch (shape_.type) {
             case ShapeType::Box: {
                 const Vec3 local = pose_.applyInverse(p);
@@ -155,14 +168,16 @@ public:
             }
             case ShapeType::Plane: return shape_.normal.dot(p) - shape_.offset - radius_;
             case ShapeType::Heightfield: {
-                if (!shape_.heightfield) return 0.0;
+                if (!shape_.heightfield || !grid_) return 0.0;
                 const Vec3 local = pose_.applyInverse(p);
                 const double side = std::min({local.x() - column_.min.x(), column_.max.x() - local.x(),
                                               local.z() - column_.min.z(), column_.max.z() - local.z()});
                 // The old bound, the height above the whole field's highest sample, can be the
                 // larger where a soft body's box overhangs its column.
-                return std::max(local.y() - shape_.heightfield->maxHeight, std::min(local.y() - highest_, side)) -
-                       radius_;
+                const double column =
+                    std::max(local.y() - shape_.heightfield->maxHeight, std::min(local.y() - highest_, side)) - radius_;
+                if (column > reach) return column;
+                return std::max(column, heightfieldGapBound(*grid_, local, radius_ + reach) - radius_);
             }
             default: return (bounds_.min - p).cwiseMax(p - bounds_.max).cwiseMax(0.0).norm() - radius_;
         }
@@ -182,6 +197,7 @@ private:
     double radius_;
     Aabb column_;  ///< heightfield: the soft body's box in its frame
     double highest_ = 0.0;
+    HeightfieldGrid* grid_;  ///< heightfield: its grid
 };
 
 }  // namespace
@@ -289,6 +305,8 @@ void SoftSystem::collectCandidates(std::span<const Body> bodies, double dt, doub
     // that cannot touch costs the substeps one comparison each), against a moving one by the
     // narrowphase itself.
     candidates_.clear();
+    for (FieldGrid& slot : fieldGrids_) slot.field.reset();
+    fieldGridCount_ = 0;
     const double fall = gravity.norm() * dt * dt;
     ContactManifold manifold;
     for (uint32_t s = 0; s < bodies_.size(); ++s) {
@@ -323,13 +341,21 @@ void SoftSystem::collectCandidates(std::span<const Body> bodies, double dt, doub
             const Aabb bodyBox = staticBounds.inflated(sweep);
             if (!bodyBox.overlaps(softBox)) continue;
             if (still) {
-                const StaticGap gapOf(b.shape, pose, staticBounds, softBox, soft.radius);
+                HeightfieldGrid* grid = nullptr;
+                if (b.shape.type == ShapeType::Heightfield && b.shape.heightfield) {
+                    if (fieldGridCount_ == fieldGrids_.size()) fieldGrids_.emplace_back();
+                    FieldGrid& slot = fieldGrids_[fieldGridCount_++];
+                    slot.softBody = s, slot.body = bi, slot.field = b.shape.heightfield;
+                    slot.grid.reset(*slot.field);
+                    grid = &slot.grid;
+                }
+                const StaticGap gapOf(b.shape, pose, staticBounds, softBox, soft.radius, grid);
                 const bool decides = gapOf.tight();
                 for (uint32_t i = first; i < end; ++i) {
                     const double reachOut = margin + 2.0 * dt * v_[i].norm() + fall;
                     const Aabb point = Aabb{x_[i], x_[i]}.inflated(soft.radius + reachOut);
                     if (!point.overlaps(bodyBox)) continue;
-                    const double gap = gapOf(x_[i]);
+                    const double gap = gapOf(x_[i], reachOut);
                     if (gap > reachOut) continue;  // the narrowphase would find nothing
                     if (!decides) {
                         collide(probe, Pose{x_[i], Quat::Identity()}, b.shape, pose, reachOut, manifold);
@@ -360,13 +386,17 @@ void SoftSystem::findContacts(std::span<const Body> bodies, double margin) {
     uint32_t probeBody = UINT32_MAX;
     Pose pose;
     Shape probe;
+    const HeightfieldGrid* grid = nullptr;
+    HeightfieldGrid ownGrid;  // a heightfield's without candidates kept by collectCandidates
     double staticFriction = 0.0, dynamicFriction = 0.0, restitution = 0.0;
     // Candidates come grouped by soft body, then rigid body: poses and probes are made once
     // per group.
     for (const Candidate& candidate : candidates_) {
         // The particle's distance to a static shape changes by at most its own displacement:
-        // a particle still further than the margin from it cannot touch it in this substep.
-        if (candidate.gap - (x_[candidate.particle] - candidate.origin).norm() > margin) continue;
+        // a particle still further than the margin from it cannot touch it in this substep
+        // (compared squared: most candidates of a rolling tyre are skipped here).
+        const double slack = candidate.gap - margin;
+        if (slack > 0.0 && (x_[candidate.particle] - candidate.origin).squaredNorm() < slack * slack) continue;
         const Body& b = bodies[candidate.body];
         const SoftBodyData& soft = bodies_[candidate.softBody];
         if (candidate.body != poseBody || candidate.softBody != probeBody) {
@@ -374,12 +404,26 @@ void SoftSystem::findContacts(std::span<const Body> bodies, double margin) {
             probeBody = candidate.softBody;
             pose = {b.userPosition(), b.userOrientation()};
             probe = sphereShape(soft.radius);
+            grid = nullptr;
+            if (b.shape.type == ShapeType::Heightfield && b.shape.heightfield) {
+                for (size_t g = 0; g < fieldGridCount_ && !grid; ++g) {
+                    const FieldGrid& slot = fieldGrids_[g];
+                    if (slot.softBody == candidate.softBody && slot.body == candidate.body && slot.field == b.shape.heightfield)
+                        grid = &slot.grid;
+                }
+                if (!grid) {
+                    ownGrid.reset(*b.shape.heightfield);
+                    grid = &ownGrid;
+                }
+            }
             // Paper 3.5: a pair's coefficients are the averages of its bodies'.
             staticFriction = 0.5 * (soft.staticFriction + b.staticFriction);
             dynamicFriction = 0.5 * (soft.dynamicFriction + b.dynamicFriction);
             restitution = 0.5 * (soft.restitution + b.restitution);
         }
-        collide(probe, Pose{x_[candidate.particle], Quat::Identity()}, b.shape, pose, margin, manifold);
+        // A heightfield's cells straight from its heights (heightfield_sphere.h), the same points.
+        if (grid) collideSphereHeightfield(*grid, x_[candidate.particle], soft.radius, pose, margin, manifold);
+        else collide(probe, Pose{x_[candidate.particle], Quat::Identity()}, b.shape, pose, margin, manifold);
         const Quat inverse = b.q.conjugate();
         for (int k = 0; k < manifold.count; ++k) {
             const ContactPoint& point = manifold.points[k];

@@ -11,6 +11,7 @@
 
 #include "physics/body.h"
 #include "physics/collision/contact_manifold.h"
+#include "physics/collision/heightfield_sphere.h"
 #include "physics/correction.h"
 #include "physics/handles.h"
 #include "physics/math.h"
@@ -20,6 +21,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -211,6 +213,16 @@ private:
     int liveBodies_ = 0;
     std::vector<Attachment> attachments_;
     std::vector<Candidate> candidates_;
+    /// A soft body and a static heightfield it has candidates on this frame: the field's grid
+    /// with the normals of the cells under the soft body kept (heightfield_sphere.h), for the
+    /// candidates' gap bounds and every substep's contacts.
+    struct FieldGrid {
+        uint32_t softBody = 0, body = 0;
+        std::shared_ptr<const HeightfieldData> field;  ///< kept alive while the grid points at it
+        HeightfieldGrid grid;
+    };
+    std::vector<FieldGrid> fieldGrids_;  ///< the first fieldGridCount_ are this frame's
+    size_t fieldGridCount_ = 0;
     std::vector<ParticleContact> contacts_;
     bool patchFriction_ = false;
     bool heldContacts_ = false;

@@ -2,14 +2,19 @@
 // closed forms: a soft box and a tyre under known loads rest on the ground with the summed
 // normal force equal to the weight, held by their contacts (SoftSystem::setHeldContacts)
 // they rest on the surface, a dropped soft box gains no energy, and a soft box on a
-// slope holds below atan(μ_s) and slides above it with the acceleration g (sin θ − μ_d cos θ).
+// slope holds below atan(μ_s) and slides above it with the acceleration g (sin θ − μ_d cos θ);
+// on a heightfield (its candidates' gap bounds, heightfield_sphere.h) a loaded box carries its
+// weight and a box thrown across steep bumps never falls into them.
 #include "soft_test_support.h"
+
+#include "physics/collision/heightfield.h"
 
 #include "physics_test_support.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 namespace substep::test {
@@ -152,6 +157,88 @@ TEST(SoftContacts, HeldContactsKeepLoadedParticlesOnTheSurface) {
             EXPECT_LT(r.deepest, 1e-3) << label;
         }
     }
+}
+
+/// A 2 x 2 m heightfield of 5 cm cells: flat at height `base` within 0.15 m of the origin (x and
+/// z), beyond that bumps of ±`bump` m with slopes up to 2 bump / 5 cm.
+std::shared_ptr<const HeightfieldData> bumpyField(double base, double bump) {
+    const int n = 41;
+    std::vector<double> heights;
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            const double x = -1.0 + 0.05 * i, z = -1.0 + 0.05 * j;
+            const bool flat = std::abs(x) <= 0.15 && std::abs(z) <= 0.15;
+            heights.push_back(base + (flat ? 0.0 : bump * ((i * 7 + j * 3) % 5 - 2) / 2.0));
+        }
+    return makeHeightfield(n, n, heights, 2.0, 2.0);
+}
+
+/// The field's surface height at (x, z), on the triangle that holds it (HeightfieldData's split
+/// along the diagonal from (i, j) to (i+1, j+1)).
+double surfaceAt(const HeightfieldData& field, double x, double z) {
+    const double u = (x + 0.5 * field.sizeX) / field.cellX(), v = (z + 0.5 * field.sizeZ) / field.cellZ();
+    const int i = std::clamp(static_cast<int>(std::floor(u)), 0, field.columns - 2);
+    const int j = std::clamp(static_cast<int>(std::floor(v)), 0, field.rows - 2);
+    const double s = u - i, t = v - j;
+    const auto h = [&](int di, int dj) { return field.heights[(j + dj) * field.columns + i + di]; };
+    // Half 0 (s <= t): corners (0,0), (0,1), (1,1); half 1: (0,0), (1,1), (1,0).
+    if (s <= t) return h(0, 0) + t * (h(0, 1) - h(0, 0)) + s * (h(1, 1) - h(0, 1));
+    return h(0, 0) + s * (h(1, 0) - h(0, 0)) + t * (h(1, 1) - h(1, 0));
+}
+
+TEST(SoftContacts, LoadedSoftBoxRestsOnAHeightfieldAndCarriesTheWeight) {
+    // The loaded box of the plane test on the flat middle of a bumpy heightfield 0.3 m up.
+    const double radius = 0.004, base = 0.3, load = 0.5;
+    World world = worldWithGround(20, false);
+    world.createBody({.shape = heightfieldShape(bumpyField(base, 0.02)), .type = BodyType::Static,
+                      .staticFriction = 0.8, .dynamicFriction = 0.6});
+    const Vec3 size(0.06, 0.03, 0.06);
+    const double top = base + radius + size.y();
+    const BodyId plate = world.createBody({.shape = boxShape(Vec3(0.08, 0.01, 0.08)), .mass = load,
+                                           .position = Vec3(0, top, 0), .collide = false});
+    SoftBodyDef def{.size = size, .cells = {3, 2, 3}, .position = Vec3(0, base + radius + 0.5 * size.y(), 0),
+                    .density = 200.0, .compliance = 2e-6, .damping = 20.0, .particleRadius = radius};
+    def.attachments.push_back({.body = plate, .particles = SoftAttachmentParticles::Below});
+    const SoftBodyId box = world.createSoftBody(def);
+    const double weight = (load + world.softBodyReadout(box).mass) * kG;
+    runFor(world, 2.0);
+    double force = 0.0;
+    int frames = 0;
+    const double h = kDt / world.settings().substeps;
+    runFor(world, 1.0, [&](double) {
+        force += world.softBodies()->contactForce(h).y();
+        ++frames;
+    });
+    report("normal force / weight", force / frames / weight);
+    EXPECT_TRUE(world.isFinite());
+    EXPECT_NEAR(force / frames, weight, 0.01 * weight);
+}
+
+TEST(SoftContacts, SoftBoxThrownAcrossSteepBumpsNeverFallsIntoThem) {
+    // Thrown at 3 m/s along x (5 cm a frame, a cell) and 1 m/s down from 5 cm over bumps of
+    // slope up to 0.8: the substeps skip the particles whose frame-start gap bound keeps them
+    // clear, and none may be skipped into the ground. Landing, a particle's sphere sinks up to
+    // 4.8 mm (of its 5 mm) under the surface below its centre, the same with no particle ever
+    // skipped; a bound 2 cm too high let them sink 16 mm. No centre may sink a radius under it.
+    const double radius = 0.005;
+    World world = worldWithGround(20, false);
+    const auto field = bumpyField(0.0, 0.02);
+    world.createBody({.shape = heightfieldShape(field), .type = BodyType::Static, .staticFriction = 0.3,
+                      .dynamicFriction = 0.2});
+    const SoftBodyId box = world.createSoftBody({.size = Vec3(0.1, 0.04, 0.1), .cells = {4, 2, 4},
+                                                 .position = Vec3(-0.6, 0.1, 0.0), .velocity = Vec3(3.0, -1.0, 0.0),
+                                                 .density = 200.0, .compliance = 1e-5, .damping = 20.0,
+                                                 .particleRadius = radius});
+    double deepest = -1.0;
+    runFor(world, 0.5, [&](double) {
+        for (const Vec3& x : world.softBodies()->positions(box))
+            if (std::abs(x.x()) < 0.95 && std::abs(x.z()) < 0.95)
+                deepest = std::max(deepest, surfaceAt(*field, x.x(), x.z()) - (x.y() - radius));
+    });
+    report("deepest sinking below the surface (mm)", 1e3 * deepest);
+    EXPECT_TRUE(world.isFinite());
+    EXPECT_GT(deepest, -radius);  // it did land
+    EXPECT_LT(deepest, 2.0 * radius);  // and no centre got a radius under the surface
 }
 
 TEST(SoftContacts, DroppedSoftBoxGainsNoEnergy) {

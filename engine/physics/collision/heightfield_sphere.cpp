@@ -1,0 +1,200 @@
+#include "physics/collision/heightfield_sphere.h"
+
+#include "physics/collision/contact_buffer.h"
+#include "physics/collision/triangle_contact.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+namespace substep {
+
+namespace {
+
+/// Two contacts closer than this fraction of the sphere's radius are one (collide_mesh.cpp's
+/// value for spheres on meshes).
+constexpr double kMergeFraction = 0.01;
+
+/// More cells than this under a bound's reach take the field's highest sample instead of their
+/// planes (a fast particle over a fine grid).
+constexpr int kMostBoundCells = 64;
+
+/// std::floor(q) as a comparison: the baseline x86-64 the engine builds for has no rounding
+/// instruction, and the library call cost as much as the rest of a cell's lookup.
+double floorOf(double q) {
+    if (!(std::abs(q) < 1e15)) return std::floor(q);  // also NaN
+    const double truncated = static_cast<double>(static_cast<int64_t>(q));
+    return truncated > q ? truncated - 1.0 : truncated;
+}
+
+/// floor(t / cell) as forTrianglesIn computes it, by a multiplication where the quotient is not
+/// within 1e-9 of a whole number (a product and a quotient differ by a few ulps at most).
+double cellIndex(double t, double cell, double inverseCell) {
+    const double q = t * inverseCell;
+    const double k = floorOf(q);
+    if (q - k > 1e-9 && k + 1.0 - q > 1e-9) return k;
+    return std::floor(t / cell);
+}
+
+/// The cells [first, last] along one axis that the interval [lo, hi] reaches, as
+/// HeightfieldData::forTrianglesIn finds them; false where it misses the field's `cells` (or is
+/// NaN).
+bool cellRange(double lo, double hi, double origin, double cell, double inverseCell, int cells, int& first,
+               int& last) {
+    const double a = cellIndex(lo - origin, cell, inverseCell);
+    const double b = cellIndex(hi - origin, cell, inverseCell);
+    if (!(b >= 0.0) || !(a <= cells - 1)) return false;
+    first = static_cast<int>(std::max(a, 0.0));
+    last = static_cast<int>(std::min(b, static_cast<double>(cells - 1)));
+    return true;
+}
+
+/// addSphereTriangleContacts for every triangle forTrianglesIn visits under c ± (r + margin), c
+/// in the field's frame. The corners, normals and that function's first test (the height over
+/// the plane) are computed as HeightfieldData::triangle and the function compute them, so the
+/// triangles kept give the same bits; a triangle whose plane the sphere is clearly beyond
+/// (squared, with a relative slack of 1e-6 far above the rounding) is left without normalising.
+void addSphereContacts(const HeightfieldGrid& grid, const Vec3& c, double r, double margin, ContactBuffer& buffer) {
+    const HeightfieldData& field = *grid.field;
+    const double reach = r + margin;
+    int i0, i1, j0, j1;
+    if (!cellRange(c.x() - reach, c.x() + reach, grid.originX, grid.cellX, grid.inverseCellX, field.columns - 1, i0,
+                   i1) ||
+        !cellRange(c.z() - reach, c.z() + reach, grid.originZ, grid.cellZ, grid.inverseCellZ, field.rows - 1, j0, j1))
+        return;
+    const double lowest = c.y() - reach;
+    const double clearly = reach * reach * (1.0 + 1e-6);
+    const int columns = field.columns;
+    const double* heights = field.heights.data();
+    for (int j = j0; j <= j1; ++j) {
+        const double z0 = grid.originZ + j * grid.cellZ, z1 = grid.originZ + (j + 1) * grid.cellZ;
+        for (int i = i0; i <= i1; ++i) {
+            const double h00 = heights[j * columns + i];
+            const double h10 = heights[j * columns + i + 1];
+            const double h01 = heights[(j + 1) * columns + i];
+            const double h11 = heights[(j + 1) * columns + i + 1];
+            if (std::max({h00, h10, h01, h11}) < lowest) continue;
+            const double x0 = grid.originX + i * grid.cellX, x1 = grid.originX + (i + 1) * grid.cellX;
+            // Half 0: (i, j), (i, j+1), (i+1, j+1); half 1: (i, j), (i+1, j+1), (i+1, j).
+            const Vec3 corner00(x0, h00, z0), corner11(x1, h11, z1);
+            const Vec3 offset = c - corner00;
+            // The slack holds while the rounding of the height, a few ulps of |offset|, stays
+            // under 1e-7 of the reach: true but for cells 1e8 times the sphere.
+            const bool nearby = offset.squaredNorm() < 1e16 * reach * reach;
+            const Vec3 second[2] = {Vec3(x0, h01, z1), corner11};
+            const Vec3 third[2] = {corner11, Vec3(x1, h10, z0)};
+            const Vec3* kept = grid.keptNormals(i, j);
+            for (int half = 0; half < 2; ++half) {
+                Vec3 normal;
+                if (kept) {
+                    normal = kept[half];
+                } else {
+                    const Vec3 cross = (second[half] - corner00).cross(third[half] - corner00);
+                    const double along = offset.dot(cross);
+                    if (nearby && along > 0.0 && along * along > clearly * cross.squaredNorm()) continue;
+                    normal = cross.normalized();
+                }
+                if (offset.dot(normal) > reach) continue;  // addSphereTriangleContacts' first test
+                ContactTriangle tri;
+                tri.v[0] = corner00;
+                tri.v[1] = second[half];
+                tri.v[2] = third[half];
+                tri.normal = normal;
+                const int index = 2 * (j * (columns - 1) + i) + half;
+                tri.activeFeatures = field.activeFeatures[index];
+                tri.id = static_cast<uint32_t>(index);
+                addSphereTriangleContacts(tri, c, r, margin, true, buffer);
+            }
+        }
+    }
+}
+
+}  // namespace
+
+void HeightfieldGrid::reset(const HeightfieldData& data) {
+    field = &data;
+    originX = -0.5 * data.sizeX;
+    originZ = -0.5 * data.sizeZ;
+    cellX = data.cellX();
+    cellZ = data.cellZ();
+    inverseCellX = 1.0 / cellX;
+    inverseCellZ = 1.0 / cellZ;
+    keptColumns_ = keptRows_ = 0;
+    keptNormals_.clear();
+}
+
+void HeightfieldGrid::keepNormals(const Aabb& box, int mostCells) {
+    keptColumns_ = keptRows_ = 0;
+    keptNormals_.clear();
+    int i0, i1, j0, j1;
+    if (!cellRange(box.min.x(), box.max.x(), originX, cellX, inverseCellX, field->columns - 1, i0, i1) ||
+        !cellRange(box.min.z(), box.max.z(), originZ, cellZ, inverseCellZ, field->rows - 1, j0, j1))
+        return;
+    if ((i1 - i0 + 1) * (j1 - j0 + 1) > mostCells) return;
+    for (int j = j0; j <= j1; ++j)
+        for (int i = i0; i <= i1; ++i)
+            for (int half = 0; half < 2; ++half)
+                keptNormals_.push_back(field->triangle(i, j, half).normal);
+    keptI0_ = i0, keptJ0_ = j0, keptColumns_ = i1 - i0 + 1, keptRows_ = j1 - j0 + 1;
+}
+
+void collideSphereHeightfield(const HeightfieldGrid& grid, const Vec3& centre, double r, const Pose& pose,
+                              double margin, ContactManifold& out) {
+    out.clear();
+    ContactBuffer buffer(kMergeFraction * r);
+    addSphereContacts(grid, pose.applyInverse(centre), r, margin, buffer);
+    if (buffer.count() > 0) buffer.emit(pose, out);
+}
+
+double heightfieldGapBound(const HeightfieldGrid& grid, const Vec3& p, double reach) {
+    if (!p.allFinite() || !std::isfinite(reach)) return -std::numeric_limits<double>::infinity();
+    const HeightfieldData& field = *grid.field;
+    // Taken off the result: the heights here and the narrowphase's later ones are rounded apart
+    // by a few ulps of the coordinates.
+    const double rounding = 1e-12 * (1.0 + p.cwiseAbs().maxCoeff());
+    // The block of whole cells around p ± reach, on the field or not: the solid of every other
+    // cell lies beyond its sides.
+    const double a0 = floorOf((p.x() - reach - grid.originX) * grid.inverseCellX);
+    const double a1 = floorOf((p.x() + reach - grid.originX) * grid.inverseCellX);
+    const double b0 = floorOf((p.z() - reach - grid.originZ) * grid.inverseCellZ);
+    const double b1 = floorOf((p.z() + reach - grid.originZ) * grid.inverseCellZ);
+    double bound = std::min({p.x() - (grid.originX + a0 * grid.cellX), (grid.originX + (a1 + 1.0) * grid.cellX) - p.x(),
+                             p.z() - (grid.originZ + b0 * grid.cellZ), (grid.originZ + (b1 + 1.0) * grid.cellZ) - p.z()});
+    if (!(a1 >= 0.0) || !(a0 <= field.columns - 2) || !(b1 >= 0.0) || !(b0 <= field.rows - 2)) return bound - rounding;
+    const int i0 = static_cast<int>(std::max(a0, 0.0)), i1 = static_cast<int>(std::min(a1, field.columns - 2.0));
+    const int j0 = static_cast<int>(std::max(b0, 0.0)), j1 = static_cast<int>(std::min(b1, field.rows - 2.0));
+    if ((i1 - i0 + 1) * (j1 - j0 + 1) > kMostBoundCells) return std::min(bound, p.y() - field.maxHeight) - rounding;
+    const int columns = field.columns;
+    const double* heights = field.heights.data();
+    for (int j = j0; j <= j1; ++j) {
+        const double z0 = grid.originZ + j * grid.cellZ, z1 = grid.originZ + (j + 1) * grid.cellZ;
+        for (int i = i0; i <= i1; ++i) {
+            const double h00 = heights[j * columns + i];
+            const double h10 = heights[j * columns + i + 1];
+            const double h01 = heights[(j + 1) * columns + i];
+            const double h11 = heights[(j + 1) * columns + i + 1];
+            // Above the cell's highest sample by at least the bound: nothing lower here.
+            const double aboveSamples = p.y() - std::max({h00, h10, h01, h11});
+            if (aboveSamples >= bound) continue;
+            // The solid under a triangle lies below its plane (its normal points up).
+            const double x0 = grid.originX + i * grid.cellX, x1 = grid.originX + (i + 1) * grid.cellX;
+            const Vec3 corner00(x0, h00, z0), corner11(x1, h11, z1);
+            const Vec3 offset = p - corner00;
+            double above0, above1;
+            if (const Vec3* kept = grid.keptNormals(i, j)) {
+                above0 = offset.dot(kept[0]);
+                above1 = offset.dot(kept[1]);
+            } else {
+                const Vec3 cross0 = (Vec3(x0, h01, z1) - corner00).cross(corner11 - corner00);
+                const Vec3 cross1 = (corner11 - corner00).cross(Vec3(x1, h10, z0) - corner00);
+                above0 = offset.dot(cross0) / cross0.norm();
+                above1 = offset.dot(cross1) / cross1.norm();
+            }
+            bound = std::min(bound, std::max(aboveSamples, std::min(above0, above1)));
+        }
+    }
+    return bound - rounding;
+}
+
+}  // namespace substep

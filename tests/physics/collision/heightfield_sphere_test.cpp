@@ -1,0 +1,249 @@
+// Tests engine/physics/collision/heightfield_sphere.cpp: the sphere–heightfield narrowphase
+// straight from the heights against the triangle-by-triangle reference (heightfield_reference.h),
+// bit for bit, and the gap bound the soft bodies' candidates use: never above the distance, the
+// distance itself over a plane, and never hiding a contact the narrowphase would find.
+
+#include "physics/collision/heightfield_sphere.h"
+
+#include "heightfield_reference.h"
+#include "physics/collision/triangle_contact.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <random>
+
+namespace substep {
+namespace {
+
+bool sameBits(double a, double b) { return std::memcmp(&a, &b, sizeof(double)) == 0; }
+bool sameBits(const Vec3& a, const Vec3& b) {
+    return sameBits(a.x(), b.x()) && sameBits(a.y(), b.y()) && sameBits(a.z(), b.z());
+}
+
+/// Fields of every kind the tests draw from: flat, gentle, steep (slopes of several cells' height
+/// per cell), with square and oblong cells of 1 cm to 2 m.
+std::shared_ptr<const HeightfieldData> randomField(std::mt19937& rng, int kind) {
+    std::uniform_int_distribution<int> samples(2, 9);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    const int columns = samples(rng), rows = samples(rng);
+    const double sizeX = 0.01 * std::pow(200.0, unit(rng)) * (columns - 1);
+    const double sizeZ = (kind == 3 ? 1.0 : 0.3 + 1.4 * unit(rng)) * sizeX / (columns - 1) * (rows - 1);
+    const double cell = std::min(sizeX / (columns - 1), sizeZ / (rows - 1));
+    const double relief = kind == 0 ? 0.0 : kind == 1 ? 0.1 * cell : 3.0 * cell;
+    std::vector<double> heights(static_cast<size_t>(columns) * rows);
+    for (double& h : heights)
+        h = relief * (2.0 * unit(rng) - 1.0);
+    return makeHeightfield(columns, rows, std::move(heights), sizeX, sizeZ);
+}
+
+/// A point near a feature the narrowphase must get right: anywhere over the field, on a cell
+/// line, at a sample, on a cell's diagonal, or beyond the field's border; at a height about the
+/// surface from well below to beyond the margin.
+Vec3 pointNear(const HeightfieldData& field, std::mt19937& rng, double r) {
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    std::uniform_int_distribution<int> column(0, field.columns - 1), row(0, field.rows - 1), kind(0, 4);
+    const double cx = field.cellX(), cz = field.cellZ();
+    const auto tiny = [&] { return (unit(rng) - 0.5) * (unit(rng) < 0.5 ? 1e-12 : 1e-3) * cx; };
+    double x = (unit(rng) - 0.5) * field.sizeX, z = (unit(rng) - 0.5) * field.sizeZ;
+    switch (kind(rng)) {
+        case 0: break;
+        case 1: x = field.vertex(column(rng), 0).x() + tiny(); break;  // a line between cells
+        case 2: {
+            const Vec3 v = field.vertex(column(rng), row(rng));  // a sample
+            x = v.x() + tiny(), z = v.z() + tiny();
+            break;
+        }
+        case 3: {
+            const double t = unit(rng);  // the diagonal of a cell
+            const Vec3 v = field.vertex(std::min(column(rng), field.columns - 2), std::min(row(rng), field.rows - 2));
+            x = v.x() + t * cx + tiny(), z = v.z() + t * cz;
+            break;
+        }
+        default: x = (unit(rng) < 0.5 ? -1.0 : 1.0) * (0.5 * field.sizeX + (unit(rng) - 0.7) * 2.0 * r);  // the border
+    }
+    // The surface height there, roughly: the nearest sample's.
+    const int i = std::clamp(static_cast<int>(std::lround((x + 0.5 * field.sizeX) / cx)), 0, field.columns - 1);
+    const int j = std::clamp(static_cast<int>(std::lround((z + 0.5 * field.sizeZ) / cz)), 0, field.rows - 1);
+    const double y = field.heights[j * field.columns + i] + r * (3.0 * unit(rng) - 1.5);
+    return {x, y, z};
+}
+
+/// A box (the field's frame) over a random block of cells, part of it beyond the field at times.
+Aabb someCells(const HeightfieldData& field, std::mt19937& rng) {
+    std::uniform_real_distribution<double> unit(-0.7, 0.7);
+    Aabb box;
+    box.grow(Vec3(unit(rng) * field.sizeX, 0.0, unit(rng) * field.sizeZ));
+    box.grow(Vec3(unit(rng) * field.sizeX, 1.0, unit(rng) * field.sizeZ));
+    return box;
+}
+
+Pose randomPose(std::mt19937& rng, bool turned) {
+    std::uniform_real_distribution<double> unit(-1.0, 1.0);
+    Pose pose{Vec3(unit(rng), unit(rng), unit(rng)) * 20.0, Quat::Identity()};
+    if (turned) pose.rotation = Quat(Eigen::AngleAxisd(3.0 * unit(rng), Vec3(unit(rng), unit(rng), unit(rng)).normalized()));
+    return pose;
+}
+
+TEST(HeightfieldSphere, GivesTheTriangleByTriangleContactsBitForBit) {
+    std::mt19937 rng(14);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    int withContacts = 0, several = 0, cases = 0;
+    for (int f = 0; f < 400; ++f) {
+        const auto field = randomField(rng, f % 4);
+        HeightfieldGrid grid(*field);
+        // Half the fields keep the normals of a block of cells, as a soft body's grid does.
+        if (f % 2 == 1) grid.keepNormals(someCells(*field, rng), 256);
+        const Pose pose = randomPose(rng, f % 3 == 0);
+        for (int k = 0; k < 200; ++k) {
+            // Radii from a thousandth of a cell to two cells.
+            const double r = std::min(field->cellX(), field->cellZ()) * std::pow(10.0, -3.0 + 3.3 * unit(rng));
+            const double margin = unit(rng) < 0.2 ? 0.0 : 0.4 * r * unit(rng);
+            const Vec3 centre = pose.apply(pointNear(*field, rng, r));
+            ContactManifold expected, got;
+            reference::collideSphereHeightfield(*field, centre, r, pose, margin, expected);
+            collideSphereHeightfield(grid, centre, r, pose, margin, got);
+            ++cases;
+            ASSERT_EQ(got.count, expected.count) << "field " << f << " case " << k;
+            for (int i = 0; i < got.count; ++i) {
+                const ContactPoint& a = got.points[i];
+                const ContactPoint& b = expected.points[i];
+                ASSERT_TRUE(sameBits(a.point0, b.point0) && sameBits(a.point1, b.point1) &&
+                            sameBits(a.normal, b.normal) && sameBits(a.depth, b.depth) && a.feature == b.feature)
+                    << "field " << f << " case " << k << " point " << i << ": depth " << a.depth << " vs " << b.depth;
+            }
+            withContacts += expected.count > 0;
+            several += expected.count > 1;
+        }
+    }
+    // The draw reaches every outcome: no contact, one, several (edges, steep cells, big spheres).
+    EXPECT_GT(withContacts, cases / 4);
+    EXPECT_GT(several, cases / 50);
+    EXPECT_LT(withContacts, cases);
+}
+
+TEST(HeightfieldSphere, KeepsTheNormalsOfTheCellsUnderABox) {
+    const auto field = makeHeightfield(5, 4, {0, 1, 0, 2, 0, 0, 3, 0, 1, 0, 2, 0, 0, 1, 0, 0, 0, 2, 0, 1}, 4.0, 3.0);
+    HeightfieldGrid grid(*field);
+    EXPECT_EQ(grid.keptNormals(1, 1), nullptr);
+    // x in [-0.5, 0.5] reaches cells 1 and 2 (lines at -1, 0, 1), z in [0.2, 0.4] cell 1 (-0.5 to 0.5).
+    grid.keepNormals({Vec3(-0.5, 0, 0.2), Vec3(0.5, 0, 0.4)}, 8);
+    for (int j = 0; j < 3; ++j)
+        for (int i = 0; i < 4; ++i) {
+            const Vec3* kept = grid.keptNormals(i, j);
+            ASSERT_EQ(kept != nullptr, (i == 1 || i == 2) && j == 1) << i << " " << j;
+            if (!kept) continue;
+            EXPECT_TRUE(sameBits(kept[0], field->triangle(i, j, 0).normal));
+            EXPECT_TRUE(sameBits(kept[1], field->triangle(i, j, 1).normal));
+        }
+    // More cells than allowed: none kept.
+    grid.keepNormals({Vec3(-2, 0, -1.5), Vec3(2, 0, 1.5)}, 11);
+    EXPECT_EQ(grid.keptNormals(1, 2), nullptr);
+}
+
+TEST(HeightfieldSphere, MissesAFieldItIsNotOver) {
+    const auto field = makeHeightfield(3, 3, std::vector<double>(9, 0.0), 2.0, 2.0);
+    ContactManifold m;
+    collideSphereHeightfield(HeightfieldGrid(*field), Vec3(1.2, 0.0, 0.0), 0.1, Pose{}, 0.05, m);
+    EXPECT_EQ(m.count, 0);
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    collideSphereHeightfield(HeightfieldGrid(*field), Vec3(nan, 0.0, 0.0), 0.1, Pose{}, 0.05, m);
+    EXPECT_EQ(m.count, 0);
+}
+
+/// The distance from p to the solid under the field, by brute force over every triangle: the
+/// closest point of the surface, 0 below it.
+double distanceToSolid(const HeightfieldData& field, const Vec3& p) {
+    double best = std::numeric_limits<double>::infinity();
+    for (int j = 0; j + 1 < field.rows; ++j)
+        for (int i = 0; i + 1 < field.columns; ++i)
+            for (int half = 0; half < 2; ++half) {
+                const ContactTriangle tri = field.triangle(i, j, half);
+                best = std::min(best, (p - closestOnTriangle(p, tri.v[0], tri.v[1], tri.v[2]).point).norm());
+            }
+    return best;
+}
+
+TEST(HeightfieldSphere, GapBoundIsTheHeightOverAPlane) {
+    // A plane of slopes 0.3 along x and 0.2 along z in 12 x 7 samples: the bound is the distance
+    // along its normal wherever the reach stays inside the field and the side is farther.
+    const int columns = 12, rows = 7;
+    const auto surface = [](double x, double z) { return 1.0 + 0.3 * x + 0.2 * z; };
+    std::vector<double> heights;
+    for (int j = 0; j < rows; ++j)
+        for (int i = 0; i < columns; ++i)
+            heights.push_back(surface(-2.75 + 0.5 * i, -1.5 + 0.5 * j));
+    const auto field = makeHeightfield(columns, rows, heights, 5.5, 3.0);
+    const HeightfieldGrid grid(*field);
+    const Vec3 normal = Vec3(-0.3, 1.0, -0.2).normalized();
+    for (double lift : {0.0, 0.01, 0.2}) {
+        const Vec3 p = Vec3(0.3, surface(0.3, 0.1), 0.1) + lift * normal;
+        EXPECT_NEAR(heightfieldGapBound(grid, p, 0.6), lift, 1e-9) << lift;
+    }
+}
+
+TEST(HeightfieldSphere, GapBoundNeverExceedsTheDistance) {
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    int tight = 0;
+    for (int f = 0; f < 100; ++f) {
+        const auto field = randomField(rng, f % 4);
+        HeightfieldGrid grid(*field);
+        if (f % 2 == 1) grid.keepNormals(someCells(*field, rng), 256);
+        const double cell = std::min(field->cellX(), field->cellZ());
+        for (int k = 0; k < 100; ++k) {
+            const double reach = cell * 3.0 * unit(rng);
+            const Vec3 p = pointNear(*field, rng, 0.5 * cell);
+            const double distance = distanceToSolid(*field, p);
+            const double bound = heightfieldGapBound(grid, p, reach);
+            // Under the surface the distance to the solid is 0 and the bound negative or 0.
+            EXPECT_LE(bound, distance + 1e-12 * (1.0 + distance)) << "field " << f << " case " << k;
+            tight += bound > 0.5 * distance;
+        }
+    }
+    EXPECT_GT(tight, 2000);  // not a bound that says nothing
+}
+
+TEST(HeightfieldSphere, GapBoundHidesNoContact) {
+    // A sphere moved by d from p finds no contact while bound − r − |d| > margin: check it over
+    // random moves, with the narrowphase itself.
+    std::mt19937 rng(18);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    int skipped = 0;
+    for (int f = 0; f < 200; ++f) {
+        const auto field = randomField(rng, f % 4);
+        HeightfieldGrid grid(*field);
+        if (f % 2 == 1) grid.keepNormals(someCells(*field, rng), 256);
+        const double cell = std::min(field->cellX(), field->cellZ());
+        for (int k = 0; k < 100; ++k) {
+            const double r = cell * 0.05 * (0.1 + unit(rng)), margin = 0.2 * r;
+            const Vec3 p = pointNear(*field, rng, 4.0 * r);
+            const double bound = heightfieldGapBound(grid, p, r + 2.0 * margin + cell * unit(rng));
+            const Vec3 d = Vec3(unit(rng) - 0.5, unit(rng) - 0.5, unit(rng) - 0.5) * 4.0 * r;
+            if (!(bound - r - d.norm() > margin)) continue;
+            ++skipped;
+            ContactManifold m;
+            reference::collideSphereHeightfield(*field, p + d, r, Pose{}, margin, m);
+            EXPECT_EQ(m.count, 0) << "field " << f << " case " << k;
+        }
+    }
+    EXPECT_GT(skipped, 3000);
+}
+
+TEST(HeightfieldSphere, GapBoundOfANonFinitePointIsMinusInfinity) {
+    const auto field = makeHeightfield(2, 2, {0, 0, 0, 0}, 1.0, 1.0);
+    const HeightfieldGrid grid(*field);
+    const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+    EXPECT_EQ(heightfieldGapBound(grid, Vec3(nan, 0, 0), 0.1), -inf);
+    EXPECT_EQ(heightfieldGapBound(grid, Vec3(0, inf, 0), 0.1), -inf);
+    EXPECT_EQ(heightfieldGapBound(grid, Vec3(0, 1, 0), inf), -inf);
+    // Far off the field: the side of the block around it, at least the reach.
+    EXPECT_GE(heightfieldGapBound(grid, Vec3(1e4, 0, 0), 0.1), 0.1 - 1e-7);
+    EXPECT_GE(heightfieldGapBound(grid, Vec3(40.0, -5.0, 3.0), 0.1), 0.1 - 1e-9);
+}
+
+}  // namespace
+}  // namespace substep
