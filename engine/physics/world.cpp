@@ -291,6 +291,7 @@ void World::beginFrame(double dt) {
     if (sleeping) pairTouched_.assign(contactPairs_.size(), 0);
     const bool soft = hasSoftBodies();
     if (soft) soft_->setPatchFriction(settings_.softPatchFriction);
+    if (soft) soft_->setHeldContacts(settings_.softHeldContacts);
     if (soft) soft_->collectCandidates(bodies_, dt, settings_.contactMargin, settings_.gravity);
     lap(stepTimes_.broadphase);
     frame_ = {.open = true, .dt = dt, .h = h, .substeps = substeps, .done = 0, .sleeping = sleeping, .soft = soft};

@@ -45,7 +45,8 @@ SceneInstance buildScene(const SceneDescription& description) {
                                                .sleeping = description.sleeping,
                                                .jointProjection = description.jointProjection,
                                                .sweptRestitution = description.sweptRestitution,
-                                               .softPatchFriction = description.softPatchFriction}));
+                                               .softPatchFriction = description.softPatchFriction,
+                                               .softHeldContacts = description.softHeldContacts}));
     ecs::Registry& registry = instance.registry;
 
     // One entity per body, in order; named ones are remembered for joints.

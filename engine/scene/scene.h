@@ -61,6 +61,8 @@ struct SceneDescription {
     bool sweptRestitution = WorldSettings{}.sweptRestitution;
     /// WorldSettings::softPatchFriction (the file's `soft_friction`: "patch" or "particle").
     bool softPatchFriction = WorldSettings{}.softPatchFriction;
+    /// WorldSettings::softHeldContacts (the file's `soft_contacts`: "held" or "free").
+    bool softHeldContacts = WorldSettings{}.softHeldContacts;
     std::vector<SceneBody> bodies;
     std::vector<SceneJoint> joints;
     std::vector<SceneSoftBody> softBodies;

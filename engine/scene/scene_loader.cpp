@@ -68,7 +68,7 @@ struct FileCloser {
 std::vector<std::string> topLevelKeys() {
     std::vector<std::string> allowed = {
         "substep_scene", "name", "description", "gravity", "dt", "substeps", "iterations", "sleeping",
-        "joint_projection", "restitution", "soft_friction"};
+        "joint_projection", "restitution", "soft_friction", "soft_contacts"};
     for (const SceneSection& section : kSceneSections)
         allowed.emplace_back(section.key);
     return allowed;
@@ -167,6 +167,14 @@ SceneDescription readScene(const Validator& v, const Json& root) {
         if (name != "patch" && name != "particle")
             v.fail(f->path, "expected \"patch\" or \"particle\", got \"" + name + "\"");
         scene.softPatchFriction = name == "patch";
+    }
+    // Extension: soft particles held by their contacts in the element projection, or free
+    // (WorldSettings::softHeldContacts).
+    if (auto c = top.get("soft_contacts")) {
+        const std::string name = v.string(*c);
+        if (name != "held" && name != "free")
+            v.fail(c->path, "expected \"held\" or \"free\", got \"" + name + "\"");
+        scene.softHeldContacts = name == "held";
     }
 
     SceneReading reading{v, scene, {}, {}};

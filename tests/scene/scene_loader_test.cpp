@@ -253,7 +253,7 @@ TEST(SceneLoader, TopLevelKeysAreListedInOrder) {
     // The world settings, then the section readers' keys in their table's order.
     EXPECT_TRUE(failsAt(scene(R"("zzz": 1)"), "zzz",
                         "unknown key (expected substep_scene, name, description, gravity, dt, "
-                        "substeps, iterations, sleeping, joint_projection, restitution, soft_friction, bodies, joints, soft_bodies or "
+                        "substeps, iterations, sleeping, joint_projection, restitution, soft_friction, soft_contacts, bodies, joints, soft_bodies or "
                         "camera)"));
 }
 
@@ -302,6 +302,15 @@ TEST(SceneLoader, SoftFrictionIsPerParticleByDefaultOrOverThePatch) {
     // The world built from the scene uses what the file chose.
     EXPECT_TRUE(buildScene(parseSceneText(scene(R"("soft_friction": "patch")"), "t.json")).world().settings().softPatchFriction);
     EXPECT_FALSE(buildScene(parseSceneText(scene(""), "t.json")).world().settings().softPatchFriction);
+
+    EXPECT_FALSE(parseSceneText(scene(""), "s.json").softHeldContacts);
+    EXPECT_TRUE(parseSceneText(scene(R"("soft_contacts": "held")"), "s.json").softHeldContacts);
+    EXPECT_FALSE(parseSceneText(scene(R"("soft_contacts": "free")"), "s.json").softHeldContacts);
+    EXPECT_TRUE(failsAt(scene(R"("soft_contacts": "hold")"), "soft_contacts",
+                        R"(expected "held" or "free", got "hold")"));
+    EXPECT_TRUE(failsAt(scene(R"("soft_contacts": 1)"), "soft_contacts", "must be a string, got 1"));
+    EXPECT_TRUE(buildScene(parseSceneText(scene(R"("soft_contacts": "held")"), "t.json")).world().settings().softHeldContacts);
+    EXPECT_FALSE(buildScene(parseSceneText(scene(""), "t.json")).world().settings().softHeldContacts);
 }
 
 TEST(SceneLoader, SectionsAreReadInTheirOrderNotTheFiles) {

@@ -69,7 +69,8 @@ public:
     /// by default: loaded particles then rest on the surface, but the sag moves into the
     /// elements above them (1-iteration XPBD through light particles), a 2 kg rim on a test
     /// tyre keeps bouncing at 20 substeps and rc_car's coasting and wheel-spin tests fail
-    /// (docs/SOFT_BODIES.md, "Loaded particles sink into the ground"). Not in WorldSettings yet.
+    /// (docs/SOFT_BODIES.md, "Loaded particles sink into the ground"). The world sets it every
+    /// frame from WorldSettings::softHeldContacts.
     void setHeldContacts(bool on) { heldContacts_ = on; }
     void deriveVelocities(double h);
     /// The contacts' restitution and dynamic friction.

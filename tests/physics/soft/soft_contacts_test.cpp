@@ -1,6 +1,6 @@
 // Tests engine/physics/soft/soft_coupling.cpp's particle contacts (Eqs. 26-30, 34) against
 // closed forms: a soft box and a tyre under known loads rest on the ground with the summed
-// normal force equal to the weight, held by their contacts (SoftSystem::setHeldContacts)
+// normal force equal to the weight, held by their contacts (WorldSettings::softHeldContacts)
 // they rest on the surface, a dropped soft box gains no energy, and a soft box on a
 // slope holds below atan(μ_s) and slides above it with the acceleration g (sin θ − μ_d cos θ);
 // on a heightfield (its candidates' gap bounds, heightfield_sphere.h) a loaded box carries its
@@ -109,7 +109,7 @@ TEST(SoftContacts, LoadedTyreRestsOnTheGroundAndCarriesTheWeight) {
 }
 
 TEST(SoftContacts, HeldContactsKeepLoadedParticlesOnTheSurface) {
-    // SoftSystem::setHeldContacts: the element projection does not push a particle into
+    // WorldSettings::softHeldContacts: the element projection does not push a particle into
     // its contact, so no particle rests deeper than 1 mm (without it: 3.5 to 26 mm, the test
     // above), on a box under a plate of 0.1 / 0.5 / 2 kg and a tyre on a rim of the same, at 20
     // and 80 substeps. The rim's drop is reported at both: the sag moves into the elements
@@ -119,7 +119,7 @@ TEST(SoftContacts, HeldContactsKeepLoadedParticlesOnTheSurface) {
         for (const int substeps : {20, 80}) {
             const std::string label = std::to_string(load) + " kg, " + std::to_string(substeps) + " substeps";
             {
-                World world({.gravity = Vec3(0.0, -kG, 0.0), .substeps = substeps});
+                World world({.gravity = Vec3(0.0, -kG, 0.0), .substeps = substeps, .softHeldContacts = true});
                 world.createBody({.shape = planeShape(Vec3::UnitY(), 0.0), .type = BodyType::Static,
                                   .staticFriction = 0.8, .dynamicFriction = 0.6});
                 const Vec3 size(0.06, 0.03, 0.06);
@@ -129,13 +129,12 @@ TEST(SoftContacts, HeldContactsKeepLoadedParticlesOnTheSurface) {
                                 .density = 200.0, .compliance = 2e-6, .damping = 20.0, .particleRadius = 0.004};
                 def.attachments.push_back({.body = plate, .particles = SoftAttachmentParticles::Below});
                 const SoftBodyId box = world.createSoftBody(def);
-                holdContacts(world);
                 const Resting r = settle(world, box, 0.004, 3.0, 1.0);
                 report("box, " + label + ": deepest sinking (mm)", 1e3 * r.deepest);
                 EXPECT_TRUE(world.isFinite()) << label;
                 EXPECT_LT(r.deepest, 1e-3) << label;
             }
-            World world({.gravity = Vec3(0.0, -kG, 0.0), .substeps = substeps});
+            World world({.gravity = Vec3(0.0, -kG, 0.0), .substeps = substeps, .softHeldContacts = true});
             world.createBody({.shape = planeShape(Vec3::UnitY(), 0.0), .type = BodyType::Static,
                               .staticFriction = 0.8, .dynamicFriction = 0.6});
             const Vec3 centre(0, ro + radius, 0);
@@ -149,7 +148,6 @@ TEST(SoftContacts, HeldContactsKeepLoadedParticlesOnTheSurface) {
                             .particleRadius = radius};
             def.attachments.push_back({.body = rim, .particles = SoftAttachmentParticles::Inner});
             const SoftBodyId tyre = world.createSoftBody(def);
-            holdContacts(world);
             const Resting r = settle(world, tyre, radius, 3.0, 1.0);
             report("tyre, " + label + ": deepest sinking (mm)", 1e3 * r.deepest);
             report("tyre, " + label + ": rim drop (mm)", 1e3 * (centre.y() - world.body(rim).x.y()));

@@ -21,11 +21,6 @@ inline World worldWithGround(int substeps = 20, bool ground = true) {
     return world;
 }
 
-/// Turns on SoftSystem::setHeldContacts in a world with soft bodies: an engine switch the World
-/// does not expose yet (WorldSettings lives in a header every file includes), so the tests reach
-/// it through the world's SoftSystem, which the world owns and does not hold const.
-inline void holdContacts(World& world) { const_cast<SoftSystem*>(world.softBodies())->setHeldContacts(true); }
-
 /// Σ m v over a soft body's particles.
 inline Vec3 softMomentum(const World& world, SoftBodyId id) {
     const SoftSystem& soft = *world.softBodies();
