@@ -108,10 +108,12 @@ class PatchSystem {
 public:
     PatchSystem(const Body& b0, const Body& b1) {
         linearInverseMass_ = b0.invMass + b1.invMass;
-        turns0_ = b0.rotates() && b0.invMass > 0.0;
-        turns1_ = b1.rotates() && b1.invMass > 0.0;
-        if (turns0_) inverseInertia0_ = worldInverseInertia(b0);
-        if (turns1_) inverseInertia1_ = worldInverseInertia(b1);
+        turns0_ = inertiaKind(b0);
+        turns1_ = inertiaKind(b1);
+        if (turns0_ == Turns::Rotated) inverseInertia0_ = worldInverseInertia(b0);
+        if (turns1_ == Turns::Rotated) inverseInertia1_ = worldInverseInertia(b1);
+        scalarInverseInertia0_ = b0.invInertia.x();
+        scalarInverseInertia1_ = b1.invInertia.x();
     }
 
     /// A positional row: a push along unit d at world offsets r0, r1. Returns its index.
@@ -179,6 +181,22 @@ public:
     }
 
 private:
+    /// How a body turns under an angular impulse: not at all (static, or a particle), by a
+    /// scalar I⁻¹ (equal principal moments: cubes, spheres; no world matrix needed), or by
+    /// R I⁻¹ Rᵀ.
+    enum class Turns : uint8_t { No, Scalar, Rotated };
+    static Turns inertiaKind(const Body& b) {
+        if (!b.rotates() || !(b.invMass > 0.0)) return Turns::No;
+        return b.isotropic ? Turns::Scalar : Turns::Rotated;
+    }
+    static Vec3 turn(Turns kind, double scalar, const Mat3& rotated, const Vec3& angular) {
+        switch (kind) {
+        case Turns::Scalar: return scalar * angular;
+        case Turns::Rotated: return rotated * angular;
+        default: return Vec3::Zero();
+        }
+    }
+
     static Mat3 worldInverseInertia(const Body& b) {
         const Mat3 r = b.q.toRotationMatrix();
         return r * b.invInertia.asDiagonal() * r.transpose();
@@ -189,16 +207,18 @@ private:
         row.linear = linear;
         row.angular0 = angular0;
         row.angular1 = angular1;
-        row.turn0 = turns0_ ? Vec3(inverseInertia0_ * angular0) : Vec3::Zero();
-        row.turn1 = turns1_ ? Vec3(inverseInertia1_ * angular1) : Vec3::Zero();
+        row.turn0 = turn(turns0_, scalarInverseInertia0_, inverseInertia0_, angular0);
+        row.turn1 = turn(turns1_, scalarInverseInertia1_, inverseInertia1_, angular1);
         return count_++;
     }
 
     double linearInverseMass_ = 0.0;
-    bool turns0_ = false;
-    bool turns1_ = false;
-    Mat3 inverseInertia0_ = Mat3::Zero();
-    Mat3 inverseInertia1_ = Mat3::Zero();
+    Turns turns0_ = Turns::No;
+    Turns turns1_ = Turns::No;
+    double scalarInverseInertia0_ = 0.0;
+    double scalarInverseInertia1_ = 0.0;
+    Mat3 inverseInertia0_;  // set only for Turns::Rotated
+    Mat3 inverseInertia1_;
     Row rows_[kMaxPatchRows];
     double k_[kMaxPatchRows][kMaxPatchRows];
     int count_ = 0;
