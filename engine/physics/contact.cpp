@@ -25,6 +25,11 @@ constexpr int kMaxPatchRows = kMaxPatchPoints + 3;
 /// A row whose pivot falls below this fraction of its diagonal depends on the rows before it.
 constexpr double kDependentPivot = 1e-9;
 
+/// PatchSystem::shiftOut: a null vector's component below this (of the dependent row's 1) is
+/// too small to shift along, and K z must vanish to this fraction of its terms' sizes.
+constexpr double kNullComponent = 1e-6;
+constexpr double kNullResidual = 1e-10;
+
 /// Solves the symmetric positive semi-definite system a x = b (m x m) by LDLᵀ, skipping rows
 /// that depend on earlier ones: a patch's system is singular (four coplanar points fix only
 /// three motions), and a dependent row's x is set to zero. Every solution of the consistent
@@ -35,9 +40,8 @@ constexpr double kDependentPivot = 1e-9;
 /// registers: the loops over a run-time m took a fifth of pyramid10's step.
 template <int m>
 [[gnu::always_inline]] inline void solveSemidefiniteFixed(double (&a)[kMaxPatchRows][kMaxPatchRows], const double* b,
-                                                          double* x) {
+                                                          double* x, bool* dependent) {
     double d[m];
-    bool dependent[m];
     for (int j = 0; j < m; ++j) {
         double pivot = a[j][j];
         for (int k = 0; k < j; ++k) pivot -= a[j][k] * a[j][k] * d[k];
@@ -68,20 +72,22 @@ template <int m>
 
 static_assert(kMaxPatchRows == 11, "solveSemidefinite dispatches sizes 1 to 11");
 
-/// solveSemidefiniteFixed for a size known only at run time (1 to kMaxPatchRows).
-void solveSemidefinite(int m, double (&a)[kMaxPatchRows][kMaxPatchRows], const double* b, double* x) {
+/// solveSemidefiniteFixed for a size known only at run time (1 to kMaxPatchRows); `dependent`
+/// receives which rows were skipped.
+void solveSemidefinite(int m, double (&a)[kMaxPatchRows][kMaxPatchRows], const double* b, double* x,
+                       bool* dependent) {
     switch (m) {
-    case 1: return solveSemidefiniteFixed<1>(a, b, x);
-    case 2: return solveSemidefiniteFixed<2>(a, b, x);
-    case 3: return solveSemidefiniteFixed<3>(a, b, x);
-    case 4: return solveSemidefiniteFixed<4>(a, b, x);
-    case 5: return solveSemidefiniteFixed<5>(a, b, x);
-    case 6: return solveSemidefiniteFixed<6>(a, b, x);
-    case 7: return solveSemidefiniteFixed<7>(a, b, x);
-    case 8: return solveSemidefiniteFixed<8>(a, b, x);
-    case 9: return solveSemidefiniteFixed<9>(a, b, x);
-    case 10: return solveSemidefiniteFixed<10>(a, b, x);
-    case 11: return solveSemidefiniteFixed<11>(a, b, x);
+    case 1: return solveSemidefiniteFixed<1>(a, b, x, dependent);
+    case 2: return solveSemidefiniteFixed<2>(a, b, x, dependent);
+    case 3: return solveSemidefiniteFixed<3>(a, b, x, dependent);
+    case 4: return solveSemidefiniteFixed<4>(a, b, x, dependent);
+    case 5: return solveSemidefiniteFixed<5>(a, b, x, dependent);
+    case 6: return solveSemidefiniteFixed<6>(a, b, x, dependent);
+    case 7: return solveSemidefiniteFixed<7>(a, b, x, dependent);
+    case 8: return solveSemidefiniteFixed<8>(a, b, x, dependent);
+    case 9: return solveSemidefiniteFixed<9>(a, b, x, dependent);
+    case 10: return solveSemidefiniteFixed<10>(a, b, x, dependent);
+    case 11: return solveSemidefiniteFixed<11>(a, b, x, dependent);
     default: return;
     }
 }
@@ -140,25 +146,72 @@ public:
     /// given values (zero for a dropped row, the bound for a clamped one). Gauss-Seidel on the
     /// same rows left a residual tip after 8 sweeps that a stack of ten boxes amplified until
     /// it fell.
-    void solve(const bool* active, const double* rhs, double* x) const {
-        int index[kMaxPatchRows];
+    void solve(const bool* active, const double* rhs, double* x) {
         int m = 0;
         for (int i = 0; i < count_; ++i)
-            if (active[i]) index[m++] = i;
+            if (active[i]) index_[m++] = i;
+        factorRows_ = m;
         if (m == 0) return;
-        double a[kMaxPatchRows][kMaxPatchRows];
         double b[kMaxPatchRows];
         for (int r = 0; r < m; ++r) {
-            const int i = index[r];
+            const int i = index_[r];
             double value = rhs[i];
             for (int j = 0; j < count_; ++j)
                 if (!active[j]) value -= k_[i][j] * x[j];
             b[r] = value;
-            for (int c = 0; c < m; ++c) a[r][c] = k_[i][index[c]];
+            for (int c = 0; c <= r; ++c) factor_[r][c] = k_[i][index_[c]];  // the lower triangle is all it reads
         }
         double solution[kMaxPatchRows];
-        solveSemidefinite(m, a, b, solution);
-        for (int r = 0; r < m; ++r) x[index[r]] = solution[r];
+        solveSemidefinite(m, factor_, b, solution, dependent_);
+        for (int r = 0; r < m; ++r) x[index_[r]] = solution[r];
+    }
+
+    /// After solve(), takes row `row` out of the active set with its x set to `target`, without
+    /// solving again, where that is exact: when the solve skipped one dependent row, K has a
+    /// null vector z over the active rows (Lᵀ z = e_dependent, so K z = L D Lᵀ z = 0), and
+    /// x + t z with t = (target − x_row) / z_row makes every row's motion the same while row
+    /// `row` takes its target: the solution a new solve without `row` would find (to rounding),
+    /// when the rows left are independent. Four coplanar points of a box face are the common
+    /// case: the solve leaves the fourth out and loads the other three, whose triangle holds
+    /// the centre of pressure only half the time; the corner outside then leaves (half of
+    /// pyramid10's position solves took a second solve for it). Returns false, x untouched,
+    /// where it does not apply (no solve since, no single dependent row, z_row = 0, or K z not
+    /// zero to rounding because the rows only nearly depend on one another).
+    bool shiftOut(int row, double target, double* x) {
+        const int m = factorRows_;
+        factorRows_ = 0;  // the factor is of the old active set from here on
+        int position = -1;
+        int dependentPosition = -1;
+        for (int r = 0; r < m; ++r) {
+            if (index_[r] == row) position = r;
+            if (dependent_[r]) {
+                if (dependentPosition >= 0) return false;
+                dependentPosition = r;
+            }
+        }
+        if (position < 0 || dependentPosition < position) return false;
+        double z[kMaxPatchRows];
+        z[dependentPosition] = 1.0;
+        for (int k = dependentPosition - 1; k >= 0; --k) {
+            double value = 0.0;
+            for (int i = k + 1; i <= dependentPosition; ++i) value -= factor_[i][k] * z[i];
+            z[k] = value;
+        }
+        if (!(std::abs(z[position]) > kNullComponent)) return false;
+        for (int i = 0; i < count_; ++i) {
+            double sum = 0.0;
+            double scale = 0.0;
+            for (int r = 0; r <= dependentPosition; ++r) {
+                const double term = k_[i][index_[r]] * z[r];
+                sum += term;
+                scale += std::abs(term);
+            }
+            if (!(std::abs(sum) <= kNullResidual * scale)) return false;
+        }
+        const double t = (target - x[row]) / z[position];
+        for (int r = 0; r <= dependentPosition; ++r) x[index_[r]] += t * z[r];
+        x[row] = target;
+        return true;
     }
 
     /// The motion along row i that the multipliers x make: (K x)_i.
@@ -222,6 +275,12 @@ private:
     Row rows_[kMaxPatchRows];
     double k_[kMaxPatchRows][kMaxPatchRows];
     int count_ = 0;
+    // The last solve's factor (L below the diagonal) of the active rows index_[0, factorRows_),
+    // and which of them it skipped as dependent; factorRows_ = 0 once it no longer applies.
+    double factor_[kMaxPatchRows][kMaxPatchRows];
+    int index_[kMaxPatchRows];
+    bool dependent_[kMaxPatchRows];
+    int factorRows_ = 0;
 };
 
 /// The centre of a patch's points on each body (principal frames), their mean normal and
@@ -298,11 +357,13 @@ void moveVelocities(Body& b0, Body& b1, const Vec3& linear, const Vec3& angular0
 /// The pushes of a patch as a small active set: points that would be pulled (total λ_n < 0)
 /// leave the set, points that the others' pushes sink into contact join it, until neither
 /// happens (or every point had its turn twice).
-void solvePushes(const PatchSystem& system, std::span<const Contact> contacts, const double* depth,
+void solvePushes(PatchSystem& system, std::span<const Contact> contacts, const double* depth,
                  bool* active, double* x) {
     const int points = static_cast<int>(contacts.size());
+    bool solved = false;  // x already solves the active set (PatchSystem::shiftOut)
     for (int round = 0; round <= 2 * points; ++round) {
-        system.solve(active, depth, x);
+        if (!solved) system.solve(active, depth, x);
+        solved = false;
         int leaving = -1;
         double mostNegative = 0.0;
         for (int i = 0; i < points; ++i) {
@@ -311,7 +372,9 @@ void solvePushes(const PatchSystem& system, std::span<const Contact> contacts, c
         }
         if (leaving >= 0) {
             active[leaving] = false;
-            x[leaving] = -contacts[leaving].lambdaNormal;  // the total λ_n drops to zero
+            const double target = -contacts[leaving].lambdaNormal;  // the total λ_n drops to zero
+            solved = system.shiftOut(leaving, target, x);
+            if (!solved) x[leaving] = target;
             continue;
         }
         int joining = -1;
