@@ -293,9 +293,23 @@ struct Patch {
     int points = 0;
 };
 
-/// The patch of the points `use` selects.
+/// The mean distance across the normal of the points `use` selects from the patch's centre
+/// (Patch::radius), for a patch of two or more points.
 template <class Use>
-Patch patchOf(std::span<const Contact> contacts, const Body& b0, Use&& use) {
+double patchRadius(std::span<const Contact> contacts, const Body& b0, const Patch& patch, Use&& use) {
+    double radius = 0.0;
+    for (const Contact& c : contacts) {
+        if (!use(c)) continue;
+        const Vec3 offset = b0.q * (c.local0 - patch.centre0);
+        radius += (offset - offset.dot(patch.normal) * patch.normal).norm();
+    }
+    return radius / patch.points;
+}
+
+/// The patch of the points `use` selects; its radius only if `withRadius` (the velocity pass
+/// needs it only for a patch that is not at rest).
+template <class Use>
+Patch patchOf(std::span<const Contact> contacts, const Body& b0, Use&& use, bool withRadius = true) {
     Patch patch;
     for (const Contact& c : contacts) {
         if (!use(c)) continue;
@@ -313,14 +327,7 @@ Patch patchOf(std::span<const Contact> contacts, const Body& b0, Use&& use) {
         return patch;
     }
     patch.normal /= length;
-    if (patch.points > 1) {
-        for (const Contact& c : contacts) {
-            if (!use(c)) continue;
-            const Vec3 offset = b0.q * (c.local0 - patch.centre0);
-            patch.radius += (offset - offset.dot(patch.normal) * patch.normal).norm();
-        }
-        patch.radius /= patch.points;
-    }
+    if (withRadius && patch.points > 1) patch.radius = patchRadius(contacts, b0, patch, use);
     return patch;
 }
 
@@ -698,7 +705,7 @@ void solveContactVelocities(const ContactPair& pair, std::span<const Contact> co
         return;
     }
     const auto pushed = [](const Contact& c) { return c.lambdaNormal > 0.0; };
-    const Patch patch = patchOf(contacts.first(points), b0, pushed);
+    Patch patch = patchOf(contacts.first(points), b0, pushed, false);
     if (patch.points == 0) return;
 
     // Eq. 34 at every point that pushed: the normal velocity PBD derived (it reflects the
@@ -739,8 +746,19 @@ void solveContactVelocities(const ContactPair& pair, std::span<const Contact> co
     const Vec3 slip = pointVelocity(b0.v, b0.omega, r0) - pointVelocity(b1.v, b1.omega, r1);
     const Vec3 tangentialSlip = slip - slip.dot(patch.normal) * patch.normal;
     const double spin = (b0.omega - b1.omega).dot(patch.normal);
-    if (friction)
-        largestChange = std::max({largestChange, tangentialSlip.norm(), std::abs(spin) * patch.radius});
+    if (friction) {
+        largestChange = std::max(largestChange, tangentialSlip.norm());
+        // The lever arm only where the rest test or the solve needs it: no point is farther
+        // from the centre than `reach`, and a patch that rests with that lever arm rests.
+        if (patch.points > 1 && !(largestChange > kRestingSpeed)) {
+            double reach2 = 0.0;
+            for (const Contact& c : contacts.first(points))
+                if (pushed(c)) reach2 = std::max(reach2, (c.local0 - patch.centre0).squaredNorm());
+            if (!(std::abs(spin) * std::sqrt(reach2) > kRestingSpeed)) return;
+        }
+        if (patch.points > 1) patch.radius = patchRadius(contacts.first(points), b0, patch, pushed);
+        largestChange = std::max(largestChange, std::abs(spin) * patch.radius);
+    }
     // A patch at rest (a stack standing) has nothing to change: skip its solve.
     if (!(largestChange > kRestingSpeed)) return;
 
