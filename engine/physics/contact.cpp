@@ -544,27 +544,15 @@ inline void changePointVelocity(Body& b0, Body& b1, const PointResponse& s0, con
     const Vec3& n = c.normal;
     const Vec3 vAfter = pointVelocity(b0.v, b0.omega, r0) - pointVelocity(b1.v, b1.omega, r1);
     const Vec3 slip = vAfter - vAfter.dot(n) * n;  // Eq. 29: v_t
-    const double slipSquared = slip.squaredNorm();
-    if (!(slipSquared > kRestingSpeed * kRestingSpeed)) return;
-    // Along v_t as it is, not normalised (S = |v_t|²): the responses are W = S (w1 + w2) and
-    // |v_t| times the unit direction's rotation. Removing the whole slip takes the impulse
-    // |v_t| / (w1 + w2) (Eq. 33), S / W per unit of v_t; Eq. 30 with ERRATA item 2 allows at
-    // most h μ_d f_n = μ_d λ_n / h (f_n = λ_n / h², Eq. 10), μ_d λ_n / (h |v_t|) per unit of
-    // v_t. The smaller is applied: no division by |v_t| before the bodies' velocities change.
-    const PointResponse s0 = pointResponse(b0, r0, slip, slipSquared);
-    const PointResponse s1 = pointResponse(b1, r1, slip, slipSquared);
-    const double w = s0.w + s1.w;
-    if (!(w > 0.0)) return;
-    const double perSlip =
-        std::min(slipSquared / w, pair.dynamicFriction * c.lambdaNormal / (h * std::sqrt(slipSquared)));
-    if (b0.invMass > 0.0) {
-        b0.v -= (perSlip * b0.invMass) * slip;
-        if (b0.rotates()) b0.omega -= perSlip * s0.turn;
-    }
-    if (b1.invMass > 0.0) {
-        b1.v += (perSlip * b1.invMass) * slip;
-        if (b1.rotates()) b1.omega += perSlip * s1.turn;
-    }
+    const double slipSpeed = slip.norm();
+    if (!(slipSpeed > kRestingSpeed)) return;
+    const Vec3 t = slip / slipSpeed;
+    const PointResponse s0 = pointResponse(b0, r0, t);
+    const PointResponse s1 = pointResponse(b1, r1, t);
+    // Eq. 30 with ERRATA item 2: an impulse of at most h μ_d f_n, f_n = λ_n / h² (Eq. 10),
+    // changes the slip speed by at most that times w1 + w2; applied by Eq. 33.
+    const double maxChange = pair.dynamicFriction * c.lambdaNormal / h * (s0.w + s1.w);
+    changePointVelocity(b0, b1, s0, s1, t, -std::min(maxChange, slipSpeed));
 }
 
 /// The velocity pass for a pair with one point (Eq. 29, Eq. 30, Eq. 33, Eq. 34): restitution,
