@@ -1,7 +1,5 @@
 #include "physics/contact.h"
 
-#include "physics/contact_turn.h"
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -437,7 +435,7 @@ struct PointResponse {
 inline void movePoint(Body& b, const PointResponse& s, const Vec3& p, double deltaLambda) {
     if (b.invMass == 0.0) return;
     b.x += p * b.invMass;
-    if (b.rotates()) turnBy(b.q, s.turn * deltaLambda);
+    if (b.rotates()) integrateRotation(b.q, s.turn * deltaLambda);
 }
 
 /// The paper's contact for a pair with one point (a marble, a coin on its rim): the push
