@@ -166,17 +166,13 @@ public:
         for (int r = 0; r < m; ++r) x[index_[r]] = solution[r];
     }
 
-    /// After solve(), takes row `row` out of the active set with its x set to `target`, without
-    /// solving again, where that is exact: when the solve skipped one dependent row, K has a
-    /// null vector z over the active rows (Lᵀ z = e_dependent, so K z = L D Lᵀ z = 0), and
-    /// x + t z with t = (target − x_row) / z_row makes every row's motion the same while row
-    /// `row` takes its target: the solution a new solve without `row` would find (to rounding),
-    /// when the rows left are independent. Four coplanar points of a box face are the common
-    /// case: the solve leaves the fourth out and loads the other three, whose triangle holds
-    /// the centre of pressure only half the time; the corner outside then leaves (half of
-    /// pyramid10's position solves took a second solve for it). Returns false, x untouched,
-    /// where it does not apply (no solve since, no single dependent row, z_row = 0, or K z not
-    /// zero to rounding because the rows only nearly depend on one another).
+    /// After solve(), takes row `row` out of the active set with x_row = `target` without solving
+    /// again: with one dependent row, K has a null vector z (Lᵀ z = e_dependent, K z = L D Lᵀ z
+    /// = 0), and x + t z, t = (target − x_row) / z_row, moves no row: a new solve's solution, to
+    /// rounding, once the rows left are independent. A box face's fourth corner is dependent;
+    /// the other three hold the centre of pressure half the time, and the corner outside leaves
+    /// (half of pyramid10's solves). False, x untouched, where it does not apply (no solve since,
+    /// not one dependent row, z_row = 0, or K z not zero to rounding: rows nearly dependent).
     bool shiftOut(int row, double target, double* x) {
         const int m = factorRows_;
         factorRows_ = 0;  // the factor is of the old active set from here on
