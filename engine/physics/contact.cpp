@@ -25,16 +25,23 @@ constexpr int kMaxPatchRows = kMaxPatchPoints + 3;
 /// A row whose pivot falls below this fraction of its diagonal depends on the rows before it.
 constexpr double kDependentPivot = 1e-9;
 
+/// PatchSystem::shiftOut: a null vector's component below this (of the dependent row's 1) is
+/// too small to shift along, and K z must vanish to this fraction of its terms' sizes.
+constexpr double kNullComponent = 1e-6;
+constexpr double kNullResidual = 1e-10;
+
 /// Solves the symmetric positive semi-definite system a x = b (m x m) by LDLᵀ, skipping rows
 /// that depend on earlier ones: a patch's system is singular (four coplanar points fix only
 /// three motions), and a dependent row's x is set to zero. Every solution of the consistent
 /// rows gives the bodies the same impulse, so which point takes the load does not matter;
 /// a dependent row that disagrees (rounding, or points of different triangles) is ignored
-/// rather than blown up.
-void solveSemidefinite(int m, double (&a)[kMaxPatchRows][kMaxPatchRows], const double* b, double* x) {
-    double d[kMaxPatchRows];
-    bool dependent[kMaxPatchRows];
-    // a is overwritten with L below the diagonal.
+/// rather than blown up. Only the lower triangle of a is read; it is overwritten with L.
+/// Instantiated for every size so that the compiler unrolls the loops and keeps the factor in
+/// registers: the loops over a run-time m took a fifth of pyramid10's step.
+template <int m>
+[[gnu::always_inline]] inline void solveSemidefiniteFixed(double (&a)[kMaxPatchRows][kMaxPatchRows], const double* b,
+                                                          double* x, bool* dependent) {
+    double d[m];
     for (int j = 0; j < m; ++j) {
         double pivot = a[j][j];
         for (int k = 0; k < j; ++k) pivot -= a[j][k] * a[j][k] * d[k];
@@ -50,7 +57,7 @@ void solveSemidefinite(int m, double (&a)[kMaxPatchRows][kMaxPatchRows], const d
             a[i][j] = value / pivot;
         }
     }
-    double y[kMaxPatchRows];
+    double y[m];
     for (int i = 0; i < m; ++i) {
         double value = b[i];
         for (int k = 0; k < i; ++k) value -= a[i][k] * y[k];
@@ -60,6 +67,28 @@ void solveSemidefinite(int m, double (&a)[kMaxPatchRows][kMaxPatchRows], const d
         double value = dependent[i] ? 0.0 : y[i] / d[i];
         for (int k = i + 1; k < m; ++k) value -= a[k][i] * x[k];
         x[i] = dependent[i] ? 0.0 : value;
+    }
+}
+
+static_assert(kMaxPatchRows == 11, "solveSemidefinite dispatches sizes 1 to 11");
+
+/// solveSemidefiniteFixed for a size known only at run time (1 to kMaxPatchRows); `dependent`
+/// receives which rows were skipped.
+void solveSemidefinite(int m, double (&a)[kMaxPatchRows][kMaxPatchRows], const double* b, double* x,
+                       bool* dependent) {
+    switch (m) {
+    case 1: return solveSemidefiniteFixed<1>(a, b, x, dependent);
+    case 2: return solveSemidefiniteFixed<2>(a, b, x, dependent);
+    case 3: return solveSemidefiniteFixed<3>(a, b, x, dependent);
+    case 4: return solveSemidefiniteFixed<4>(a, b, x, dependent);
+    case 5: return solveSemidefiniteFixed<5>(a, b, x, dependent);
+    case 6: return solveSemidefiniteFixed<6>(a, b, x, dependent);
+    case 7: return solveSemidefiniteFixed<7>(a, b, x, dependent);
+    case 8: return solveSemidefiniteFixed<8>(a, b, x, dependent);
+    case 9: return solveSemidefiniteFixed<9>(a, b, x, dependent);
+    case 10: return solveSemidefiniteFixed<10>(a, b, x, dependent);
+    case 11: return solveSemidefiniteFixed<11>(a, b, x, dependent);
+    default: return;
     }
 }
 
@@ -85,10 +114,12 @@ class PatchSystem {
 public:
     PatchSystem(const Body& b0, const Body& b1) {
         linearInverseMass_ = b0.invMass + b1.invMass;
-        turns0_ = b0.rotates() && b0.invMass > 0.0;
-        turns1_ = b1.rotates() && b1.invMass > 0.0;
-        if (turns0_) inverseInertia0_ = worldInverseInertia(b0);
-        if (turns1_) inverseInertia1_ = worldInverseInertia(b1);
+        turns0_ = inertiaKind(b0);
+        turns1_ = inertiaKind(b1);
+        if (turns0_ == Turns::Rotated) inverseInertia0_ = worldInverseInertia(b0);
+        if (turns1_ == Turns::Rotated) inverseInertia1_ = worldInverseInertia(b1);
+        scalarInverseInertia0_ = b0.invInertia.x();
+        scalarInverseInertia1_ = b1.invInertia.x();
     }
 
     /// A positional row: a push along unit d at world offsets r0, r1. Returns its index.
@@ -115,25 +146,68 @@ public:
     /// given values (zero for a dropped row, the bound for a clamped one). Gauss-Seidel on the
     /// same rows left a residual tip after 8 sweeps that a stack of ten boxes amplified until
     /// it fell.
-    void solve(const bool* active, const double* rhs, double* x) const {
-        int index[kMaxPatchRows];
+    void solve(const bool* active, const double* rhs, double* x) {
         int m = 0;
         for (int i = 0; i < count_; ++i)
-            if (active[i]) index[m++] = i;
+            if (active[i]) index_[m++] = i;
+        factorRows_ = m;
         if (m == 0) return;
-        double a[kMaxPatchRows][kMaxPatchRows];
         double b[kMaxPatchRows];
         for (int r = 0; r < m; ++r) {
-            const int i = index[r];
+            const int i = index_[r];
             double value = rhs[i];
             for (int j = 0; j < count_; ++j)
                 if (!active[j]) value -= k_[i][j] * x[j];
             b[r] = value;
-            for (int c = 0; c < m; ++c) a[r][c] = k_[i][index[c]];
+            for (int c = 0; c <= r; ++c) factor_[r][c] = k_[i][index_[c]];  // the lower triangle is all it reads
         }
         double solution[kMaxPatchRows];
-        solveSemidefinite(m, a, b, solution);
-        for (int r = 0; r < m; ++r) x[index[r]] = solution[r];
+        solveSemidefinite(m, factor_, b, solution, dependent_);
+        for (int r = 0; r < m; ++r) x[index_[r]] = solution[r];
+    }
+
+    /// After solve(), takes row `row` out of the active set with x_row = `target` without solving
+    /// again: with one dependent row, K has a null vector z (Lᵀ z = e_dependent, K z = L D Lᵀ z
+    /// = 0), and x + t z, t = (target − x_row) / z_row, moves no row: a new solve's solution, to
+    /// rounding, once the rows left are independent. A box face's fourth corner is dependent;
+    /// the other three hold the centre of pressure half the time, and the corner outside leaves
+    /// (half of pyramid10's solves). False, x untouched, where it does not apply (no solve since,
+    /// not one dependent row, z_row = 0, or K z not zero to rounding: rows nearly dependent).
+    bool shiftOut(int row, double target, double* x) {
+        const int m = factorRows_;
+        factorRows_ = 0;  // the factor is of the old active set from here on
+        int position = -1;
+        int dependentPosition = -1;
+        for (int r = 0; r < m; ++r) {
+            if (index_[r] == row) position = r;
+            if (dependent_[r]) {
+                if (dependentPosition >= 0) return false;
+                dependentPosition = r;
+            }
+        }
+        if (position < 0 || dependentPosition < position) return false;
+        double z[kMaxPatchRows];
+        z[dependentPosition] = 1.0;
+        for (int k = dependentPosition - 1; k >= 0; --k) {
+            double value = 0.0;
+            for (int i = k + 1; i <= dependentPosition; ++i) value -= factor_[i][k] * z[i];
+            z[k] = value;
+        }
+        if (!(std::abs(z[position]) > kNullComponent)) return false;
+        for (int i = 0; i < count_; ++i) {
+            double sum = 0.0;
+            double scale = 0.0;
+            for (int r = 0; r <= dependentPosition; ++r) {
+                const double term = k_[i][index_[r]] * z[r];
+                sum += term;
+                scale += std::abs(term);
+            }
+            if (!(std::abs(sum) <= kNullResidual * scale)) return false;
+        }
+        const double t = (target - x[row]) / z[position];
+        for (int r = 0; r <= dependentPosition; ++r) x[index_[r]] += t * z[r];
+        x[row] = target;
+        return true;
     }
 
     /// The motion along row i that the multipliers x make: (K x)_i.
@@ -156,6 +230,22 @@ public:
     }
 
 private:
+    /// How a body turns under an angular impulse: not at all (static, or a particle), by a
+    /// scalar I⁻¹ (equal principal moments: cubes, spheres; no world matrix needed), or by
+    /// R I⁻¹ Rᵀ.
+    enum class Turns : uint8_t { No, Scalar, Rotated };
+    static Turns inertiaKind(const Body& b) {
+        if (!b.rotates() || !(b.invMass > 0.0)) return Turns::No;
+        return b.isotropic ? Turns::Scalar : Turns::Rotated;
+    }
+    static Vec3 turn(Turns kind, double scalar, const Mat3& rotated, const Vec3& angular) {
+        switch (kind) {
+        case Turns::Scalar: return scalar * angular;
+        case Turns::Rotated: return rotated * angular;
+        default: return Vec3::Zero();
+        }
+    }
+
     static Mat3 worldInverseInertia(const Body& b) {
         const Mat3 r = b.q.toRotationMatrix();
         return r * b.invInertia.asDiagonal() * r.transpose();
@@ -166,19 +256,27 @@ private:
         row.linear = linear;
         row.angular0 = angular0;
         row.angular1 = angular1;
-        row.turn0 = turns0_ ? Vec3(inverseInertia0_ * angular0) : Vec3::Zero();
-        row.turn1 = turns1_ ? Vec3(inverseInertia1_ * angular1) : Vec3::Zero();
+        row.turn0 = turn(turns0_, scalarInverseInertia0_, inverseInertia0_, angular0);
+        row.turn1 = turn(turns1_, scalarInverseInertia1_, inverseInertia1_, angular1);
         return count_++;
     }
 
     double linearInverseMass_ = 0.0;
-    bool turns0_ = false;
-    bool turns1_ = false;
-    Mat3 inverseInertia0_ = Mat3::Zero();
-    Mat3 inverseInertia1_ = Mat3::Zero();
+    Turns turns0_ = Turns::No;
+    Turns turns1_ = Turns::No;
+    double scalarInverseInertia0_ = 0.0;
+    double scalarInverseInertia1_ = 0.0;
+    Mat3 inverseInertia0_;  // set only for Turns::Rotated
+    Mat3 inverseInertia1_;
     Row rows_[kMaxPatchRows];
     double k_[kMaxPatchRows][kMaxPatchRows];
     int count_ = 0;
+    // The last solve's factor (L below the diagonal) of the active rows index_[0, factorRows_),
+    // and which of them it skipped as dependent; factorRows_ = 0 once it no longer applies.
+    double factor_[kMaxPatchRows][kMaxPatchRows];
+    int index_[kMaxPatchRows];
+    bool dependent_[kMaxPatchRows];
+    int factorRows_ = 0;
 };
 
 /// The centre of a patch's points on each body (principal frames), their mean normal and
@@ -191,9 +289,23 @@ struct Patch {
     int points = 0;
 };
 
-/// The patch of the points `use` selects.
+/// The mean distance across the normal of the points `use` selects from the patch's centre
+/// (Patch::radius), for a patch of two or more points.
 template <class Use>
-Patch patchOf(std::span<const Contact> contacts, const Body& b0, Use&& use) {
+double patchRadius(std::span<const Contact> contacts, const Body& b0, const Patch& patch, Use&& use) {
+    double radius = 0.0;
+    for (const Contact& c : contacts) {
+        if (!use(c)) continue;
+        const Vec3 offset = b0.q * (c.local0 - patch.centre0);
+        radius += (offset - offset.dot(patch.normal) * patch.normal).norm();
+    }
+    return radius / patch.points;
+}
+
+/// The patch of the points `use` selects; its radius only if `withRadius` (the velocity pass
+/// needs it only for a patch that is not at rest).
+template <class Use>
+Patch patchOf(std::span<const Contact> contacts, const Body& b0, Use&& use, bool withRadius = true) {
     Patch patch;
     for (const Contact& c : contacts) {
         if (!use(c)) continue;
@@ -211,14 +323,7 @@ Patch patchOf(std::span<const Contact> contacts, const Body& b0, Use&& use) {
         return patch;
     }
     patch.normal /= length;
-    if (patch.points > 1) {
-        for (const Contact& c : contacts) {
-            if (!use(c)) continue;
-            const Vec3 offset = b0.q * (c.local0 - patch.centre0);
-            patch.radius += (offset - offset.dot(patch.normal) * patch.normal).norm();
-        }
-        patch.radius /= patch.points;
-    }
+    if (withRadius && patch.points > 1) patch.radius = patchRadius(contacts, b0, patch, use);
     return patch;
 }
 
@@ -255,11 +360,13 @@ void moveVelocities(Body& b0, Body& b1, const Vec3& linear, const Vec3& angular0
 /// The pushes of a patch as a small active set: points that would be pulled (total λ_n < 0)
 /// leave the set, points that the others' pushes sink into contact join it, until neither
 /// happens (or every point had its turn twice).
-void solvePushes(const PatchSystem& system, std::span<const Contact> contacts, const double* depth,
+void solvePushes(PatchSystem& system, std::span<const Contact> contacts, const double* depth,
                  bool* active, double* x) {
     const int points = static_cast<int>(contacts.size());
+    bool solved = false;  // x already solves the active set (PatchSystem::shiftOut)
     for (int round = 0; round <= 2 * points; ++round) {
-        system.solve(active, depth, x);
+        if (!solved) system.solve(active, depth, x);
+        solved = false;
         int leaving = -1;
         double mostNegative = 0.0;
         for (int i = 0; i < points; ++i) {
@@ -268,7 +375,9 @@ void solvePushes(const PatchSystem& system, std::span<const Contact> contacts, c
         }
         if (leaving >= 0) {
             active[leaving] = false;
-            x[leaving] = -contacts[leaving].lambdaNormal;  // the total λ_n drops to zero
+            const double target = -contacts[leaving].lambdaNormal;  // the total λ_n drops to zero
+            solved = system.shiftOut(leaving, target, x);
+            if (!solved) x[leaving] = target;
             continue;
         }
         int joining = -1;
@@ -592,7 +701,7 @@ void solveContactVelocities(const ContactPair& pair, std::span<const Contact> co
         return;
     }
     const auto pushed = [](const Contact& c) { return c.lambdaNormal > 0.0; };
-    const Patch patch = patchOf(contacts.first(points), b0, pushed);
+    Patch patch = patchOf(contacts.first(points), b0, pushed, false);
     if (patch.points == 0) return;
 
     // Eq. 34 at every point that pushed: the normal velocity PBD derived (it reflects the
@@ -633,8 +742,19 @@ void solveContactVelocities(const ContactPair& pair, std::span<const Contact> co
     const Vec3 slip = pointVelocity(b0.v, b0.omega, r0) - pointVelocity(b1.v, b1.omega, r1);
     const Vec3 tangentialSlip = slip - slip.dot(patch.normal) * patch.normal;
     const double spin = (b0.omega - b1.omega).dot(patch.normal);
-    if (friction)
-        largestChange = std::max({largestChange, tangentialSlip.norm(), std::abs(spin) * patch.radius});
+    if (friction) {
+        largestChange = std::max(largestChange, tangentialSlip.norm());
+        // The lever arm only where the rest test or the solve needs it: no point is farther
+        // from the centre than `reach`, and a patch that rests with that lever arm rests.
+        if (patch.points > 1 && !(largestChange > kRestingSpeed)) {
+            double reach2 = 0.0;
+            for (const Contact& c : contacts.first(points))
+                if (pushed(c)) reach2 = std::max(reach2, (c.local0 - patch.centre0).squaredNorm());
+            if (!(std::abs(spin) * std::sqrt(reach2) > kRestingSpeed)) return;
+        }
+        if (patch.points > 1) patch.radius = patchRadius(contacts.first(points), b0, patch, pushed);
+        largestChange = std::max(largestChange, std::abs(spin) * patch.radius);
+    }
     // A patch at rest (a stack standing) has nothing to change: skip its solve.
     if (!(largestChange > kRestingSpeed)) return;
 

@@ -375,6 +375,57 @@ TEST(ContactTest, FrictionAndNormalForcesBalanceTheWeightOnAnIncline) {
     EXPECT_NEAR(pair.lambdaTangent() / h2, mass * kG * std::sin(angle), 0.02 * mass * kG);
 }
 
+// A box at rest on an incline below the friction angle: friction acts in the contact plane, half
+// the box's height b below its centre, so the normal forces' centre of pressure must lie
+// b tan θ downhill of the centre (moment balance about the centre), with every point pushing
+// (λ_n ≥ 0) and the normal forces summing to m g cos θ. A face's four coplanar points fix only
+// three motions: the patch solve loads three corners, and the one of them outside the centre
+// of pressure's reach leaves the set (PatchSystem::shiftOut, which must keep the moment).
+// Cubes and bricks (equal and unequal principal moments), turned about the normal, at masses
+// and slopes that were not tuned for.
+TEST(ContactTest, CentreOfPressureOfABoxOnAnInclineBalancesItsFriction) {
+    struct Case {
+        Vec3 size;
+        double degrees;
+        double yaw;  // about the incline's normal
+        double mass;
+    };
+    for (const Case& box : {Case{Vec3(0.5, 0.5, 0.5), 25.0, 0.0, 3.0}, Case{Vec3(0.5, 0.5, 0.5), 15.0, 0.7, 0.2},
+                            Case{Vec3(0.8, 0.3, 0.5), 20.0, 0.3, 40.0}, Case{Vec3(0.6, 0.4, 1.0), 28.0, -1.1, 7.0}}) {
+        const double angle = box.degrees * kPi / 180.0;
+        const Vec3 normal(-std::sin(angle), std::cos(angle), 0.0);
+        const Vec3 downhill = -Vec3(std::cos(angle), std::sin(angle), 0.0);
+        World world = makeWorld();
+        world.createBody({.shape = planeShape(normal, 0.0), .type = BodyType::Static, .staticFriction = 0.7,
+                          .dynamicFriction = 0.5});
+        const Quat orientation = Quat(Eigen::AngleAxisd(box.yaw, normal)) * Quat(Eigen::AngleAxisd(angle, Vec3::UnitZ()));
+        const BodyId id = world.createBody({.shape = boxShape(box.size),
+                                            .mass = box.mass,
+                                            .position = normal * (0.5 * box.size.y()),
+                                            .orientation = orientation,
+                                            .staticFriction = 0.7,
+                                            .dynamicFriction = 0.5});
+        test::runFor(world, 1.0, [](double) {});
+        ASSERT_EQ(world.contactPairs().size(), 1u);
+        const ContactPair& pair = world.contactPairs()[0];
+        ASSERT_EQ(pair.count, 4u);
+        const Body& b = world.body(id);
+        const bool boxFirst = pair.body0 == id.index;
+        double sum = 0.0;
+        double moment = 0.0;  // Σ λ_n times the point's offset downhill of the centre
+        for (const Contact& c : world.contacts().subspan(pair.first, pair.count)) {
+            EXPECT_GE(c.lambdaNormal, 0.0);
+            const Vec3 point = b.pointToWorld(boxFirst ? c.local0 : c.local1);
+            sum += c.lambdaNormal;
+            moment += c.lambdaNormal * (point - b.x).dot(downhill);
+        }
+        const double h2 = world.lastSubstep() * world.lastSubstep();
+        const std::string label = std::to_string(box.degrees) + "°, size " + std::to_string(box.size.x());
+        EXPECT_NEAR(sum / h2, box.mass * kG * std::cos(angle), 0.02 * box.mass * kG) << label;
+        EXPECT_NEAR(moment / sum, 0.5 * box.size.y() * std::tan(angle), 0.02 * box.size.y()) << label;
+    }
+}
+
 // Degenerate and extreme input stays finite: a ball at 1e5 m/s into the ground, two boxes and
 // two spheres created exactly on top of each other (no direction to push them apart in), a
 // tiny sphere, a thin box.

@@ -262,23 +262,32 @@ void collideBoxBox(const Shape& a, const Pose& pa, const Shape& b, const Pose& p
             faceB = j;
         }
     }
-    // Edge axes a_i × b_j, normalised.
+    // Edge axes a_i × b_j, normalised. In a's axes a_i × b_j has two non-zero components,
+    // −r(i2, j) at i1 and r(i1, j) at i2 (i1, i2 the next axes in cyclic order), so every
+    // product below is written with those two alone: the sums are the full ones' bit for bit
+    // (the third term is an exact zero) at two thirds of the arithmetic.
     int edge = -1;
     double separationEdge = 0.0;
     Vec3 edgeAxis = Vec3::Zero();
     for (int i = 0; i < 3; ++i) {
+        const int i1 = (i + 1) % 3;
+        const int i2 = (i + 2) % 3;
         for (int j = 0; j < 3; ++j) {
-            const Vec3 axis = Vec3::Unit(i).cross(r.col(j));
-            const double length = axis.norm();
+            const double axis1 = -r(i2, j);
+            const double axis2 = r(i1, j);
+            const double length = std::sqrt(axis1 * axis1 + axis2 * axis2);
             if (length < kEdgeParallelSine) continue;
-            const double extentA = ha.dot(axis.cwiseAbs());
-            const double extentB = hb.dot((r.transpose() * axis).cwiseAbs());
-            const double s = (std::abs(t.dot(axis)) - extentA - extentB) / length;
+            const double extentA = ha[i1] * std::abs(axis1) + ha[i2] * std::abs(axis2);
+            double extentB = 0.0;  // hb · |rᵀ axis|
+            for (int k = 0; k < 3; ++k) extentB += hb[k] * std::abs(r(i1, k) * axis1 + r(i2, k) * axis2);
+            const double s = (std::abs(t[i1] * axis1 + t[i2] * axis2) - extentA - extentB) / length;
             if (s > margin) return;
             if (edge < 0 || beats(s, separationEdge)) {
                 separationEdge = s;
                 edge = 3 * i + j;
-                edgeAxis = axis / length;
+                edgeAxis = Vec3::Zero();
+                edgeAxis[i1] = axis1 / length;
+                edgeAxis[i2] = axis2 / length;
             }
         }
     }
