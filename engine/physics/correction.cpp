@@ -29,14 +29,6 @@ inline BodyResponse positionalResponse(const Body& body, const Vec3& r, const Ve
     return {body.invMass + rn.dot(invInertiaRn), body.q * invInertiaRn};
 }
 
-/// Response to a rotation about unit n.
-inline BodyResponse angularResponse(const Body& body, const Vec3& n) {
-    if (body.invMass == 0.0 || !body.rotates()) return {};
-    const Vec3 nb = body.q.conjugate() * n;
-    const Vec3 invInertiaN = body.invInertia.cwiseProduct(nb);
-    return {nb.dot(invInertiaN), body.q * invInertiaN};
-}
-
 /// In the repair pass, whether a correction of this size and compliance is left alone: the pass
 /// only moves hard parts that are far from satisfied. Counts the ones it makes.
 inline bool skippedByRepair(SolverContext& ctx, double size, double threshold, double compliance) {
@@ -61,6 +53,21 @@ inline void moveBody(SolverContext& ctx, uint32_t index, const Vec3& dx, const V
     }
     body.x += dx;
     if (body.rotates()) integrateRotation(body.q, dtheta);
+}
+
+/// Whether a correction turns the body: a dynamic rigid body (particles and static bodies do not).
+inline bool turns(const Body& body) { return body.rotates() && body.invMass > 0.0; }
+
+/// Turns body `index` by dtheta alone (the rotation of Eq. 8, Eq. 9, Eq. 15 or Eq. 16), or
+/// gathers it for Jacobi: moveBody without a translation to add.
+inline void turnBody(SolverContext& ctx, uint32_t index, const Vec3& dtheta) {
+    if (ctx.solver == SolverType::Jacobi) {
+        JacobiDelta& d = ctx.deltas[index];
+        d.rotation += dtheta;
+        ++d.count;
+        return;
+    }
+    integrateRotation(ctx.bodies[index].q, dtheta);
 }
 
 /// World inverse inertia R diag(I⁻¹) Rᵀ at `orientation` (zero for bodies that do not rotate).
@@ -135,80 +142,30 @@ void applyWeldCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, const Vec
     moveBody(ctx, i1, -p * b1.invMass, -(invInertia1 * (r1.cross(p) + l)));
 }
 
-Vec3 applyAngularCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, const Vec3& rotation,
-                            double compliance, double& lambda, double lambdaLimit) {
-    const double theta = rotation.norm();
-    if (!(theta > kDirectionEpsilon)) return Vec3::Zero();
-    if (skippedByRepair(ctx, theta, ctx.repairAngle, compliance)) return Vec3::Zero();
-    const Vec3 n = rotation / theta;
-    const BodyResponse s0 = angularResponse(ctx.bodies[i0], n);  // Eq. 11
-    const BodyResponse s1 = angularResponse(ctx.bodies[i1], n);  // Eq. 12
-    const double alphaTilde = compliance * ctx.invH2;
-    const double denominator = s0.w + s1.w + alphaTilde;
-    if (!(denominator > 0.0)) return Vec3::Zero();
-    // Eq. 13 with ERRATA item 1's sign (θ rather than −θ).
-    const double deltaLambda = (theta - alphaTilde * lambda) / denominator;
-    if (lambda + deltaLambda > lambdaLimit) return Vec3::Zero();
-    lambda += deltaLambda;                                                  // Eq. 14
-    moveBody(ctx, i0, Vec3::Zero(), s0.rotationPerUnit * deltaLambda);   // Eq. 15
-    moveBody(ctx, i1, Vec3::Zero(), -s1.rotationPerUnit * deltaLambda);  // Eq. 16
-    return deltaLambda * n;
-}
-
 namespace {
 
-/// A symmetric 3 x 3 matrix by its six entries (the point correction's K).
+/// A symmetric 3 x 3 matrix by its six entries (the point and rotation corrections' K).
 struct Symmetric3 {
     double xx = 0, yy = 0, zz = 0, xy = 0, xz = 0, yz = 0;
-    Vec3 times(const Vec3& v) const {
-        return {xx * v.x() + xy * v.y() + xz * v.z(), xy * v.x() + yy * v.y() + yz * v.z(),
-                xz * v.x() + yz * v.y() + zz * v.z()};
+    /// Adds d c cᵀ.
+    void addRankOne(double d, const Vec3& c) {
+        const double dx = d * c.x(), dy = d * c.y(), dz = d * c.z();
+        xx += dx * c.x();
+        yy += dy * c.y();
+        zz += dz * c.z();
+        xy += dx * c.y();
+        xz += dx * c.z();
+        yz += dy * c.z();
     }
-};
-
-/// One body's side of a point correction at world offset r. With the body's principal axes e_k
-/// (world) and inverse moments d_k, I⁻¹ = Σ d_k e_k e_kᵀ, so −[r]× I⁻¹ [r]× = Σ d_k c_k c_kᵀ
-/// with c_k = e_k × r, and the turn for an impulse p is I⁻¹ (r × p) = Σ d_k (c_k · p) e_k:
-/// three cross products and rank-one updates instead of 3 x 3 matrix products.
-struct PointResponse {
-    Vec3 axes[3];
-    Vec3 arms[3];  ///< c_k = e_k × r
-    Vec3 inverseMoments = Vec3::Zero();
-    bool rotates = false;
-
-    /// For `angular` the response is to an angular impulse: arms are the axes themselves
-    /// (I⁻¹ = Σ d_k e_k e_kᵀ) and r is unused.
-    PointResponse(const Body& body, const Vec3& r, bool angular = false)
-        : PointResponse(body, body.q.toRotationMatrix(), r, angular) {}
-    /// With the body's rotation matrix already at hand.
-    PointResponse(const Body& body, const Mat3& rotation, const Vec3& r, bool angular = false) {
-        rotates = body.rotates() && body.invMass > 0.0;
-        if (!rotates) return;
-        for (int k = 0; k < 3; ++k) {
-            axes[k] = rotation.col(k);
-            arms[k] = angular ? axes[k] : axes[k].cross(r);
-        }
-        inverseMoments = body.invInertia;
-    }
-    void addTo(Symmetric3& m) const {
-        if (!rotates) return;
-        for (int k = 0; k < 3; ++k) {
-            const Vec3& c = arms[k];
-            const double d = inverseMoments[k];
-            const Vec3 dc = d * c;
-            m.xx += dc.x() * c.x();
-            m.yy += dc.y() * c.y();
-            m.zz += dc.z() * c.z();
-            m.xy += dc.x() * c.y();
-            m.xz += dc.x() * c.z();
-            m.yz += dc.y() * c.z();
-        }
-    }
-    Vec3 turn(const Vec3& p) const {
-        if (!rotates) return Vec3::Zero();
-        return axes[0] * (inverseMoments[0] * arms[0].dot(p)) +
-               axes[1] * (inverseMoments[1] * arms[1].dot(p)) +
-               axes[2] * (inverseMoments[2] * arms[2].dot(p));
+    /// Adds d (|r|² 1 − r rᵀ) = −d [r]× [r]×.
+    void addCrossSquare(double d, const Vec3& r) {
+        const double dx = d * r.x(), dy = d * r.y(), dz = d * r.z();
+        xx += dy * r.y() + dz * r.z();
+        yy += dx * r.x() + dz * r.z();
+        zz += dx * r.x() + dy * r.y();
+        xy -= dx * r.y();
+        xz -= dx * r.z();
+        yz -= dy * r.z();
     }
 };
 
@@ -229,40 +186,149 @@ inline bool solveSymmetric(const Symmetric3& m, const Vec3& b, Vec3& x) {
     return true;
 }
 
+/// A turning body's world inverse inertia I⁻¹ = R diag(d) Rᵀ = Σ d_k e_k e_kᵀ (e_k the
+/// columns of R, its principal axes) split as d_j 1 + Σ_{k≠j} (d_k − d_j) e_k e_kᵀ: an isotropic
+/// part and one rank-one term per principal axis whose moment differs from d_j. With j one of
+/// two equal moments (a box of square section, a capsule, a cylinder) a single term is left,
+/// with three (a sphere, a cube) none, and with three different moments two instead of three:
+/// each correction's K and turn cost that many rank-one updates and products fewer.
+struct InverseInertia {
+    double isotropic = 0.0;  ///< d_j
+    int count = 0;           ///< rank-one terms
+    Vec3 axes[2];            ///< their principal axes e_k (world)
+    double excess[2];        ///< d_k − d_j
+
+    InverseInertia() = default;  // a body that does not turn: never read
+    InverseInertia(const Body& body, const Mat3& rotation) {
+        const Vec3& d = body.invInertia;
+        const int j = d.y() == d.z() ? 1 : 0;  // a moment another one shares, where there is one
+        isotropic = d[j];
+        for (int k = 0; k < 3; ++k) {
+            if (k == j || d[k] == isotropic) continue;
+            axes[count] = rotation.col(k);
+            excess[count] = d[k] - isotropic;
+            ++count;
+        }
+    }
+    /// I⁻¹ v.
+    Vec3 times(const Vec3& v) const {
+        Vec3 result = isotropic * v;
+        for (int t = 0; t < count; ++t) result += (excess[t] * axes[t].dot(v)) * axes[t];
+        return result;
+    }
+    /// vᵀ I⁻¹ v.
+    double quadratic(const Vec3& v) const {
+        double result = isotropic * v.squaredNorm();
+        for (int t = 0; t < count; ++t) result += excess[t] * square(axes[t].dot(v));
+        return result;
+    }
+    /// Adds I⁻¹ to m.
+    void addTo(Symmetric3& m) const {
+        m.xx += isotropic;
+        m.yy += isotropic;
+        m.zz += isotropic;
+        for (int t = 0; t < count; ++t) m.addRankOne(excess[t], axes[t]);
+    }
+    /// Adds −[r]× I⁻¹ [r]× to m, the body's part of a point correction's K at offset r: the
+    /// isotropic part gives d_j (|r|² 1 − r rᵀ), each axis (d_k − d_j) c cᵀ with c = e_k × r.
+    void addPointTo(Symmetric3& m, const Vec3& r) const {
+        m.addCrossSquare(isotropic, r);
+        for (int t = 0; t < count; ++t) m.addRankOne(excess[t], axes[t].cross(r));
+    }
+
+private:
+    static double square(double x) { return x * x; }
+};
+
 }  // namespace
 
-namespace {
+Vec3 applyAngularCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, const Vec3& rotation,
+                            double compliance, double& lambda, double lambdaLimit) {
+    return applyAngularCorrection(ctx, i0, i1, ctx.bodies[i0].q.toRotationMatrix(),
+                                  ctx.bodies[i1].q.toRotationMatrix(), rotation, compliance, lambda,
+                                  lambdaLimit);
+}
 
-/// The point correction once both sides' responses are known (applyPointCorrection).
-Vec3 solvePoint(SolverContext& ctx, uint32_t i0, uint32_t i1, const Vec3& delta,
-                const PointResponse& s0, const PointResponse& s1, double compliance, Vec3& lambda) {
+Vec3 applyAngularCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, const Mat3& rotation0,
+                            const Mat3& rotation1, const Vec3& rotation, double compliance,
+                            double& lambda, double lambdaLimit) {
+    const double theta = rotation.norm();
+    if (!(theta > kDirectionEpsilon)) return Vec3::Zero();
+    if (skippedByRepair(ctx, theta, ctx.repairAngle, compliance)) return Vec3::Zero();
+    const Vec3 n = rotation / theta;
+    const Body& b0 = ctx.bodies[i0];
+    const Body& b1 = ctx.bodies[i1];
+    const bool turns0 = turns(b0);
+    const bool turns1 = turns(b1);
+    InverseInertia inverse0, inverse1;
+    const double alphaTilde = compliance * ctx.invH2;
+    double denominator = alphaTilde;
+    if (turns0) {
+        inverse0 = InverseInertia(b0, rotation0);
+        denominator += inverse0.quadratic(n);  // Eq. 11
+    }
+    if (turns1) {
+        inverse1 = InverseInertia(b1, rotation1);
+        denominator += inverse1.quadratic(n);  // Eq. 12
+    }
+    if (!(denominator > 0.0)) return Vec3::Zero();
+    // Eq. 13 with ERRATA item 1's sign (θ rather than −θ).
+    const double deltaLambda = (theta - alphaTilde * lambda) / denominator;
+    if (lambda + deltaLambda > lambdaLimit) return Vec3::Zero();
+    lambda += deltaLambda;                                                  // Eq. 14
+    const Vec3 p = deltaLambda * n;
+    if (turns0) turnBody(ctx, i0, inverse0.times(p));                        // Eq. 15
+    if (turns1) turnBody(ctx, i1, -inverse1.times(p));                       // Eq. 16
+    return p;
+}
+
+Vec3 applyPointCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, const Vec3& delta,
+                          const Vec3& r0, const Vec3& r1, double compliance, Vec3& lambda) {
+    return applyPointCorrection(ctx, i0, i1, ctx.bodies[i0].q.toRotationMatrix(),
+                                ctx.bodies[i1].q.toRotationMatrix(), delta, r0, r1, compliance, lambda);
+}
+
+Vec3 applyPointCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, const Mat3& rotation0,
+                          const Mat3& rotation1, const Vec3& delta, const Vec3& r0, const Vec3& r1,
+                          double compliance, Vec3& lambda) {
     if (ctx.repairDistance > 0.0 &&  // the norm only matters while repairing
         skippedByRepair(ctx, delta.norm(), ctx.repairDistance, compliance))
         return Vec3::Zero();
-    const Body& b0 = ctx.bodies[i0];
-    const Body& b1 = ctx.bodies[i1];
+    Body& b0 = ctx.bodies[i0];
+    Body& b1 = ctx.bodies[i1];
     // K = Σ (1/m) 1 − [r]× I⁻¹ [r]×: the generalised inverse masses of Eq. 2 and Eq. 3 for
     // every direction at once (nᵀ K n = w1 + w2).
     const double alphaTilde = compliance * ctx.invH2;
     const double diagonal = b0.invMass + b1.invMass + alphaTilde;
     Symmetric3 k{.xx = diagonal, .yy = diagonal, .zz = diagonal};
-    s0.addTo(k);
-    s1.addTo(k);
+    const bool turns0 = turns(b0);
+    const bool turns1 = turns(b1);
+    InverseInertia inverse0, inverse1;  // static bodies and particles have none
+    if (turns0) {
+        inverse0 = InverseInertia(b0, rotation0);
+        inverse0.addPointTo(k, r0);
+    }
+    if (turns1) {
+        inverse1 = InverseInertia(b1, rotation1);
+        inverse1.addPointTo(k, r1);
+    }
     Vec3 deltaLambda;
     if (!solveSymmetric(k, delta - alphaTilde * lambda, deltaLambda))  // Eq. 4, vector form
         return Vec3::Zero();                                           // two static bodies
-    lambda += deltaLambda;                                                // Eq. 5, vector form
-    moveBody(ctx, i0, deltaLambda * b0.invMass, s0.turn(deltaLambda));    // Eq. 6, Eq. 8
-    moveBody(ctx, i1, -deltaLambda * b1.invMass, -s1.turn(deltaLambda));  // Eq. 7, Eq. 9
+    lambda += deltaLambda;                                             // Eq. 5, vector form
+    // Eq. 6 and Eq. 8 for body 0, Eq. 7 and Eq. 9 for body 1.
+    const Vec3 turn0 = turns0 ? inverse0.times(r0.cross(deltaLambda)) : Vec3::Zero();
+    const Vec3 turn1 = turns1 ? inverse1.times(r1.cross(deltaLambda)) : Vec3::Zero();
+    if (ctx.solver == SolverType::Jacobi) {
+        moveBody(ctx, i0, deltaLambda * b0.invMass, turn0);
+        moveBody(ctx, i1, -deltaLambda * b1.invMass, -turn1);
+        return deltaLambda;
+    }
+    if (b0.invMass > 0.0) b0.x += deltaLambda * b0.invMass;
+    if (b1.invMass > 0.0) b1.x -= deltaLambda * b1.invMass;
+    if (turns0) integrateRotation(b0.q, turn0);
+    if (turns1) integrateRotation(b1.q, -turn1);
     return deltaLambda;
-}
-
-}  // namespace
-
-Vec3 applyPointCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, const Vec3& delta,
-                          const Vec3& r0, const Vec3& r1, double compliance, Vec3& lambda) {
-    return solvePoint(ctx, i0, i1, delta, PointResponse(ctx.bodies[i0], r0),
-                      PointResponse(ctx.bodies[i1], r1), compliance, lambda);
 }
 
 Vec3 applyAttachmentCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1,
@@ -270,61 +336,80 @@ Vec3 applyAttachmentCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1,
                                Vec3& lambda) {
     const Body& b0 = ctx.bodies[i0];
     const Body& b1 = ctx.bodies[i1];
-    if (ctx.projection == JointProjection::Start) {
-        // The violation on the current poses, the Jacobian (lever arms, inverse inertias) on the
-        // substep's start: the SHAKE form, which keeps a pendulum's energy.
-        const Vec3 delta = (b1.x + b1.q * anchor1) - (b0.x + b0.q * anchor0);
-        const Mat3 start0 = directionOrientation(ctx, b0).toRotationMatrix();
-        const Mat3 start1 = directionOrientation(ctx, b1).toRotationMatrix();
-        return solvePoint(ctx, i0, i1, delta, PointResponse(b0, start0, start0 * anchor0),
-                          PointResponse(b1, start1, start1 * anchor1), compliance, lambda);
-    }
     // One rotation matrix per body serves both the anchors and the inverse mass.
     const Mat3 rotation0 = b0.q.toRotationMatrix();
     const Mat3 rotation1 = b1.q.toRotationMatrix();
     const Vec3 r0 = rotation0 * anchor0;
     const Vec3 r1 = rotation1 * anchor1;
     const Vec3 delta = (b1.x + r1) - (b0.x + r0);
-    return solvePoint(ctx, i0, i1, delta, PointResponse(b0, rotation0, r0),
-                      PointResponse(b1, rotation1, r1), compliance, lambda);
+    if (ctx.projection == JointProjection::Start) {
+        // The violation on the current poses, the Jacobian (lever arms, inverse inertias) on the
+        // substep's start: the SHAKE form, which keeps a pendulum's energy.
+        const Mat3 start0 = directionRotation(ctx, b0, rotation0);
+        const Mat3 start1 = directionRotation(ctx, b1, rotation1);
+        return applyPointCorrection(ctx, i0, i1, start0, start1, delta, start0 * anchor0, start1 * anchor1,
+                                    compliance, lambda);
+    }
+    return applyPointCorrection(ctx, i0, i1, rotation0, rotation1, delta, r0, r1, compliance, lambda);
 }
 
 Vec3 applyRotationCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, const Vec3& rotation,
                              double compliance, Vec3& lambda, const Vec3* freeAxis) {
+    const Body& b0 = ctx.bodies[i0];
+    const Body& b1 = ctx.bodies[i1];
+    return applyRotationCorrection(ctx, i0, i1, directionOrientation(ctx, b0).toRotationMatrix(),
+                                   directionOrientation(ctx, b1).toRotationMatrix(), rotation,
+                                   compliance, lambda, freeAxis);
+}
+
+Vec3 applyRotationCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, const Mat3& rotation0,
+                             const Mat3& rotation1, const Vec3& rotation, double compliance,
+                             Vec3& lambda, const Vec3* freeAxis) {
     if (ctx.repairAngle > 0.0 && skippedByRepair(ctx, rotation.norm(), ctx.repairAngle, compliance))
         return Vec3::Zero();
     const Body& b0 = ctx.bodies[i0];
     const Body& b1 = ctx.bodies[i1];
-    // K = I0⁻¹ + I1⁻¹ in world coordinates, each Σ d_k e_k e_kᵀ over the principal axes
-    // (nᵀ K n is Eq. 11 plus Eq. 12).
-    const PointResponse s0(b0, directionOrientation(ctx, b0).toRotationMatrix(), Vec3::Zero(),
-                           /*angular=*/true);
-    const PointResponse s1(b1, directionOrientation(ctx, b1).toRotationMatrix(), Vec3::Zero(),
-                           /*angular=*/true);
+    const bool turns0 = turns(b0);
+    const bool turns1 = turns(b1);
+    InverseInertia inverse0, inverse1;
+    if (turns0) inverse0 = InverseInertia(b0, rotation0);
+    if (turns1) inverse1 = InverseInertia(b1, rotation1);
     const double alphaTilde = compliance * ctx.invH2;
-    Symmetric3 k{.xx = alphaTilde, .yy = alphaTilde, .zz = alphaTilde};
-    s0.addTo(k);
-    s1.addTo(k);
     const Vec3 rhs = rotation - alphaTilde * lambda;  // Eq. 13's numerator, vector form
+    // K = I0⁻¹ + I1⁻¹ in world coordinates (nᵀ K n is Eq. 11 plus Eq. 12).
     Vec3 deltaLambda;
     if (freeAxis) {
-        // Only the two directions normal to the free axis are constrained: solve K restricted
-        // to that plane, so the correction leaves the rotation about the axis alone.
+        // Only the two directions u, v normal to the free axis are constrained: K restricted to
+        // that plane, a 2 x 2 system, so the correction leaves the rotation about the axis alone.
         const Vec3 u = anyPerpendicular(*freeAxis);
         const Vec3 v = freeAxis->cross(u);
-        const Vec3 ku = k.times(u);
-        const Vec3 kv = k.times(v);
-        const double a = u.dot(ku), b = u.dot(kv), d = v.dot(kv);
+        double a = alphaTilde, b = 0.0, d = alphaTilde;
+        for (const InverseInertia* inverse : {turns0 ? &inverse0 : nullptr, turns1 ? &inverse1 : nullptr}) {
+            if (!inverse) continue;
+            // uᵀ I⁻¹ u, uᵀ I⁻¹ v and vᵀ I⁻¹ v with u ⊥ v unit: the isotropic part adds to the
+            // diagonal alone.
+            a += inverse->isotropic;
+            d += inverse->isotropic;
+            for (int t = 0; t < inverse->count; ++t) {
+                const double eu = inverse->axes[t].dot(u), ev = inverse->axes[t].dot(v);
+                a += inverse->excess[t] * eu * eu;
+                b += inverse->excess[t] * eu * ev;
+                d += inverse->excess[t] * ev * ev;
+            }
+        }
         const double determinant = a * d - b * b;
         if (!(determinant > 1e-300) || !std::isfinite(determinant)) return Vec3::Zero();
         const double ru = u.dot(rhs), rv = v.dot(rhs);
         deltaLambda = u * ((d * ru - b * rv) / determinant) + v * ((a * rv - b * ru) / determinant);
-    } else if (!solveSymmetric(k, rhs, deltaLambda)) {
-        return Vec3::Zero();  // two static bodies
+    } else {
+        Symmetric3 k{.xx = alphaTilde, .yy = alphaTilde, .zz = alphaTilde};
+        if (turns0) inverse0.addTo(k);
+        if (turns1) inverse1.addTo(k);
+        if (!solveSymmetric(k, rhs, deltaLambda)) return Vec3::Zero();  // two static bodies
     }
-    lambda += deltaLambda;                                   // Eq. 14, vector form
-    moveBody(ctx, i0, Vec3::Zero(), s0.turn(deltaLambda));   // Eq. 15
-    moveBody(ctx, i1, Vec3::Zero(), -s1.turn(deltaLambda));  // Eq. 16
+    lambda += deltaLambda;                                          // Eq. 14, vector form
+    if (turns0) turnBody(ctx, i0, inverse0.times(deltaLambda));     // Eq. 15
+    if (turns1) turnBody(ctx, i1, -inverse1.times(deltaLambda));    // Eq. 16
     return deltaLambda;
 }
 
@@ -363,11 +448,24 @@ Vec3 applyAngularVelocityCorrection(Body& b0, Body& b1, const Vec3& deltaOmega) 
     const double magnitude = deltaOmega.norm();
     if (!(magnitude > kDirectionEpsilon)) return Vec3::Zero();
     const Vec3 n = deltaOmega / magnitude;
-    const double w = b0.angularInverseMass(n) + b1.angularInverseMass(n);
+    // Each turning body's inverse inertia from one rotation matrix serves both w and the change
+    // of ω (Body::angularInverseMass and applyInverseInertia would rotate n and p twice each).
+    const bool turns0 = turns(b0);
+    const bool turns1 = turns(b1);
+    InverseInertia inverse0, inverse1;
+    double w = 0.0;
+    if (turns0) {
+        inverse0 = InverseInertia(b0, b0.q.toRotationMatrix());
+        w += inverse0.quadratic(n);
+    }
+    if (turns1) {
+        inverse1 = InverseInertia(b1, b1.q.toRotationMatrix());
+        w += inverse1.quadratic(n);
+    }
     if (!(w > 0.0)) return Vec3::Zero();
     const Vec3 p = deltaOmega / w;  // Eq. 33's angular form, with Eq. 11 and Eq. 12 for w
-    if (b0.rotates() && b0.invMass > 0.0) b0.omega += b0.applyInverseInertia(p);
-    if (b1.rotates() && b1.invMass > 0.0) b1.omega -= b1.applyInverseInertia(p);
+    if (turns0) b0.omega += inverse0.times(p);
+    if (turns1) b1.omega -= inverse1.times(p);
     return p;
 }
 

@@ -69,6 +69,15 @@ inline const Quat& directionOrientation(const SolverContext& ctx, const Body& bo
                                                                                              : body.q;
 }
 
+/// The rotation matrix of the orientation directionOrientation names, given the matrix of the
+/// body's current orientation: a joint that measured its frames with `current` passes it on
+/// rather than converting the quaternion again.
+inline Mat3 directionRotation(const SolverContext& ctx, const Body& body, const Mat3& current) {
+    return ctx.projection == JointProjection::Start && body.rotates() && body.invMass > 0.0
+               ? body.qPrev.toRotationMatrix()
+               : current;
+}
+
 /// Eqs. 2-9: moves the point at world offset r0 of body i0 by `delta` relative to the point at
 /// offset r1 of body i1 (|delta| is the constraint value c, its direction n), sharing the
 /// motion by generalised inverse mass. XPBD with compliance α: Δλ = (c − α̃λ)/(w0 + w1 + α̃).
@@ -125,6 +134,27 @@ Vec3 applyRotationCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, const
 /// applyPositionalCorrection.
 Vec3 applyAngularCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, const Vec3& rotation,
                             double compliance, double& lambda, double lambdaLimit = kUnlimited);
+
+// The same operations with the bodies' rotation matrices at hand (`rotation0`, `rotation1`: the
+// matrices of the orientations the directions are taken on, whose columns are the principal axes
+// the inverse inertia I⁻¹ = R diag(I⁻¹) Rᵀ is built from). A joint computes each body's matrix
+// once per part and shares it between its geometry (axes, lever arms) and its correction; the
+// forms above convert the quaternions themselves and call these.
+
+/// applyPointCorrection with the matrices the lever arms r0, r1 were taken on.
+Vec3 applyPointCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, const Mat3& rotation0,
+                          const Mat3& rotation1, const Vec3& delta, const Vec3& r0, const Vec3& r1,
+                          double compliance, Vec3& lambda);
+
+/// applyRotationCorrection with the matrices of the orientations directionOrientation names.
+Vec3 applyRotationCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, const Mat3& rotation0,
+                             const Mat3& rotation1, const Vec3& rotation, double compliance,
+                             Vec3& lambda, const Vec3* freeAxis = nullptr);
+
+/// applyAngularCorrection with the matrices of the bodies' current orientations.
+Vec3 applyAngularCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, const Mat3& rotation0,
+                            const Mat3& rotation1, const Vec3& rotation, double compliance,
+                            double& lambda, double lambdaLimit = kUnlimited);
 
 /// Moves two bodies by a positional impulse gathered elsewhere (a contact patch's block solve):
 /// body 0 by `linear` / m0 and turned by I0⁻¹ `angular0`, body 1 by −`linear` / m1 and turned

@@ -310,5 +310,53 @@ TEST(VelocityCorrectionTest, ChangesRelativeVelocityByDelta) {
     EXPECT_GT(b0.omega.norm(), 0.0);
 }
 
+// --- Block rotation correction (vector form of Eqs. 11-16) ---------------------------------------
+
+/// Two boxes of uneven inertia, turned away from the world axes and from each other.
+Pair unevenPair() {
+    Pair pair(2.0, 3.0, 0.01);
+    pair.bodies[0] = makeBody({.shape = boxShape(Vec3(0.1, 0.5, 0.9)), .mass = 2.0});
+    pair.bodies[0].q = Quat(Eigen::AngleAxisd(0.7, Vec3(1, 2, -1).normalized()));
+    pair.bodies[1].q = Quat(Eigen::AngleAxisd(-1.1, Vec3(0.3, -1, 2).normalized())) * pair.bodies[1].q;
+    return pair;
+}
+
+// A hard alignment with a free axis f (a hinge's, Eq. 20 in block form) turns body 0 relative to
+// body 1 by the rotation's part normal to f, gives no angular impulse about f, and shares the
+// turn by inverse inertia: I0 Δθ0 = Δλ = −I1 Δθ1 (world inertia tensors; angular momentum
+// kept). Checked on bodies whose principal axes lie along none of the directions involved.
+TEST(RotationCorrectionTest, FreeAxisAlignmentTurnsInThePlaneNormalToTheAxis) {
+    Pair pair = unevenPair();
+    const Body before0 = pair.bodies[0], before1 = pair.bodies[1];
+    const Vec3 free = Vec3(0.2, 1.0, -0.4).normalized();
+    const Vec3 rotation = 1e-5 * Vec3(0.3, -0.1, 0.8) + 2e-5 * free;  // a part along f too
+    Vec3 lambda = Vec3::Zero();
+    const Vec3 impulse = applyRotationCorrection(pair.ctx, 0, 1, rotation, 0.0, lambda, &free);
+    EXPECT_NEAR(impulse.dot(free), 0.0, 1e-12 * impulse.norm());
+    EXPECT_EQ(impulse, lambda);
+    const Vec3 turn0 = test::turnBetween(before0.q, pair.bodies[0].q);
+    const Vec3 turn1 = test::turnBetween(before1.q, pair.bodies[1].q);
+    const Vec3 relative = turn0 - turn1;
+    const Vec3 inPlane = rotation - rotation.dot(free) * free;
+    EXPECT_LT((relative - relative.dot(free) * free - inPlane).norm(), 1e-9 * inPlane.norm());
+    EXPECT_LT((inertiaOf(before0) * turn0 - impulse).norm(), 1e-9 * impulse.norm());
+    EXPECT_LT((inertiaOf(before1) * turn1 + impulse).norm(), 1e-9 * impulse.norm());
+}
+
+// Without a free axis the lock turns body 0 relative to body 1 by the whole rotation, shared by
+// inverse inertia: Δλ = (I0⁻¹ + I1⁻¹)⁻¹ θ.
+TEST(RotationCorrectionTest, OrientationLockSharesTheTurnByInverseInertia) {
+    Pair pair = unevenPair();
+    const Body before0 = pair.bodies[0], before1 = pair.bodies[1];
+    const Vec3 rotation = 1e-5 * Vec3(0.3, -0.9, 0.5);
+    Vec3 lambda = Vec3::Zero();
+    const Vec3 impulse = applyRotationCorrection(pair.ctx, 0, 1, rotation, 0.0, lambda);
+    const Mat3 k = inertiaOf(before0).inverse() + inertiaOf(before1).inverse();
+    EXPECT_LT((impulse - k.inverse() * rotation).norm(), 1e-12 * impulse.norm());
+    const Vec3 turn0 = test::turnBetween(before0.q, pair.bodies[0].q);
+    const Vec3 turn1 = test::turnBetween(before1.q, pair.bodies[1].q);
+    EXPECT_LT((turn0 - turn1 - rotation).norm(), 1e-9 * rotation.norm());
+}
+
 }  // namespace
 }  // namespace substep

@@ -43,37 +43,51 @@ double hingeAngle(const Joint& joint, const Body* bodies) {
 }
 
 void solveHingeJoint(const Joint& joint, HingeJoint& hinge, SolverContext& ctx) {
+    const Body& body0 = ctx.bodies[joint.body0];
+    const Body& body1 = ctx.bodies[joint.body1];
+    // The axes a0, a1 in the bodies' principal frames; each part turns them into world axes
+    // with the rotation matrices its correction's inverse inertias are built from.
+    const Vec3 axis0 = frameAxis(joint.frame0);
+    const Vec3 axis1 = frameAxis(joint.frame1);
     {
-        const Vec3 a0 = worldFrame0(joint, ctx.bodies) * Vec3::UnitX();
-        const Vec3 a1 = worldFrame1(joint, ctx.bodies) * Vec3::UnitX();
-        const Vec3 rotation = rotationBetween(a0, a1);  // Eq. 20, with the exact angle
+        const JointRotations rotations(joint, ctx.bodies);
+        const Vec3 a0 = rotations.r0 * axis0;
+        const Vec3 a1 = rotations.r1 * axis1;
+        const Vec3 rotation = jointRotationBetween(a0, a1);  // Eq. 20, with the exact angle
         // Block form over the two directions normal to the hinge axis, so the alignment never
         // turns the hinge itself (applyRotationCorrection).
-        Vec3 free = (a0 + a1).norm() > 1e-9 ? Vec3((a0 + a1).normalized()) : a0;
+        const Vec3 sum = a0 + a1;
+        const double length = sum.norm();
+        Vec3 free = length > 1e-9 ? Vec3(sum / length) : a0;
         if (ctx.projection == JointProjection::Start) {
             // The constrained directions of the substep's start, as the inverse inertias are.
-            const Quat start0 = directionOrientation(ctx, ctx.bodies[joint.body0]) * joint.frame0;
-            const Quat start1 = directionOrientation(ctx, ctx.bodies[joint.body1]) * joint.frame1;
-            const Vec3 s0 = start0 * Vec3::UnitX();
-            const Vec3 s1 = start1 * Vec3::UnitX();
+            const Mat3 start0 = directionRotation(ctx, body0, rotations.r0);
+            const Mat3 start1 = directionRotation(ctx, body1, rotations.r1);
+            const Vec3 s0 = start0 * axis0;
+            const Vec3 s1 = start1 * axis1;
             if ((s0 + s1).norm() > 1e-9) free = (s0 + s1).normalized();
+            hinge.alignment.solve(ctx, joint.body0, joint.body1, start0, start1, rotation, 0.0, &free);
+        } else {
+            hinge.alignment.solve(ctx, joint.body0, joint.body1, rotations.r0, rotations.r1, rotation, 0.0, &free);
         }
-        hinge.alignment.solve(ctx, joint.body0, joint.body1, rotation, 0.0, &free);
     }
     Vec3 b1;
     if (hinge.drive != JointDrive::None) {
-        const Mat3 f0 = worldFrame0(joint, ctx.bodies).toRotationMatrix();
-        if (normalInHingePlane(f0.col(0), worldFrame1(joint, ctx.bodies) * Vec3::UnitY(), b1)) {
+        const JointRotations rotations(joint, ctx.bodies);
+        const Vec3 a0 = rotations.r0 * axis0;
+        if (normalInHingePlane(a0, rotations.r1 * frameNormal(joint.frame1), b1)) {
             // Eq. 21: b_target = rot(a0, α) b0, turned onto b1.
-            const Vec3 target = Eigen::AngleAxisd(hinge.target, f0.col(0)) * f0.col(1);
-            hinge.drivePart.solve(ctx, joint.body0, joint.body1, rotationBetween(target, b1),
-                                  hinge.driveCompliance);
+            const Vec3 target = Eigen::AngleAxisd(hinge.target, a0) * (rotations.r0 * frameNormal(joint.frame0));
+            hinge.drivePart.solve(ctx, joint.body0, joint.body1, rotations.r0, rotations.r1,
+                                  rotationBetween(target, b1), hinge.driveCompliance);
         }
     }
     if (hinge.hasLimits) {
-        const Mat3 f0 = worldFrame0(joint, ctx.bodies).toRotationMatrix();
-        if (normalInHingePlane(f0.col(0), worldFrame1(joint, ctx.bodies) * Vec3::UnitY(), b1))
-            hinge.limit.solveLimit(ctx, joint.body0, joint.body1, f0.col(0), f0.col(1), b1,
+        const JointRotations rotations(joint, ctx.bodies);
+        const Vec3 a0 = rotations.r0 * axis0;
+        if (normalInHingePlane(a0, rotations.r1 * frameNormal(joint.frame1), b1))
+            hinge.limit.solveLimit(ctx, joint.body0, joint.body1, rotations.r0, rotations.r1, a0,
+                                   signedAngle(a0, rotations.r0 * frameNormal(joint.frame0), b1),
                                    hinge.limits.lower, hinge.limits.upper, hinge.limitCompliance);
     }
     hinge.attachment.solve(ctx, joint.body0, joint.body1, joint.anchor0, joint.anchor1, joint.compliance);

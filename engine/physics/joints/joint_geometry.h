@@ -5,6 +5,8 @@
 #include "physics/correction.h"
 #include "physics/joints/joint.h"
 
+#include <cmath>
+
 namespace substep {
 
 /// World anchor points of a joint and their offsets from the centres of mass.
@@ -31,6 +33,55 @@ inline Quat worldFrame0(const Joint& joint, const Body* bodies) {
 inline Quat worldFrame1(const Joint& joint, const Body* bodies) {
     return bodies[joint.body1].q * joint.frame1;
 }
+
+/// atan(t) / t as a polynomial in t² (the Taylor series through t¹⁵), for t² ≤ 0.01.
+inline double atanSeries(double t2) {
+    return 1.0 + t2 * (-1.0 / 3 + t2 * (1.0 / 5 + t2 * (-1.0 / 7 + t2 * (1.0 / 9 + t2 * (-1.0 / 11 + t2 * (1.0 / 13 + t2 * (-1.0 / 15)))))));
+}
+
+/// Column 0 of the rotation matrix of the unit quaternion f: a joint frame's axis a, in the
+/// frame's parent coordinates, without building the rest of the matrix.
+inline Vec3 frameAxis(const Quat& f) {
+    return {1.0 - 2.0 * (f.y() * f.y() + f.z() * f.z()), 2.0 * (f.x() * f.y() + f.w() * f.z()),
+            2.0 * (f.x() * f.z() - f.w() * f.y())};
+}
+/// Column 1 of the rotation matrix of the unit quaternion f: a joint frame's normal b.
+inline Vec3 frameNormal(const Quat& f) {
+    return {2.0 * (f.x() * f.y() - f.w() * f.z()), 1.0 - 2.0 * (f.x() * f.x() + f.z() * f.z()),
+            2.0 * (f.y() * f.z() + f.w() * f.x())};
+}
+
+/// atan2(s, c): by its Taylor series in t = s/c where c > 0 and |s| ≤ c/10 (the odd terms
+/// through t¹⁵, whose remainder is below 1e-17 of the result, so the two agree to rounding),
+/// by std::atan2 elsewhere. A joint's angles are mostly small, and the series costs a division
+/// and eight multiply-adds where std::atan2 takes several times as long.
+inline double jointAtan2(double s, double c) {
+    if (!(c > 0.0) || !(std::abs(s) <= 0.1 * c)) return std::atan2(s, c);
+    const double t = s / c;
+    return t * atanSeries(t * t);
+}
+
+/// rotationBetween (math.h) with jointAtan2's series for small angles, where it needs neither
+/// the square root of |from × to| nor an arctangent: the rotation vector (axis times angle)
+/// turning unit vector `from` onto unit vector `to` the short way.
+inline Vec3 jointRotationBetween(const Vec3& from, const Vec3& to) {
+    const Vec3 axis = from.cross(to);  // |axis| = sin θ
+    const double c = from.dot(to);     // cos θ
+    const double s2 = axis.squaredNorm();
+    if (!(c > 0.0) || !(s2 <= 0.01 * c * c)) return rotationBetween(from, to);
+    // θ / sin θ = atan(t) / (t c) with t = tan θ.
+    const double inverseC = 1.0 / c;
+    return axis * (atanSeries(s2 * inverseC * inverseC) * inverseC);
+}
+
+/// The rotation matrices of a joint's two bodies on their current orientations. A joint part
+/// computes them once and shares them between its geometry (axes, normals, lever arms) and its
+/// correction's inverse inertias; after a part has moved the bodies the next one takes new ones.
+struct JointRotations {
+    Mat3 r0, r1;
+    JointRotations(const Joint& joint, const Body* bodies)
+        : r0(bodies[joint.body0].q.toRotationMatrix()), r1(bodies[joint.body1].q.toRotationMatrix()) {}
+};
 
 /// What a type's evaluation reports on the current state.
 struct JointEvaluation {

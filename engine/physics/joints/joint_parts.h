@@ -36,6 +36,14 @@ struct PointPart {
                const Vec3& anchor1, double compliance) {
         impulse += applyAttachmentCorrection(ctx, body0, body1, anchor0, anchor1, compliance, lambda);
     }
+    /// With the gap delta = p1 − p0, the lever arms and the matrices they were taken on computed
+    /// by the joint (joint_geometry.h's JointRotations), which shares them between its parts.
+    void solve(SolverContext& ctx, uint32_t body0, uint32_t body1, const Mat3& rotation0,
+               const Mat3& rotation1, const Vec3& delta, const Vec3& arm0, const Vec3& arm1,
+               double compliance) {
+        impulse += applyPointCorrection(ctx, body0, body1, rotation0, rotation1, delta, arm0, arm1,
+                                        compliance, lambda);
+    }
 };
 
 /// Positional correction (3.3.1, Eq. 2 to Eq. 9 in applyPositionalCorrection): moves the
@@ -71,7 +79,24 @@ struct RotationPart {
                double compliance, const Vec3* freeAxis = nullptr) {
         impulse += applyRotationCorrection(ctx, body0, body1, rotation, compliance, lambda, freeAxis);
     }
+    /// With the matrices of the orientations directionOrientation names.
+    void solve(SolverContext& ctx, uint32_t body0, uint32_t body1, const Mat3& rotation0,
+               const Mat3& rotation1, const Vec3& rotation, double compliance,
+               const Vec3* freeAxis = nullptr) {
+        impulse += applyRotationCorrection(ctx, body0, body1, rotation0, rotation1, rotation,
+                                           compliance, lambda, freeAxis);
+    }
 };
+
+/// How far the angle φ lies beyond [lower, upper] (Algorithm 3 with ERRATA items 3-4): φ minus
+/// the bound it passed, taken the short way round; 0 inside.
+inline double limitExcess(double phi, double lower, double upper) {
+    if (phi >= lower && phi <= upper) return 0.0;
+    double excess = phi - (phi < lower ? lower : upper);
+    if (excess > M_PI) excess -= 2.0 * M_PI;
+    if (excess <= -M_PI) excess += 2.0 * M_PI;
+    return excess;
+}
 
 /// Angular correction (3.3.2, Eq. 11 to Eq. 16 in applyAngularCorrection): turns body 0 by
 /// `rotation` relative to body 1; or, as a limit, Algorithm 3.
@@ -88,6 +113,12 @@ struct AnglePart {
                double compliance) {
         impulse += applyAngularCorrection(ctx, body0, body1, rotation, compliance, lambda);
     }
+    /// With the matrices of the bodies' current orientations.
+    void solve(SolverContext& ctx, uint32_t body0, uint32_t body1, const Mat3& rotation0,
+               const Mat3& rotation1, const Vec3& rotation, double compliance) {
+        impulse += applyAngularCorrection(ctx, body0, body1, rotation0, rotation1, rotation,
+                                          compliance, lambda);
+    }
     /// Algorithm 3 (with ERRATA items 3-4): keeps the angle from n0 to n1 about n inside
     /// [lower, upper]. n, n0, n1 are unit vectors, n0 and n1 perpendicular to n.
     void solveLimit(SolverContext& ctx, uint32_t body0, uint32_t body1, const Vec3& n,
@@ -102,6 +133,14 @@ struct AnglePart {
         if (excess > M_PI) excess -= 2.0 * M_PI;
         if (excess <= -M_PI) excess += 2.0 * M_PI;
         solve(ctx, body0, body1, excess * n, compliance);
+    }
+    /// The same with the matrices of the bodies' current orientations, and φ measured by the
+    /// caller (limitExcess): a joint that has the angle at hand for its other parts passes it on.
+    void solveLimit(SolverContext& ctx, uint32_t body0, uint32_t body1, const Mat3& rotation0,
+                    const Mat3& rotation1, const Vec3& n, double phi, double lower, double upper,
+                    double compliance) {
+        const double excess = limitExcess(phi, lower, upper);
+        if (excess != 0.0) solve(ctx, body0, body1, rotation0, rotation1, excess * n, compliance);
     }
 };
 

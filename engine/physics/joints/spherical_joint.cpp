@@ -16,17 +16,25 @@
 namespace substep {
 namespace {
 
-/// Unit swing axis n and whether a swing correction can be needed at all.
-bool swingAxis(const Vec3& a0, const Vec3& a1, Vec3& n) {
+/// Unit swing axis n and whether a swing correction can be needed at all; `angle` is then the
+/// swing, the angle from a0 to a1 about n (Algorithm 3's φ, in [0, π]).
+bool swingAxis(const Vec3& a0, const Vec3& a1, Vec3& n, double& angle) {
     const Vec3 cross = a0.cross(a1);
     const double length = cross.norm();
+    const double c = a0.dot(a1);
     if (length > kDirectionEpsilon) {
         n = cross / length;
+        angle = jointAtan2(length, c);  // (a0 × a1) · n = |a0 × a1|
         return true;
     }
-    if (a0.dot(a1) > 0.0) return false;  // aligned
-    n = anyPerpendicular(a0);            // anti-parallel: swing is π in every plane
+    if (c > 0.0) return false;  // aligned
+    n = anyPerpendicular(a0);   // anti-parallel: swing is π in every plane
+    angle = M_PI;
     return true;
+}
+bool swingAxis(const Vec3& a0, const Vec3& a1, Vec3& n) {
+    double angle;
+    return swingAxis(a0, a1, n, angle);
 }
 
 /// |a0 + a1| below which twist is treated as undefined (a swing beyond about 177°).
@@ -54,20 +62,30 @@ bool twistFrame(const Mat3& f0, const Mat3& f1, Vec3& n, Vec3& n0, Vec3& n1) {
 }  // namespace
 
 void solveSphericalJoint(const Joint& joint, SphericalJoint& spherical, SolverContext& ctx) {
+    // Each limit measures its frames with the rotation matrices its correction's inverse
+    // inertias are built from; the axes and normals in the bodies' principal frames are the
+    // joint frames' first two columns.
     if (spherical.hasSwingLimit) {
-        const Vec3 a0 = worldFrame0(joint, ctx.bodies) * Vec3::UnitX();
-        const Vec3 a1 = worldFrame1(joint, ctx.bodies) * Vec3::UnitX();
+        const JointRotations rotations(joint, ctx.bodies);
+        const Vec3 a0 = rotations.r0 * frameAxis(joint.frame0);
+        const Vec3 a1 = rotations.r1 * frameAxis(joint.frame1);
         Vec3 n;
-        if (swingAxis(a0, a1, n))
-            spherical.swing.solveLimit(ctx, joint.body0, joint.body1, n, a0, a1, -spherical.swingLimit,
-                                       spherical.swingLimit, spherical.swingCompliance);
+        double swing;
+        if (swingAxis(a0, a1, n, swing))
+            spherical.swing.solveLimit(ctx, joint.body0, joint.body1, rotations.r0, rotations.r1, n, swing,
+                                       -spherical.swingLimit, spherical.swingLimit, spherical.swingCompliance);
     }
     if (spherical.hasTwistLimits) {
-        const Mat3 f0 = worldFrame0(joint, ctx.bodies).toRotationMatrix();
-        const Mat3 f1 = worldFrame1(joint, ctx.bodies).toRotationMatrix();
+        const JointRotations rotations(joint, ctx.bodies);
+        Mat3 f0, f1;
+        f0.col(0) = rotations.r0 * frameAxis(joint.frame0);
+        f0.col(1) = rotations.r0 * frameNormal(joint.frame0);
+        f1.col(0) = rotations.r1 * frameAxis(joint.frame1);
+        f1.col(1) = rotations.r1 * frameNormal(joint.frame1);
         Vec3 n, n0, n1;
         if (twistFrame(f0, f1, n, n0, n1))
-            spherical.twist.solveLimit(ctx, joint.body0, joint.body1, n, n0, n1, spherical.twistLimits.lower,
+            spherical.twist.solveLimit(ctx, joint.body0, joint.body1, rotations.r0, rotations.r1, n,
+                                       jointAtan2(n0.cross(n1).dot(n), n0.dot(n1)), spherical.twistLimits.lower,
                                        spherical.twistLimits.upper, spherical.twistCompliance);
     }
     spherical.attachment.solve(ctx, joint.body0, joint.body1, joint.anchor0, joint.anchor1, joint.compliance);

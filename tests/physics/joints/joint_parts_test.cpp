@@ -213,5 +213,50 @@ TEST(JointPartsTest, AngleLimitTurnsBothBodiesByHalfTheExcess) {
     EXPECT_TRUE(inside.impulse.isZero(0));
 }
 
+// The form of solveLimit that takes the bodies' rotation matrices and the measured angle (the
+// one the joints call) on the same pair: each body turns by half the 0.3 rad excess; inside the
+// limits nothing moves.
+TEST(JointPartsTest, AngleLimitWithRotationMatricesTurnsBothBodiesByHalfTheExcess) {
+    Body bodies[2] = {makeBody({.shape = boxShape(Vec3(0.2, 0.2, 0.2)), .mass = 1.0}),
+                      makeBody({.shape = boxShape(Vec3(0.2, 0.2, 0.2)), .mass = 1.0,
+                                .orientation = Quat(Eigen::AngleAxisd(0.5, Vec3::UnitZ()))})};
+    SolverContext ctx{.bodies = bodies, .h = 1.0 / 60, .invH2 = 3600.0};
+    const auto x = [&](int i) { return Vec3(bodies[i].q * Vec3::UnitX()); };
+    const auto phi = [&] { return signedAngle(Vec3::UnitZ(), x(0), x(1)); };
+    AnglePart inside;
+    inside.solveLimit(ctx, 0, 1, bodies[0].q.toRotationMatrix(), bodies[1].q.toRotationMatrix(), Vec3::UnitZ(),
+                      phi(), -0.5, 0.5, 0.0);
+    EXPECT_EQ(inside.lambda, 0.0);
+    EXPECT_NEAR(phi(), 0.5, 1e-15);
+    AnglePart limit;
+    limit.solveLimit(ctx, 0, 1, bodies[0].q.toRotationMatrix(), bodies[1].q.toRotationMatrix(), Vec3::UnitZ(),
+                     phi(), -0.2, 0.2, 0.0);
+    EXPECT_NEAR(std::atan2(x(0).y(), x(0).x()), 0.15, 1e-9);
+    EXPECT_NEAR(std::atan2(x(1).y(), x(1).x()), 0.35, 1e-9);
+    EXPECT_GT(limit.lambda, 0.0);
+}
+
+// limitExcess (Algorithm 3's violation with ERRATA items 3-4): zero inside the limits, the angle
+// past the bound it crossed outside, taken the short way round the circle.
+TEST(JointPartsTest, LimitExcessIsTheAnglePastTheBoundTheShortWayRound) {
+    EXPECT_EQ(limitExcess(0.1, -0.2, 0.3), 0.0);
+    EXPECT_EQ(limitExcess(0.3, -0.2, 0.3), 0.0);
+    EXPECT_NEAR(limitExcess(0.5, -0.2, 0.3), 0.2, 1e-15);
+    EXPECT_NEAR(limitExcess(-0.5, -0.2, 0.3), -0.3, 1e-15);
+    // 3 rad is 5 rad past an upper bound of −2 but 1.28 rad short of it the other way round.
+    EXPECT_NEAR(limitExcess(3.0, -3.1, -2.0), 5.0 - 2.0 * kPi, 1e-15);
+}
+
+// frameAxis and frameNormal (joint_geometry.h) are the first two columns of the frame's rotation
+// matrix, for frames turned every way.
+TEST(JointGeometryTest, FrameAxisAndNormalAreTheFramesFirstColumns) {
+    for (int i = 0; i < 20; ++i) {
+        const Quat frame(Eigen::AngleAxisd(0.4 * i - 3.0, Vec3(std::sin(i), std::cos(3 * i), 0.5).normalized()));
+        const Mat3 columns = frame.toRotationMatrix();
+        EXPECT_LT((frameAxis(frame) - columns.col(0)).norm(), 1e-15);
+        EXPECT_LT((frameNormal(frame) - columns.col(1)).norm(), 1e-15);
+    }
+}
+
 }  // namespace
 }  // namespace substep
