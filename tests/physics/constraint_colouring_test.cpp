@@ -106,7 +106,9 @@ TEST(ColourGroupsTest, EveryItemOnceInItsColourInOrder) {
             total += group.size();
             for (size_t k = 0; k < group.size(); ++k) {
                 EXPECT_EQ(colourOf[group[k]], g);
-                if (k > 0) EXPECT_LT(group[k - 1], group[k]) << "the items' order within a colour";
+                if (k > 0) {
+                    EXPECT_LT(group[k - 1], group[k]) << "the items' order within a colour";
+                }
             }
         }
         EXPECT_EQ(total, list.size());
