@@ -358,8 +358,12 @@ private:
     bool repairPending_ = false;
     /// The worker threads, made when settings().threads first asks for more than one.
     std::unique_ptr<WorkerPool> pool_;
-    /// Per chunk of pairs of a parallel narrowphase: its contacts, merged in chunk order.
+    /// Per chunk of pairs of a parallel narrowphase: its contacts and its pairs that touch,
+    /// merged in chunk order; where each chunk's contacts and touching pairs start in the merge.
     std::vector<std::vector<Contact>> chunkContacts_;
+    std::vector<std::vector<uint32_t>> chunkTouching_;
+    std::vector<uint32_t> chunkContactOffsets_;
+    std::vector<uint32_t> chunkTouchingOffsets_;
     /// The contacts of pairs [first, last) into `out` (first-relative offsets in pair.first):
     /// of contactPairs_[order[k]] for k in [first, last), or contactPairs_[k] when order is null.
     void findPairContacts(const uint32_t* order, size_t first, size_t last, bool sleeping,
