@@ -18,7 +18,8 @@
 namespace substep {
 namespace {
 
-/// Pairs per chunk of a parallel narrowphase: enough work to outweigh handing a chunk out.
+/// Below twice this many pairs the narrowphase runs on the calling thread alone; the cancellation
+/// flag is asked every this many pairs.
 constexpr size_t kPairsPerChunk = 64;
 
 }  // namespace
@@ -132,14 +133,16 @@ void World::findContacts(bool sleeping) {
     // In parallel: each chunk of pairs finds its contacts and its touching pairs into its own
     // lists, and the lists are joined in chunk order (each chunk copying its own at offsets
     // summed in order), so the contacts and touching pairs are the serial ones, in the serial
-    // order.
-    const size_t chunks = (pairs + kPairsPerChunk - 1) / kPairsPerChunk;
+    // order. One chunk per thread, so that each thread visits the same bodies as in the other
+    // stages (world_parallel.cpp, forChunks).
+    const auto chunks = static_cast<size_t>(pool->threads());
+    const auto chunkStart = [&](size_t chunk) { return pairs * chunk / chunks; };
     if (chunkContacts_.size() < chunks) chunkContacts_.resize(chunks);
     if (chunkTouching_.size() < chunks) chunkTouching_.resize(chunks);
     const auto pairIndex = [&](size_t k) { return static_cast<uint32_t>(order ? order[k] : k); };
     pool->parallelFor(static_cast<int>(chunks), [&](int chunk) {
-        const size_t first = static_cast<size_t>(chunk) * kPairsPerChunk;
-        const size_t last = std::min(pairs, first + kPairsPerChunk);
+        const size_t first = chunkStart(static_cast<size_t>(chunk));
+        const size_t last = chunkStart(static_cast<size_t>(chunk) + 1);
         chunkContacts_[chunk].clear();
         findPairContacts(order, first, last, sleeping, chunkContacts_[chunk]);
         std::vector<uint32_t>& touching = chunkTouching_[chunk];
@@ -161,8 +164,7 @@ void World::findContacts(bool sleeping) {
     touchingPairs_.resize(chunkTouchingOffsets_[chunks]);
     pool->parallelFor(static_cast<int>(chunks), [&](int chunk) {
         const uint32_t offset = chunkContactOffsets_[chunk];
-        const size_t first = static_cast<size_t>(chunk) * kPairsPerChunk;
-        for (size_t k = first; k < std::min(pairs, first + kPairsPerChunk); ++k)
+        for (size_t k = chunkStart(static_cast<size_t>(chunk)); k < chunkStart(static_cast<size_t>(chunk) + 1); ++k)
             contactPairs_[pairIndex(k)].first += offset;
         std::copy(chunkContacts_[chunk].begin(), chunkContacts_[chunk].end(), contacts_.begin() + offset);
         std::copy(chunkTouching_[chunk].begin(), chunkTouching_[chunk].end(),
