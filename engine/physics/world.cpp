@@ -3,6 +3,7 @@
 #include "physics/step_cancellation.h"
 #include "physics/substep_corrections.h"
 
+#include "physics/constraint_colouring.h"
 #include "physics/joint_block_solve.h"
 #include "physics/joints/joint_frame.h"
 #include "physics/joints/joint_geometry.h"
@@ -293,8 +294,12 @@ void World::beginFrame(double dt) {
     if (soft) soft_->setPatchFriction(settings_.softPatchFriction);
     if (soft) soft_->setHeldContacts(settings_.softHeldContacts);
     if (soft) soft_->collectCandidates(bodies_, dt, settings_.contactMargin, settings_.gravity);
+    // The parallel step's order (world_parallel.cpp); recording corrections keeps the serial one.
+    const bool coloured = colouredSolveActive() && !corrections_;
+    if (coloured) colourConstraints();
     lap(stepTimes_.broadphase);
-    frame_ = {.open = true, .dt = dt, .h = h, .substeps = substeps, .done = 0, .sleeping = sleeping, .soft = soft};
+    frame_ = {.open = true, .dt = dt, .h = h, .substeps = substeps, .done = 0, .sleeping = sleeping, .soft = soft,
+              .coloured = coloured};
 }
 
 bool World::substep() {
@@ -312,6 +317,7 @@ bool World::substep() {
     lap(stepTimes_.integrate);
     if (!contactPairs_.empty()) findContacts(frame_.sleeping);
     else touchingPairs_.clear();
+    if (frame_.coloured) groupTouchingPairs();
     if (soft) soft_->findContacts(bodies_, settings_.contactMargin);
     if (soft) soft_->holdContactParticles();  // none unless SoftSystem::setHeldContacts
     lap(stepTimes_.narrowphase);
@@ -410,12 +416,8 @@ void World::integrate(double h) {
         if (!b.isotropic) b.omega = b.q * implicitGyroscopicStep(b.q.conjugate() * b.omega, b.inertia, h);
         integrateRotation(b.q, h * b.omega);
     };
-    // While some bodies sleep, the awake ones' list alone.
-    if (sleepFlags_) {
-        for (const uint32_t i : awakeBodies_) advance(bodies_[i]);
-    } else {
-        for (Body& b : bodies_) advance(b);
-    }
+    // While some bodies sleep, the awake ones' list alone; in chunks with more than one thread.
+    forEachMovingBody(advance);
 }
 
 void World::solvePositions(double h) {
@@ -433,6 +435,8 @@ void World::solvePositions(double h) {
     JointBlockSolver* const clusters = blockSolveActive() ? blocks_.get() : nullptr;
     if (corrections_) [[unlikely]] {
         corrections_->solveRecorded(joints_, sleepFlags_, clusters, contactPairs_, contacts_, ctx);
+    } else if (frame_.coloured) {
+        solveColouredPositions(ctx, clusters);  // by colour, in parallel (world_parallel.cpp)
     } else {
         if (clusters != nullptr) {
             for (uint32_t j = 0; j < joints_.size(); ++j) {
@@ -486,11 +490,7 @@ void World::deriveVelocities(double h) {
         // Algorithm 2's ω = ±2 Δq_xyz / h, made exact (see angularVelocityBetween).
         b.omega = angularVelocityBetween(b.qPrev, b.q, invH);
     };
-    if (sleepFlags_) {
-        for (const uint32_t i : awakeBodies_) derive(bodies_[i]);
-    } else {
-        for (Body& b : bodies_) derive(b);
-    }
+    forEachMovingBody(derive);
 }
 
 void World::solveVelocities(double h) {
@@ -519,6 +519,7 @@ void World::solveVelocities(double h) {
                     around(ConstraintKind::Contact, p, pair.body0, pair.body1,
                            [&] { solveCollisionVelocities(pair, contacts_[pair.first], bodies_.data(), h); });
             }
+        if (frame_.coloured && !corrections_) return solveColouredContactVelocities(h, gravity);
         for (const uint32_t p : touchingPairs_) {
             const ContactPair& pair = contactPairs_[p];
             around(ConstraintKind::Contact, p, pair.body0, pair.body1, [&] {

@@ -20,6 +20,7 @@
 
 namespace substep {
 
+class ColouredSolve;
 class JointBlockSolver;
 class SoftSystem;
 class SubstepCorrections;
@@ -64,10 +65,16 @@ struct WorldSettings {
     /// sleeps (their coupling to rigid bodies is not part of the islands).
     bool sleeping = false;
     SleepSettings sleep;
-    /// Threads the step uses (the caller's among them; 1: no other thread). Only stages whose
-    /// work items are independent run in parallel (the narrowphase's pairs), each item written
-    /// to its own slot and merged in order, so every thread count gives the same bytes.
+    /// Threads the step uses (the caller's among them; 1: no other thread). The narrowphase,
+    /// integration and velocity derivation run in parallel, each item written to its own slot,
+    /// so they give the same bytes for every thread count. With more than one thread the
+    /// position solve and the velocity pass take their constraints by colour
+    /// (constraint_colouring.h): that order differs from the serial one, so 1 thread gives other
+    /// bytes than 2, while 2, 3, 4 ... give the same bytes as `colouredSolve` at 1 thread.
     int threads = 1;
+    /// Solve contacts and joints in the coloured order at 1 thread too (always on with more
+    /// threads): the reference the parallel runs are compared with. Gauss-Seidel only.
+    bool colouredSolve = false;
     /// Where joint corrections take their directions from (correction.h): the paper's current
     /// state, or the substep's start, which keeps the energy of jointed bodies.
     JointProjection jointProjection = JointProjection::Paper;
@@ -276,6 +283,43 @@ private:
     /// Adds the time since the last lap to `bucket` (WorldSettings::measureTime).
     void lap(double& bucket);
 
+    // The parallel step (world_parallel.cpp).
+    /// Whether this frame solves by colour: Gauss-Seidel, and more than one thread or
+    /// WorldSettings::colouredSolve.
+    bool colouredSolveActive() const;
+    /// The worker pool for settings().threads, made on first use; null at 1 thread.
+    WorkerPool* workerPool();
+    /// Colours the frame's contact pairs and joints (beginFrame, when coloured).
+    void colourConstraints();
+    /// Groups this substep's touching pairs by colour (after the narrowphase, when coloured).
+    void groupTouchingPairs();
+    /// The position solve's joints and contacts by colour, each colour in parallel chunks.
+    void solveColouredPositions(SolverContext& ctx, JointBlockSolver* clusters);
+    /// The velocity pass's contact solves by colour (after the serial joints and collisions).
+    void solveColouredContactVelocities(double h, double gravity);
+    /// Calls advance(body) for every body the per-substep loops visit (all, or the awake ones),
+    /// in parallel chunks when the pool is there and the bodies are many. `advance` writes its
+    /// own body alone, so any split gives the same bytes.
+    template <class Advance>
+    void forEachMovingBody(const Advance& advance) {
+        visitBodyRanges(
+            [](const void* context, World& world, size_t first, size_t last) {
+                const Advance& visit = *static_cast<const Advance*>(context);
+                if (world.sleepFlags_) {
+                    for (size_t k = first; k < last; ++k) visit(world.bodies_[world.awakeBodies_[k]]);
+                } else {
+                    for (size_t k = first; k < last; ++k) visit(world.bodies_[k]);
+                }
+            },
+            &advance);
+    }
+    /// Runs task(context, *this, first, last) over [0, n) of the bodies forEachMovingBody visits
+    /// (n: the awake list's length while some sleep, else every body), in chunks.
+    using BodyRangeTask = void (*)(const void* context, World& world, size_t first, size_t last);
+    void visitBodyRanges(BodyRangeTask task, const void* context);
+    /// Colours, groups and scratch of the coloured solve, made with the first coloured frame.
+    std::unique_ptr<ColouredSolve> coloured_;
+
     /// The frame in progress between beginFrame and endFrame.
     struct FrameInProgress {
         bool open = false;
@@ -285,6 +329,7 @@ private:
         int done = 0;
         bool sleeping = false;  ///< sleeping acts in this frame
         bool soft = false;      ///< soft bodies take part
+        bool coloured = false;  ///< the solve takes constraints by colour (colouredSolveActive)
     };
     FrameInProgress frame_;
     std::chrono::steady_clock::time_point lapMark_;
@@ -320,8 +365,12 @@ private:
     bool repairPending_ = false;
     /// The worker threads, made when settings().threads first asks for more than one.
     std::unique_ptr<WorkerPool> pool_;
-    /// Per chunk of pairs of a parallel narrowphase: its contacts, merged in chunk order.
+    /// Per chunk of pairs of a parallel narrowphase: its contacts and its pairs that touch,
+    /// merged in chunk order; where each chunk's contacts and touching pairs start in the merge.
     std::vector<std::vector<Contact>> chunkContacts_;
+    std::vector<std::vector<uint32_t>> chunkTouching_;
+    std::vector<uint32_t> chunkContactOffsets_;
+    std::vector<uint32_t> chunkTouchingOffsets_;
     /// The contacts of pairs [first, last) into `out` (first-relative offsets in pair.first):
     /// of contactPairs_[order[k]] for k in [first, last), or contactPairs_[k] when order is null.
     void findPairContacts(const uint32_t* order, size_t first, size_t last, bool sleeping,

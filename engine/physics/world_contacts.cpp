@@ -18,7 +18,8 @@
 namespace substep {
 namespace {
 
-/// Pairs per chunk of a parallel narrowphase: enough work to outweigh handing a chunk out.
+/// Below twice this many pairs the narrowphase runs on the calling thread alone; the cancellation
+/// flag is asked every this many pairs.
 constexpr size_t kPairsPerChunk = 64;
 
 }  // namespace
@@ -113,44 +114,62 @@ void World::collectContactPairs(double dt) {
 }
 
 void World::findContacts(bool sleeping) {
-    contacts_.clear();
     // Each colliding body's shape pose, once per substep rather than once per pair; while some
-    // sleep, the awake bodies' and pairs' lists alone are visited.
-    const auto pose = [&](uint32_t i) {
-        if (reaches_[i] > 0.0) poses_[i] = {bodies_[i].userPosition(), bodies_[i].userOrientation()};
+    // sleep, the awake bodies' and pairs' lists alone are visited (in chunks with more threads).
+    const auto pose = [&](Body& body) {
+        const auto i = static_cast<size_t>(&body - bodies_.data());
+        if (reaches_[i] > 0.0) poses_[i] = {body.userPosition(), body.userOrientation()};
     };
-    if (sleepFlags_) {
-        for (const uint32_t i : awakeBodies_) pose(i);
-    } else {
-        for (uint32_t i = 0; i < bodies_.size(); ++i) pose(i);
-    }
+    forEachMovingBody(pose);
     const uint32_t* order = sleepFlags_ ? awakePairs_.data() : nullptr;
     const size_t pairs = sleepFlags_ ? awakePairs_.size() : contactPairs_.size();
-    const int threads = std::clamp(settings_.threads, 1, 64);
-    if (threads == 1 || pairs < 2 * kPairsPerChunk) {
+    WorkerPool* const pool = workerPool();
+    if (pool == nullptr || pairs < 2 * kPairsPerChunk) {
+        contacts_.clear();
         findPairContacts(order, 0, pairs, sleeping, contacts_);
         listTouchingPairs();
         return;
     }
-    // In parallel: each chunk of pairs finds its contacts into its own list, and the lists are
-    // joined in chunk order, so the contacts are the serial ones, in the serial order.
-    if (!pool_ || pool_->threads() != threads) pool_ = std::make_unique<WorkerPool>(threads);
-    const size_t chunks = (pairs + kPairsPerChunk - 1) / kPairsPerChunk;
+    // In parallel: each chunk of pairs finds its contacts and its touching pairs into its own
+    // lists, and the lists are joined in chunk order (each chunk copying its own at offsets
+    // summed in order), so the contacts and touching pairs are the serial ones, in the serial
+    // order. One chunk per thread, so that each thread visits the same bodies as in the other
+    // stages (world_parallel.cpp, forChunks).
+    const auto chunks = static_cast<size_t>(pool->threads());
+    const auto chunkStart = [&](size_t chunk) { return pairs * chunk / chunks; };
     if (chunkContacts_.size() < chunks) chunkContacts_.resize(chunks);
-    pool_->parallelFor(static_cast<int>(chunks), [&](int chunk) {
-        const size_t first = static_cast<size_t>(chunk) * kPairsPerChunk;
+    if (chunkTouching_.size() < chunks) chunkTouching_.resize(chunks);
+    const auto pairIndex = [&](size_t k) { return static_cast<uint32_t>(order ? order[k] : k); };
+    pool->parallelFor(static_cast<int>(chunks), [&](int chunk) {
+        const size_t first = chunkStart(static_cast<size_t>(chunk));
+        const size_t last = chunkStart(static_cast<size_t>(chunk) + 1);
         chunkContacts_[chunk].clear();
-        findPairContacts(order, first, std::min(pairs, first + kPairsPerChunk), sleeping,
-                         chunkContacts_[chunk]);
+        findPairContacts(order, first, last, sleeping, chunkContacts_[chunk]);
+        std::vector<uint32_t>& touching = chunkTouching_[chunk];
+        touching.clear();
+        for (size_t k = first; k < last; ++k)
+            if (contactPairs_[pairIndex(k)].count > 0) touching.push_back(pairIndex(k));
     });
+    chunkContactOffsets_.resize(chunks + 1);
+    chunkTouchingOffsets_.resize(chunks + 1);
+    chunkContactOffsets_[0] = chunkTouchingOffsets_[0] = 0;
     for (size_t chunk = 0; chunk < chunks; ++chunk) {
-        const auto offset = static_cast<uint32_t>(contacts_.size());
-        const size_t first = chunk * kPairsPerChunk;
-        for (size_t k = first; k < std::min(pairs, first + kPairsPerChunk); ++k)
-            contactPairs_[order ? order[k] : k].first += offset;
-        contacts_.insert(contacts_.end(), chunkContacts_[chunk].begin(), chunkContacts_[chunk].end());
+        chunkContactOffsets_[chunk + 1] =
+            chunkContactOffsets_[chunk] + static_cast<uint32_t>(chunkContacts_[chunk].size());
+        chunkTouchingOffsets_[chunk + 1] =
+            chunkTouchingOffsets_[chunk] + static_cast<uint32_t>(chunkTouching_[chunk].size());
     }
-    listTouchingPairs();
+    // Resized, not cleared: only slots beyond the last substep's count are constructed.
+    contacts_.resize(chunkContactOffsets_[chunks]);
+    touchingPairs_.resize(chunkTouchingOffsets_[chunks]);
+    pool->parallelFor(static_cast<int>(chunks), [&](int chunk) {
+        const uint32_t offset = chunkContactOffsets_[chunk];
+        for (size_t k = chunkStart(static_cast<size_t>(chunk)); k < chunkStart(static_cast<size_t>(chunk) + 1); ++k)
+            contactPairs_[pairIndex(k)].first += offset;
+        std::copy(chunkContacts_[chunk].begin(), chunkContacts_[chunk].end(), contacts_.begin() + offset);
+        std::copy(chunkTouching_[chunk].begin(), chunkTouching_[chunk].end(),
+                  touchingPairs_.begin() + chunkTouchingOffsets_[chunk]);
+    });
 }
 
 void World::listTouchingPairs() {

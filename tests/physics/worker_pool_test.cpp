@@ -1,6 +1,7 @@
 // Tests engine/physics/worker_pool.cpp and its use by the world's narrowphase (world.cpp,
 // WorldSettings::threads): every chunk runs exactly once, for any chunk count, loop after loop;
-// and a pile of bodies steps to the same bytes at 1, 2 and 3 threads, with sleeping too.
+// and a pile of bodies steps to the same bytes at 1 thread (in the coloured order the parallel
+// solve uses, WorldSettings::colouredSolve), 2 and 3 threads, with sleeping too.
 
 #include "physics_test_support.h"
 
@@ -47,7 +48,8 @@ TEST(WorkerPoolTest, ManyShortLoopsInARow) {
 
 /// 240 spheres and boxes dropped into a walled pit, some started inside one another.
 World pile(int threads, bool sleeping) {
-    World world({.gravity = Vec3(0, -10, 0), .substeps = 10, .sleeping = sleeping, .threads = threads});
+    World world({.gravity = Vec3(0, -10, 0), .substeps = 10, .sleeping = sleeping, .threads = threads,
+                 .colouredSolve = true});
     world.createBody({.shape = planeShape(Vec3::UnitY(), 0.0), .type = BodyType::Static});
     for (int side = 0; side < 4; ++side) {
         const double x = side == 0 ? -1.1 : side == 1 ? 1.1 : 0.0;
@@ -103,7 +105,7 @@ TEST(ParallelStepTest, ThreadCountMayChangeBetweenSteps) {
     World changing = pile(1, false);
     for (int frame = 0; frame < 30; ++frame) {
         WorldSettings settings = changing.settings();
-        settings.threads = 1 + frame % 3;
+        settings.threads = 1 + frame % 4;
         changing.setSettings(settings);
         serial.step(test::kDt);
         changing.step(test::kDt);

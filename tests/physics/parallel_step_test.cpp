@@ -1,0 +1,218 @@
+// Tests engine/physics/world_parallel.cpp (WorldSettings::threads, colouredSolve): a pile, a
+// grid of stacks and jointed chains falling on the ground step to the same bytes at 2, 3 and 4
+// threads as in the coloured order at 1 thread; and the coloured parallel solve's physics against
+// closed forms: a pile settles without sinking, stacks stand, head-on collisions keep momentum
+// and give the restitution's relative speed. The scenes are large enough that colours of at
+// least 128 constraints (world_parallel.cpp's kMinParallelItems) run split over the threads.
+
+#include "physics_test_support.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstring>
+#include <vector>
+
+namespace substep {
+namespace {
+
+WorldSettings settingsFor(int threads, bool sleeping = false) {
+    return {.gravity = Vec3(0, -10, 0), .substeps = 10, .sleeping = sleeping, .threads = threads,
+            .colouredSolve = true};
+}
+
+void addFloorAndWalls(World& world, double half) {
+    world.createBody({.shape = planeShape(Vec3::UnitY(), 0.0), .type = BodyType::Static});
+    for (int side = 0; side < 4; ++side) {
+        const double x = side == 0 ? -half : side == 1 ? half : 0.0;
+        const double z = side == 2 ? -half : side == 3 ? half : 0.0;
+        const Vec3 size = side < 2 ? Vec3(0.2, 3.0, 2 * half + 0.2) : Vec3(2 * half + 0.2, 3.0, 0.2);
+        world.createBody({.shape = boxShape(size), .type = BodyType::Static, .position = Vec3(x, 1.5, z)});
+    }
+}
+
+/// 343 spheres (radius 5 cm, masses 0.1 to 0.4 kg) and boxes dropped in a 7 x 7 column into a
+/// walled pit, the layers touching.
+World pile(const WorldSettings& settings) {
+    World world(settings);
+    addFloorAndWalls(world, 0.5);
+    for (int i = 0; i < 343; ++i) {
+        const Vec3 position(-0.3 + 0.1 * (i % 7) + 0.002 * (i % 3), 0.06 + 0.1 * (i / 49),
+                            -0.3 + 0.1 * ((i / 7) % 7));
+        const Shape shape = i % 5 == 4 ? boxShape(Vec3(0.08, 0.07, 0.09)) : sphereShape(0.05);
+        world.createBody({.shape = shape, .mass = 0.1 + 0.05 * (i % 7), .position = position,
+                          .restitution = 0.1 * (i % 3)});
+    }
+    return world;
+}
+
+/// 36 stacks of 8 boxes of 20 cm, 1 kg, 1 mm apart, on the ground.
+World stacks(const WorldSettings& settings) {
+    World world(settings);
+    world.createBody({.shape = planeShape(Vec3::UnitY(), 0.0), .type = BodyType::Static});
+    for (int stack = 0; stack < 36; ++stack)
+        for (int level = 0; level < 8; ++level)
+            world.createBody({.shape = boxShape(Vec3(0.2, 0.2, 0.2)), .mass = 1.0,
+                              .position = Vec3(0.3 * (stack % 6), 0.1 + 0.201 * level, 0.3 * (stack / 6))});
+    return world;
+}
+
+/// 24 chains of 12 boxes joined by ball joints (two colours of 144 joints), hung from the world
+/// at one end and let fall across one another onto a row of spheres lying on the ground.
+World chains(const WorldSettings& settings) {
+    World world(settings);
+    world.createBody({.shape = planeShape(Vec3::UnitY(), 0.0), .type = BodyType::Static});
+    for (int i = 0; i < 24; ++i)
+        world.createBody({.shape = sphereShape(0.1), .mass = 0.5, .position = Vec3(0.15 * i - 1.8, 0.1, 0.3)});
+    for (int chain = 0; chain < 24; ++chain) {
+        BodyId previous;  // null: the world
+        const Vec3 top(-1.2 + 0.1 * chain, 0.9, 0.05 * chain);
+        for (int link = 0; link < 12; ++link) {
+            const BodyId body = world.createBody({.shape = boxShape(Vec3(0.1, 0.04, 0.04)), .mass = 0.2,
+                                                  .position = top + Vec3(0.1 * link + 0.05, 0.0, 0.0)});
+            world.createJoint({.type = JointType::Spherical,
+                               .body0 = previous,
+                               .body1 = body,
+                               .anchor0 = previous.isNull() ? top : Vec3(0.05, 0.0, 0.0),
+                               .anchor1 = Vec3(-0.05, 0.0, 0.0)});
+            previous = body;
+        }
+    }
+    return world;
+}
+
+int differingBodies(const World& a, const World& b) {
+    int differing = 0;
+    for (size_t i = 0; i < a.bodies().size(); ++i) {
+        const Body& p = a.bodies()[i];
+        const Body& q = b.bodies()[i];
+        differing += std::memcmp(p.x.data(), q.x.data(), sizeof(double) * 3) != 0 ||
+                     std::memcmp(p.q.coeffs().data(), q.q.coeffs().data(), sizeof(double) * 4) != 0 ||
+                     std::memcmp(p.v.data(), q.v.data(), sizeof(double) * 3) != 0 ||
+                     std::memcmp(p.omega.data(), q.omega.data(), sizeof(double) * 3) != 0;
+    }
+    return differing;
+}
+
+/// Steps the scene at 1 thread in the coloured order and at 2, 3 and 4 threads for `frames`,
+/// and expects the same bytes after every frame.
+template <class Build>
+void expectSameBytesForEveryThreadCount(const Build& build, int frames, bool sleeping, const char* what) {
+    std::vector<World> worlds;
+    for (const int threads : {1, 2, 3, 4}) worlds.push_back(build(settingsFor(threads, sleeping)));
+    for (int frame = 0; frame < frames; ++frame) {
+        for (World& world : worlds) world.step(test::kDt);
+        for (size_t k = 1; k < worlds.size(); ++k)
+            ASSERT_EQ(differingBodies(worlds[0], worlds[k]), 0)
+                << what << ": " << k + 1 << " threads differ from the coloured order at 1 thread at frame " << frame;
+    }
+    ASSERT_TRUE(worlds[0].isFinite()) << what;
+    EXPECT_GT(worlds[0].activeContactCount() + worlds[0].sleepingBodyCount(), 60) << what << ": the scene must touch";
+}
+
+TEST(ParallelStepTest, PileSameBytesForEveryThreadCount) {
+    expectSameBytesForEveryThreadCount(pile, 90, false, "pile");
+    expectSameBytesForEveryThreadCount(pile, 150, true, "pile, sleeping");
+}
+
+TEST(ParallelStepTest, StacksSameBytesForEveryThreadCount) {
+    expectSameBytesForEveryThreadCount(stacks, 60, false, "stacks");
+}
+
+TEST(ParallelStepTest, ChainsWithContactsSameBytesForEveryThreadCount) {
+    expectSameBytesForEveryThreadCount(chains, 90, false, "chains");
+}
+
+TEST(ParallelStepTest, OneThreadWithoutColouringKeepsTheSerialOrder) {
+    // The coloured order is another Gauss-Seidel order: at 1 thread, without colouredSolve, the
+    // step is the serial one, which the coloured one does not reproduce bit for bit.
+    WorldSettings serialSettings = settingsFor(1);
+    serialSettings.colouredSolve = false;
+    World serial = pile(serialSettings);
+    World coloured = pile(settingsFor(1));
+    for (int frame = 0; frame < 30; ++frame) {
+        serial.step(test::kDt);
+        coloured.step(test::kDt);
+    }
+    EXPECT_GT(differingBodies(serial, coloured), 0);
+}
+
+TEST(ParallelStepTest, PileSettlesWithoutSinkingAtTwoThreads) {
+    World world = pile({.gravity = Vec3(0, -10, 0), .substeps = 20, .threads = 2});
+    double deepest = 0.0;
+    test::runFor(world, 3.0, [&](double t) {
+        if (t > 2.0) deepest = std::max(deepest, world.maxPenetration());
+    });
+    ASSERT_TRUE(world.isFinite());
+    double squaredSpeeds = 0.0;
+    double highest = 0.0;
+    int moving = 0;
+    for (const Body& b : world.bodies()) {
+        if (b.invMass == 0.0) continue;
+        squaredSpeeds += b.v.squaredNorm();
+        highest = std::max(highest, b.x.y());
+        ++moving;
+    }
+    const double rmsSpeed = std::sqrt(squaredSpeeds / moving);
+    std::printf("pile at 3 s: deepest %.3g m, rms speed %.3g m/s, highest %.3g m\n", deepest, rmsSpeed, highest);
+    EXPECT_LT(deepest, 1e-3) << "penetration over the last second (m)";
+    // Dropped from up to 0.6 m (3.5 m/s at the floor), the pile comes to rest: what is left is
+    // the slow creep of spheres rolling into the gaps.
+    EXPECT_LT(rmsSpeed, 0.02) << "m/s";
+    // Seven layers of 10 cm settle no higher than they were built, and stay in the pit.
+    EXPECT_LT(highest, 0.72);
+    EXPECT_GT(world.activeContactCount(), 600);
+}
+
+TEST(ParallelStepTest, StacksStandAtTwoThreads) {
+    World world = stacks({.gravity = Vec3(0, -10, 0), .substeps = 20, .threads = 2});
+    test::runFor(world, 3.0, [](double) {});
+    ASSERT_TRUE(world.isFinite());
+    // Every top box within 5 mm sideways of where it was put, and 8 box heights up (less the
+    // gaps, closed, and the resting contacts' g h² sink).
+    for (int stack = 0; stack < 36; ++stack) {
+        const Body& top = world.bodies()[2 + stack * 8 + 7];  // 0: the world, 1: the ground
+        const Vec3 start(0.3 * (stack % 6), 0.1 + 0.2 * 7, 0.3 * (stack / 6));
+        EXPECT_LT(std::hypot(top.x.x() - start.x(), top.x.z() - start.z()), 5e-3) << "stack " << stack;
+        EXPECT_NEAR(top.x.y(), start.y(), 2e-3) << "stack " << stack;
+    }
+}
+
+TEST(ParallelStepTest, HeadOnCollisionsKeepMomentumAndRestitution) {
+    // 160 pairs of spheres in zero gravity, each pair's spheres approaching head on at different
+    // speeds and mass ratios: the colour holding them runs in parallel chunks. Closed form:
+    // v0' = ((m0 − e m1) v0 + (1 + e) m1 v1) / (m0 + m1), and m0 v0 + m1 v1 kept.
+    for (const double e : {0.0, 0.5, 1.0}) {
+        World world({.gravity = Vec3::Zero(), .substeps = 20, .threads = 2});
+        struct Pair {
+            BodyId a, b;
+            double ma, mb, va, vb;
+        };
+        std::vector<Pair> pairs;
+        for (int i = 0; i < 160; ++i) {
+            const double ma = 0.5 + 0.1 * (i % 7), mb = 0.3 + 0.2 * (i % 5);
+            const double va = 1.0 + 0.01 * i, vb = -0.5 - 0.03 * (i % 11);
+            const Vec3 at(0.0, 0.0, 0.5 * i);
+            // Every pair meets at t = 0.05 s, so all of them touch in the same substeps.
+            const double half = 0.1 + 0.5 * 0.05 * (va - vb);
+            const BodyId a = world.createBody({.shape = sphereShape(0.1), .mass = ma, .position = at - Vec3(half, 0, 0),
+                                               .velocity = Vec3(va, 0, 0), .restitution = e});
+            const BodyId b = world.createBody({.shape = sphereShape(0.1), .mass = mb, .position = at + Vec3(half, 0, 0),
+                                               .velocity = Vec3(vb, 0, 0), .restitution = e});
+            pairs.push_back({a, b, ma, mb, va, vb});
+        }
+        test::runFor(world, 0.5, [](double) {});
+        for (const Pair& p : pairs) {
+            const double momentum = p.ma * p.va + p.mb * p.vb;
+            const double va = world.body(p.a).v.x(), vb = world.body(p.b).v.x();
+            const double scale = std::abs(p.ma * p.va) + std::abs(p.mb * p.vb);  // rounding is relative to it
+            EXPECT_NEAR(p.ma * va + p.mb * vb, momentum, 1e-12 * scale) << "e " << e;
+            const double expectedA = ((p.ma - e * p.mb) * p.va + (1 + e) * p.mb * p.vb) / (p.ma + p.mb);
+            EXPECT_NEAR(va, expectedA, 1e-6) << "e " << e << ", masses " << p.ma << " and " << p.mb;
+            EXPECT_LE(world.body(p.a).x.x(), world.body(p.b).x.x() - 0.2 + 1e-9) << "apart, not through";
+        }
+    }
+}
+
+}  // namespace
+}  // namespace substep
