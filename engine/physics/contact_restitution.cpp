@@ -178,9 +178,13 @@ bool findRestitutionImpulses(std::span<const uint32_t> touching, std::span<const
             if (stamp[body] == call) collidedIn[body] = call;
     }
     // The points whose push the velocity pass replaces: those that collided, and those between
-    // bodies a collision reached within the window (a push carried through from a collision,
-    // or the overlap a collision left in a row: that velocity is not the bodies' own).
-    // Elsewhere Eq. 34 alone.
+    // two bodies a collision reached within the window (a push carried through from a
+    // collision, or the overlap a collision left in a row: that velocity is not the bodies'
+    // own). A point between a reached body and one no collision reached (a static floor or
+    // wall, or a neighbour in a pile) keeps Eq. 34: its push is a support, and replacing it
+    // with nothing, the approach then removed in one Gauss-Seidel pass, let a reached ball in
+    // a pile sag off its supports by up to 0.14 m/s over eight substeps, hit the floor below,
+    // reach it again, and keep spheres1000 awake (the window open in 40-100 % of the substeps).
     const auto reached = [&](uint32_t body) {
         return collidedIn[body] != 0 && call - collidedIn[body] < kCollisionWindow;
     };
@@ -188,7 +192,7 @@ bool findRestitutionImpulses(std::span<const uint32_t> touching, std::span<const
     for (const uint32_t k : visited) {
         const ContactPair& pair = pairs[k];
         Contact& c = contacts[pair.first];
-        c.collisionPass = c.restitutionImpulse > 0.0 || reached(pair.body0) || reached(pair.body1);
+        c.collisionPass = c.restitutionImpulse > 0.0 || (reached(pair.body0) && reached(pair.body1));
         any = any || c.collisionPass;
     }
     return any;
