@@ -82,19 +82,34 @@ bool findRestitutionImpulses(std::span<const uint32_t> touching, std::span<const
     // The look every substep takes: does a collision start? Only a pair that did not push in
     // the substep before can start one (starts()), so a pile at rest, every pair of which
     // pushed, costs a test of two flags per touching pair.
-    bool starting = false;
-    for (const uint32_t k : touching) {
-        const ContactPair& pair = pairs[k];
-        if (!starts(pair, contacts)) continue;
+    const auto startsNow = [&](const ContactPair& pair) {
+        if (!starts(pair, contacts)) return false;
         const Body& b0 = bodies[pair.body0];
         const Body& b1 = bodies[pair.body1];
         const Contact& c = contacts[pair.first];
-        if (approach(velocityBefore(b0), velocityBefore(b1), b0.q * c.local0, b1.q * c.local1, c.normal) > resting) {
-            starting = true;
-            break;
+        return approach(velocityBefore(b0), velocityBefore(b1), b0.q * c.local0, b1.q * c.local1, c.normal) > resting;
+    };
+    std::vector<uint32_t>& visited = scratch.pairs;
+    visited.clear();
+    bool starting = false;
+    if (windowOpen) {
+        // The sweeps' pairs are needed whatever happens: one pass lists them and looks.
+        for (const uint32_t k : touching) {
+            const ContactPair& pair = pairs[k];
+            if (!sweeps(pair, contacts)) continue;
+            visited.push_back(k);
+            starting = starting || startsNow(pair);
         }
+    } else {
+        for (const uint32_t k : touching)
+            if (startsNow(pairs[k])) {
+                starting = true;
+                break;
+            }
+        if (!starting) return false;
+        for (const uint32_t k : touching)
+            if (sweeps(pairs[k], contacts)) visited.push_back(k);
     }
-    if (!starting && !windowOpen) return false;
 
     BodyVelocity* velocities = scratch.velocities.data();
     uint32_t* stamp = scratch.stamp.data();
@@ -105,10 +120,6 @@ bool findRestitutionImpulses(std::span<const uint32_t> touching, std::span<const
         return stamp[body] == call ? velocities[body] : velocityBefore(bodies[body]);
     };
     const auto reachedNow = [&](uint32_t body) { return stamp[body] == call; };
-    std::vector<uint32_t>& visited = scratch.pairs;
-    visited.clear();
-    for (const uint32_t k : touching)
-        if (sweeps(pairs[k], contacts)) visited.push_back(k);
     bool collidedAny = false;
     for (int sweep = 0; starting && sweep < kMaxSweeps; ++sweep) {
         bool collided = false;
@@ -172,15 +183,20 @@ bool findRestitutionImpulses(std::span<const uint32_t> touching, std::span<const
     if (collidedAny) scratch.lastCollision = call;
     if (scratch.lastCollision == 0 || call - scratch.lastCollision >= kCollisionWindow) return false;
     uint32_t* collidedIn = scratch.collidedIn.data();
-    for (const uint32_t k : visited) {
-        const ContactPair& pair = pairs[k];
-        for (const uint32_t body : {pair.body0, pair.body1})
-            if (stamp[body] == call) collidedIn[body] = call;
-    }
+    if (collidedAny)
+        for (const uint32_t k : visited) {
+            const ContactPair& pair = pairs[k];
+            for (const uint32_t body : {pair.body0, pair.body1})
+                if (stamp[body] == call) collidedIn[body] = call;
+        }
     // The points whose push the velocity pass replaces: those that collided, and those between
-    // bodies a collision reached within the window (a push carried through from a collision,
-    // or the overlap a collision left in a row: that velocity is not the bodies' own).
-    // Elsewhere Eq. 34 alone.
+    // two bodies a collision reached within the window (a push carried through from a
+    // collision, or the overlap a collision left in a row: that velocity is not the bodies'
+    // own). A point between a reached body and one no collision reached (a static floor or
+    // wall, or a neighbour in a pile) keeps Eq. 34: its push is a support, and replacing it
+    // with nothing, the approach then removed in one Gauss-Seidel pass, let a reached ball in
+    // a pile sag off its supports by up to 0.14 m/s over eight substeps, hit the floor below,
+    // reach it again, and keep spheres1000 awake (the window open in 40-100 % of the substeps).
     const auto reached = [&](uint32_t body) {
         return collidedIn[body] != 0 && call - collidedIn[body] < kCollisionWindow;
     };
@@ -188,7 +204,7 @@ bool findRestitutionImpulses(std::span<const uint32_t> touching, std::span<const
     for (const uint32_t k : visited) {
         const ContactPair& pair = pairs[k];
         Contact& c = contacts[pair.first];
-        c.collisionPass = c.restitutionImpulse > 0.0 || reached(pair.body0) || reached(pair.body1);
+        c.collisionPass = c.restitutionImpulse > 0.0 || (reached(pair.body0) && reached(pair.body1));
         any = any || c.collisionPass;
     }
     return any;

@@ -17,14 +17,16 @@
 /// approach, w = w0 + w1, Eq. 2 and Eq. 3), until none approaches. That is the sequential model
 /// of colliding bodies, a chain of two-body collisions, the same for any order of the list.
 ///
-/// In the velocity pass (contact.h) a contact that collided, or that pushed between bodies a
-/// collision reached within the last kCollisionWindow substeps (a push carried through from
+/// In the velocity pass (contact.h) a contact that collided, or that pushed between two bodies
+/// a collision reached within the last kCollisionWindow substeps (a push carried through from
 /// the collision, or the overlaps one Gauss-Seidel pass leaves in a struck row), has its push's
 /// impulse λ_n / h replaced by its collision impulse (none for the latter); these changes add
 /// up in any order, so all are made before Eq. 34 sets any other contact's velocity. An
 /// approach such a contact is left with (a support under gravity, whose push held it up) is
 /// then removed, Eq. 34 with e = 0: replacing that push with nothing had let marbles sink
-/// 1.5 mm into the wires of the rolling-ball sculpture. For a contact alone the collision
+/// 1.5 mm into the wires of the rolling-ball sculpture. A contact between a reached body and
+/// one no collision reached (a floor, a wall, a neighbour in a pile: a support) keeps Eq. 34,
+/// so a settling pile sleeps as under Eq. 34 alone. For a contact alone the collision
 /// impulse gives Eq. 34's −e v̄_n. All other contacts, patches of several points, and every
 /// substep with no collision in the window keep Eq. 34 exactly, at the cost of one look at the
 /// pushing contacts with restitution.

@@ -512,10 +512,11 @@ void World::solveVelocities(double h) {
         const bool collided = settings_.sweptRestitution &&
                               findRestitutionImpulses(touchingPairs_, contactPairs_, contacts_, bodies_.data(), bodies_.size(), h,
                                                       gravity, restitutionScratch_);
+        // Only the pairs the sweeps visited (RestitutionScratch::pairs, in pair order) can take it.
         if (collided)
-            for (const uint32_t p : touchingPairs_) {
+            for (const uint32_t p : restitutionScratch_.pairs) {
                 const ContactPair& pair = contactPairs_[p];
-                if (pair.count == 1 && contacts_[pair.first].collisionPass)
+                if (contacts_[pair.first].collisionPass)
                     around(ConstraintKind::Contact, p, pair.body0, pair.body1,
                            [&] { solveCollisionVelocities(pair, contacts_[pair.first], bodies_.data(), h); });
             }
