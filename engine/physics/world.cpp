@@ -438,16 +438,7 @@ void World::solvePositions(double h) {
     } else if (frame_.coloured) {
         solveColouredPositions(ctx, clusters);  // by colour, in parallel (world_parallel.cpp)
     } else {
-        if (clusters != nullptr) {
-            for (uint32_t j = 0; j < joints_.size(); ++j) {
-                if (!joints_[j].alive || sleeps(joints_[j])) continue;
-                if (clusters->clustered(j)) clusters->solveAt(ctx, joints_, j);
-                else solveJointPositions(joints_[j], ctx);
-            }
-        } else {
-            for (Joint& joint : joints_)
-                if (joint.alive && !sleeps(joint)) solveJointPositions(joint, ctx);
-        }
+        solveJointsInOrder(ctx, clusters);
         for (const uint32_t p : touchingPairs_) {
             ContactPair& pair = contactPairs_[p];
             solveContactPositions(pair, std::span(contacts_).subspan(pair.first, pair.count), ctx);
@@ -463,6 +454,19 @@ void World::solvePositions(double h) {
     // point: the joints' λ then no longer balance the weights they carry.
     if (settings_.solver == SolverType::Jacobi)
         applyJacobiDeltas(bodies_.data(), jacobiDeltas_.data(), bodies_.size());
+}
+
+void World::solveJointsInOrder(SolverContext& ctx, JointBlockSolver* clusters) {
+    if (clusters != nullptr) {
+        for (uint32_t j = 0; j < joints_.size(); ++j) {
+            if (!joints_[j].alive || sleeps(joints_[j])) continue;
+            if (clusters->clustered(j)) clusters->solveAt(ctx, joints_, j);
+            else solveJointPositions(joints_[j], ctx);
+        }
+    } else {
+        for (Joint& joint : joints_)
+            if (joint.alive && !sleeps(joint)) solveJointPositions(joint, ctx);
+    }
 }
 
 bool World::blockSolveActive() {

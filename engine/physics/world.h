@@ -279,6 +279,9 @@ private:
     void findContacts(bool sleeping);
     void integrate(double h);
     void solvePositions(double h);
+    /// The joints one after another; those around light bodies by cluster, each cluster in
+    /// the place of its first joint (`clusters` null when no cluster is active).
+    void solveJointsInOrder(SolverContext& ctx, JointBlockSolver* clusters);
     void deriveVelocities(double h);
     void solveVelocities(double h);
     /// Adds the time since the last lap to `bucket` (WorldSettings::measureTime).

@@ -112,12 +112,7 @@ void World::solveColouredPositions(SolverContext& ctx, JointBlockSolver* cluster
     constexpr int kOverflow = ColourGroups::kOverflowGroup;
     // Each chunk solves with its own copy of the context (it counts repairs).
     if (clusters != nullptr) {
-        // A cluster's block solve moves all its bodies: the joints keep the serial order.
-        for (uint32_t j = 0; j < joints_.size(); ++j) {
-            if (!joints_[j].alive || sleeps(joints_[j])) continue;
-            if (clusters->clustered(j)) clusters->solveAt(ctx, joints_, j);
-            else solveJointPositions(joints_[j], ctx);
-        }
+        solveJointsInOrder(ctx, clusters);  // a cluster's block solve moves all its bodies
     } else {
         for (int g = 0; g < ColourGroups::kGroups; ++g) {
             const std::span<const uint32_t> joints = state.joints[g];

@@ -50,6 +50,34 @@ bool cellRange(double lo, double hi, double origin, double cell, double inverseC
     return true;
 }
 
+/// One cell's corners: x and z of its sides, and its four heights (h_ij at x_i, z_j).
+struct CellCorners {
+    double x0, x1, z0, z1;
+    double h00, h10, h01, h11;
+    double highest() const { return std::max({h00, h10, h01, h11}); }
+};
+
+/// visit(i, j, corners) for every cell of [i0, i1] x [j0, j1], row by row.
+template <class Visit>
+void forEachCell(const HeightfieldGrid& grid, int i0, int i1, int j0, int j1, Visit&& visit) {
+    const int columns = grid.field->columns;
+    const double* heights = grid.field->heights.data();
+    for (int j = j0; j <= j1; ++j) {
+        const double z0 = grid.originZ + j * grid.cellZ, z1 = grid.originZ + (j + 1) * grid.cellZ;
+        for (int i = i0; i <= i1; ++i) {
+            visit(i, j,
+                  CellCorners{.x0 = grid.originX + i * grid.cellX,
+                              .x1 = grid.originX + (i + 1) * grid.cellX,
+                              .z0 = z0,
+                              .z1 = z1,
+                              .h00 = heights[j * columns + i],
+                              .h10 = heights[j * columns + i + 1],
+                              .h01 = heights[(j + 1) * columns + i],
+                              .h11 = heights[(j + 1) * columns + i + 1]});
+        }
+    }
+}
+
 /// addSphereTriangleContacts for every triangle forTrianglesIn visits under c ± (r + margin), c
 /// in the field's frame. The corners, normals and that function's first test (the height over
 /// the plane) are computed as HeightfieldData::triangle and the function compute them, so the
@@ -66,48 +94,39 @@ void addSphereContacts(const HeightfieldGrid& grid, const Vec3& c, double r, dou
     const double lowest = c.y() - reach;
     const double clearly = reach * reach * (1.0 + 1e-6);
     const int columns = field.columns;
-    const double* heights = field.heights.data();
-    for (int j = j0; j <= j1; ++j) {
-        const double z0 = grid.originZ + j * grid.cellZ, z1 = grid.originZ + (j + 1) * grid.cellZ;
-        for (int i = i0; i <= i1; ++i) {
-            const double h00 = heights[j * columns + i];
-            const double h10 = heights[j * columns + i + 1];
-            const double h01 = heights[(j + 1) * columns + i];
-            const double h11 = heights[(j + 1) * columns + i + 1];
-            if (std::max({h00, h10, h01, h11}) < lowest) continue;
-            const double x0 = grid.originX + i * grid.cellX, x1 = grid.originX + (i + 1) * grid.cellX;
-            // Half 0: (i, j), (i, j+1), (i+1, j+1); half 1: (i, j), (i+1, j+1), (i+1, j).
-            const Vec3 corner00(x0, h00, z0), corner11(x1, h11, z1);
-            const Vec3 offset = c - corner00;
-            // The slack holds while the rounding of the height, a few ulps of |offset|, stays
-            // under 1e-7 of the reach: true but for cells 1e8 times the sphere.
-            const bool nearby = offset.squaredNorm() < 1e16 * reach * reach;
-            const Vec3 second[2] = {Vec3(x0, h01, z1), corner11};
-            const Vec3 third[2] = {corner11, Vec3(x1, h10, z0)};
-            const Vec3* kept = grid.keptNormals(i, j);
-            for (int half = 0; half < 2; ++half) {
-                Vec3 normal;
-                if (kept) {
-                    normal = kept[half];
-                } else {
-                    const Vec3 cross = (second[half] - corner00).cross(third[half] - corner00);
-                    const double along = offset.dot(cross);
-                    if (nearby && along > 0.0 && along * along > clearly * cross.squaredNorm()) continue;
-                    normal = cross.normalized();
-                }
-                if (offset.dot(normal) > reach) continue;  // addSphereTriangleContacts' first test
-                ContactTriangle tri;
-                tri.v[0] = corner00;
-                tri.v[1] = second[half];
-                tri.v[2] = third[half];
-                tri.normal = normal;
-                const int index = 2 * (j * (columns - 1) + i) + half;
-                tri.activeFeatures = field.activeFeatures[index];
-                tri.id = static_cast<uint32_t>(index);
-                addSphereTriangleContacts(tri, c, r, margin, true, buffer);
+    forEachCell(grid, i0, i1, j0, j1, [&](int i, int j, const CellCorners& cell) {
+        if (cell.highest() < lowest) return;
+        // Half 0: (i, j), (i, j+1), (i+1, j+1); half 1: (i, j), (i+1, j+1), (i+1, j).
+        const Vec3 corner00(cell.x0, cell.h00, cell.z0), corner11(cell.x1, cell.h11, cell.z1);
+        const Vec3 offset = c - corner00;
+        // The slack holds while the rounding of the height, a few ulps of |offset|, stays
+        // under 1e-7 of the reach: true but for cells 1e8 times the sphere.
+        const bool nearby = offset.squaredNorm() < 1e16 * reach * reach;
+        const Vec3 second[2] = {Vec3(cell.x0, cell.h01, cell.z1), corner11};
+        const Vec3 third[2] = {corner11, Vec3(cell.x1, cell.h10, cell.z0)};
+        const Vec3* kept = grid.keptNormals(i, j);
+        for (int half = 0; half < 2; ++half) {
+            Vec3 normal;
+            if (kept) {
+                normal = kept[half];
+            } else {
+                const Vec3 cross = (second[half] - corner00).cross(third[half] - corner00);
+                const double along = offset.dot(cross);
+                if (nearby && along > 0.0 && along * along > clearly * cross.squaredNorm()) continue;
+                normal = cross.normalized();
             }
+            if (offset.dot(normal) > reach) continue;  // addSphereTriangleContacts' first test
+            ContactTriangle tri;
+            tri.v[0] = corner00;
+            tri.v[1] = second[half];
+            tri.v[2] = third[half];
+            tri.normal = normal;
+            const int index = 2 * (j * (columns - 1) + i) + half;
+            tri.activeFeatures = field.activeFeatures[index];
+            tri.id = static_cast<uint32_t>(index);
+            addSphereTriangleContacts(tri, c, r, margin, true, buffer);
         }
-    }
+    });
 }
 
 }  // namespace
@@ -165,35 +184,25 @@ double heightfieldGapBound(const HeightfieldGrid& grid, const Vec3& p, double re
     const int i0 = static_cast<int>(std::max(a0, 0.0)), i1 = static_cast<int>(std::min(a1, field.columns - 2.0));
     const int j0 = static_cast<int>(std::max(b0, 0.0)), j1 = static_cast<int>(std::min(b1, field.rows - 2.0));
     if ((i1 - i0 + 1) * (j1 - j0 + 1) > kMostBoundCells) return std::min(bound, p.y() - field.maxHeight) - rounding;
-    const int columns = field.columns;
-    const double* heights = field.heights.data();
-    for (int j = j0; j <= j1; ++j) {
-        const double z0 = grid.originZ + j * grid.cellZ, z1 = grid.originZ + (j + 1) * grid.cellZ;
-        for (int i = i0; i <= i1; ++i) {
-            const double h00 = heights[j * columns + i];
-            const double h10 = heights[j * columns + i + 1];
-            const double h01 = heights[(j + 1) * columns + i];
-            const double h11 = heights[(j + 1) * columns + i + 1];
-            // Above the cell's highest sample by at least the bound: nothing lower here.
-            const double aboveSamples = p.y() - std::max({h00, h10, h01, h11});
-            if (aboveSamples >= bound) continue;
-            // The solid under a triangle lies below its plane (its normal points up).
-            const double x0 = grid.originX + i * grid.cellX, x1 = grid.originX + (i + 1) * grid.cellX;
-            const Vec3 corner00(x0, h00, z0), corner11(x1, h11, z1);
-            const Vec3 offset = p - corner00;
-            double above0, above1;
-            if (const Vec3* kept = grid.keptNormals(i, j)) {
-                above0 = offset.dot(kept[0]);
-                above1 = offset.dot(kept[1]);
-            } else {
-                const Vec3 cross0 = (Vec3(x0, h01, z1) - corner00).cross(corner11 - corner00);
-                const Vec3 cross1 = (corner11 - corner00).cross(Vec3(x1, h10, z0) - corner00);
-                above0 = offset.dot(cross0) / cross0.norm();
-                above1 = offset.dot(cross1) / cross1.norm();
-            }
-            bound = std::min(bound, std::max(aboveSamples, std::min(above0, above1)));
+    forEachCell(grid, i0, i1, j0, j1, [&](int i, int j, const CellCorners& cell) {
+        // Above the cell's highest sample by at least the bound: nothing lower here.
+        const double aboveSamples = p.y() - cell.highest();
+        if (aboveSamples >= bound) return;
+        // The solid under a triangle lies below its plane (its normal points up).
+        const Vec3 corner00(cell.x0, cell.h00, cell.z0), corner11(cell.x1, cell.h11, cell.z1);
+        const Vec3 offset = p - corner00;
+        double above0, above1;
+        if (const Vec3* kept = grid.keptNormals(i, j)) {
+            above0 = offset.dot(kept[0]);
+            above1 = offset.dot(kept[1]);
+        } else {
+            const Vec3 cross0 = (Vec3(cell.x0, cell.h01, cell.z1) - corner00).cross(corner11 - corner00);
+            const Vec3 cross1 = (corner11 - corner00).cross(Vec3(cell.x1, cell.h10, cell.z0) - corner00);
+            above0 = offset.dot(cross0) / cross0.norm();
+            above1 = offset.dot(cross1) / cross1.norm();
         }
-    }
+        bound = std::min(bound, std::max(aboveSamples, std::min(above0, above1)));
+    });
     return bound - rounding;
 }
 
