@@ -80,12 +80,12 @@ struct WorldSettings {
     JointProjection jointProjection = JointProjection::Paper;
     /// Restitution by sweeps of two-body collisions before the velocity pass
     /// (contact_restitution.h), so that an impact passes through a row of touching bodies
-    /// whatever order they are listed in (the scene file's `"restitution": "swept"`). Off by
-    /// default until the whole test suite has run under it: piles settle and sleep under it
-    /// (spheres1000 at 21.9 s, 24.2 s under Eq. 34), and spheres1000's fall costs 9.5 % more
-    /// CPU. A substep in which no contact with restitution collided lately runs the paper's
-    /// velocity pass either way.
-    bool sweptRestitution = false;
+    /// whatever order they are listed in. The default; false (the scene file's
+    /// `"restitution": "paper"`) keeps the paper's Eq. 34 alone. Piles settle and sleep under it
+    /// (spheres1000 at 21.9 s, 24.2 s under Eq. 34); spheres1000's fall costs 9.5 % more CPU. A
+    /// substep in which no contact with restitution collided lately runs the paper's velocity
+    /// pass either way.
+    bool sweptRestitution = true;
     /// Joints around light bodies (a dynamic body jointed to one at least 20 times heavier)
     /// solved together by a direct block solve each substep (joint_block_solve.h), so that a
     /// light link passes corrections on whole: a 1 g box holding a 1 kg box keeps its hard

@@ -525,7 +525,7 @@ TEST(ContactRestitutionTest, ThePapersRuleAloneDependsOnTheOrder) {
     EXPECT_LT(farSpeed(false, {0, 1, 2, 3}), 0.9);
     EXPECT_NEAR(farSpeed(false, {3, 2, 1, 0}), 1.0, 1e-3);
     EXPECT_NEAR(farSpeed(true, {0, 1, 2, 3}), 1.0, 1e-3);
-    EXPECT_FALSE(WorldSettings{}.sweptRestitution) << "the paper's rule stays the default (world.h)";
+    EXPECT_TRUE(WorldSettings{}.sweptRestitution) << "the sweeps are the default (world.h)";
 }
 
 }  // namespace

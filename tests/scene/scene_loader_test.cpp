@@ -278,8 +278,8 @@ TEST(SceneLoader, JointProjectionIsPaperOrStart) {
     EXPECT_TRUE(failsAt(scene(R"("joint_projection": 1)"), "joint_projection", "must be a string, got 1"));
 }
 
-TEST(SceneLoader, RestitutionIsThePapersByDefaultOrSwept) {
-    EXPECT_FALSE(parseSceneText(scene(""), "s.json").sweptRestitution);
+TEST(SceneLoader, RestitutionIsSweptByDefaultOrThePapers) {
+    EXPECT_TRUE(parseSceneText(scene(""), "s.json").sweptRestitution);
     EXPECT_TRUE(parseSceneText(scene(R"("restitution": "swept")"), "s.json").sweptRestitution);
     EXPECT_FALSE(parseSceneText(scene(R"("restitution": "paper")"), "s.json").sweptRestitution);
     EXPECT_TRUE(failsAt(scene(R"("restitution": "Paper")"), "restitution",
@@ -289,7 +289,7 @@ TEST(SceneLoader, RestitutionIsThePapersByDefaultOrSwept) {
     // The world built from the scene uses what the file chose.
     EXPECT_FALSE(buildScene(parseSceneText(scene(R"("restitution": "paper")"), "t.json")).world().settings().sweptRestitution);
     EXPECT_TRUE(buildScene(parseSceneText(scene(R"("restitution": "swept")"), "t.json")).world().settings().sweptRestitution);
-    EXPECT_FALSE(buildScene(parseSceneText(scene(""), "t.json")).world().settings().sweptRestitution);
+    EXPECT_TRUE(buildScene(parseSceneText(scene(""), "t.json")).world().settings().sweptRestitution);
 }
 
 TEST(SceneLoader, SoftFrictionIsPerParticleByDefaultOrOverThePatch) {
