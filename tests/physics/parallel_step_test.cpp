@@ -81,19 +81,6 @@ World chains(const WorldSettings& settings) {
     return world;
 }
 
-int differingBodies(const World& a, const World& b) {
-    int differing = 0;
-    for (size_t i = 0; i < a.bodies().size(); ++i) {
-        const Body& p = a.bodies()[i];
-        const Body& q = b.bodies()[i];
-        differing += std::memcmp(p.x.data(), q.x.data(), sizeof(double) * 3) != 0 ||
-                     std::memcmp(p.q.coeffs().data(), q.q.coeffs().data(), sizeof(double) * 4) != 0 ||
-                     std::memcmp(p.v.data(), q.v.data(), sizeof(double) * 3) != 0 ||
-                     std::memcmp(p.omega.data(), q.omega.data(), sizeof(double) * 3) != 0;
-    }
-    return differing;
-}
-
 /// Steps the scene at 1 thread in the coloured order and at 2, 3 and 4 threads for `frames`,
 /// and expects the same bytes after every frame.
 template <class Build>
@@ -103,7 +90,7 @@ void expectSameBytesForEveryThreadCount(const Build& build, int frames, bool sle
     for (int frame = 0; frame < frames; ++frame) {
         for (World& world : worlds) world.step(test::kDt);
         for (size_t k = 1; k < worlds.size(); ++k)
-            ASSERT_EQ(differingBodies(worlds[0], worlds[k]), 0)
+            ASSERT_EQ(test::differingBodies(worlds[0], worlds[k]), 0)
                 << what << ": " << k + 1 << " threads differ from the coloured order at 1 thread at frame " << frame;
     }
     ASSERT_TRUE(worlds[0].isFinite()) << what;
@@ -134,7 +121,7 @@ TEST(ParallelStepTest, OneThreadWithoutColouringKeepsTheSerialOrder) {
         serial.step(test::kDt);
         coloured.step(test::kDt);
     }
-    EXPECT_GT(differingBodies(serial, coloured), 0);
+    EXPECT_GT(test::differingBodies(serial, coloured), 0);
 }
 
 TEST(ParallelStepTest, PileSettlesWithoutSinkingAtTwoThreads) {

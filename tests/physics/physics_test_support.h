@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,20 @@ namespace substep::test {
 
 inline constexpr double kPi = 3.14159265358979323846;
 inline constexpr double kDt = 1.0 / 60.0;
+
+/// How many bodies of two worlds built alike differ in any bit of their pose or velocities.
+inline int differingBodies(const World& a, const World& b) {
+    int differing = 0;
+    for (size_t i = 0; i < a.bodies().size(); ++i) {
+        const Body& p = a.bodies()[i];
+        const Body& q = b.bodies()[i];
+        differing += std::memcmp(p.x.data(), q.x.data(), sizeof(double) * 3) != 0 ||
+                     std::memcmp(p.q.coeffs().data(), q.q.coeffs().data(), sizeof(double) * 4) != 0 ||
+                     std::memcmp(p.v.data(), q.v.data(), sizeof(double) * 3) != 0 ||
+                     std::memcmp(p.omega.data(), q.omega.data(), sizeof(double) * 3) != 0;
+    }
+    return differing;
+}
 
 /// Box moments of inertia about its centre in its own frame: m (b² + c²)/12 and cyclic.
 inline Vec3 boxMoments(const Vec3& size, double mass) {

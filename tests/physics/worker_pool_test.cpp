@@ -69,16 +69,7 @@ World pile(int threads, bool sleeping) {
 
 void expectSameBytes(const World& a, const World& b, const char* what) {
     ASSERT_EQ(a.bodies().size(), b.bodies().size());
-    int differing = 0;
-    for (size_t i = 0; i < a.bodies().size(); ++i) {
-        const Body& p = a.bodies()[i];
-        const Body& q = b.bodies()[i];
-        differing += std::memcmp(p.x.data(), q.x.data(), sizeof(double) * 3) != 0 ||
-                     std::memcmp(p.q.coeffs().data(), q.q.coeffs().data(), sizeof(double) * 4) != 0 ||
-                     std::memcmp(p.v.data(), q.v.data(), sizeof(double) * 3) != 0 ||
-                     std::memcmp(p.omega.data(), q.omega.data(), sizeof(double) * 3) != 0;
-    }
-    EXPECT_EQ(differing, 0) << what;
+    EXPECT_EQ(test::differingBodies(a, b), 0) << what;
     EXPECT_EQ(a.contacts().size(), b.contacts().size()) << what;
 }
 

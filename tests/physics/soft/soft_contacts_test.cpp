@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
 
@@ -52,6 +53,41 @@ Resting settle(World& world, SoftBodyId id, double radius, double total, double 
     return r;
 }
 
+/// A soft box of 6 x 3 x 6 cm (`cells`, particles of `radius`) on the ground under a rigid
+/// 8 x 1 x 8 cm plate of `load` kg that holds its top layer.
+SoftBodyId addBoxUnderPlate(World& world, double load, const std::array<int, 3>& cells, double radius) {
+    const Vec3 size(0.06, 0.03, 0.06);
+    const BodyId plate = world.createBody({.shape = boxShape(Vec3(0.08, 0.01, 0.08)), .mass = load,
+                                           .position = Vec3(0, radius + size.y(), 0), .collide = false});
+    SoftBodyDef def{.size = size, .cells = cells, .position = Vec3(0, radius + 0.5 * size.y(), 0),
+                    .density = 200.0, .compliance = 2e-6, .damping = 20.0, .particleRadius = radius};
+    def.attachments.push_back({.body = plate, .particles = SoftAttachmentParticles::Below});
+    return world.createSoftBody(def);
+}
+
+/// The RC car's tyre (particles of `radius`) on the ground, on a rim of `load` kg that slides on
+/// a vertical rail (a prismatic joint to the world).
+struct TyreOnRail {
+    BodyId rim;
+    SoftBodyId tyre;
+    Vec3 centre;  ///< the rim's starting position
+};
+
+TyreOnRail addTyreOnRail(World& world, double load, double radius) {
+    const double ro = 0.07, ri = 0.05;
+    const Vec3 centre(0, ro + radius, 0);
+    const BodyId rim = world.createBody({.shape = cylinderShape(ri, 0.06), .mass = load, .position = centre,
+                                         .orientation = kAxisAlongZ, .collide = false});
+    world.createJoint({.type = JointType::Prismatic, .body1 = rim, .anchor0 = centre,
+                       .axis0 = Vec3::UnitY(), .axis1 = -Vec3::UnitZ()});  // local −z is world y
+    SoftBodyDef def{.type = SoftBodyType::Tyre, .outerRadius = ro, .innerRadius = ri, .width = 0.06,
+                    .cells = {46, 4, 6}, .position = centre, .orientation = kAxisAlongZ, .density = 200.0,
+                    .compliance = 2e-6, .damping = 20.0, .staticFriction = 1.0, .dynamicFriction = 0.9,
+                    .particleRadius = radius};
+    def.attachments.push_back({.body = rim, .particles = SoftAttachmentParticles::Inner});
+    return {rim, world.createSoftBody(def), centre};
+}
+
 TEST(SoftContacts, LoadedSoftBoxRestsOnTheGroundAndCarriesTheWeight) {
     // A rigid plate of mass M holds the box's top layer: the ground carries (M + m) g, over
     // particles whose share of the load is hundreds of times their own weight. (How deep they
@@ -61,14 +97,7 @@ TEST(SoftContacts, LoadedSoftBoxRestsOnTheGroundAndCarriesTheWeight) {
     for (const std::array<int, 3> cells : {std::array<int, 3>{3, 2, 3}, std::array<int, 3>{6, 3, 6}}) {
         for (const double load : {0.1, 0.5, 2.0}) {
             World world = worldWithGround();
-            const Vec3 size(0.06, 0.03, 0.06);
-            const double top = radius + size.y();
-            const BodyId plate = world.createBody({.shape = boxShape(Vec3(0.08, 0.01, 0.08)), .mass = load,
-                                                   .position = Vec3(0, top, 0), .collide = false});
-            SoftBodyDef def{.size = size, .cells = cells, .position = Vec3(0, radius + 0.5 * size.y(), 0),
-                            .density = 200.0, .compliance = 2e-6, .damping = 20.0, .particleRadius = radius};
-            def.attachments.push_back({.body = plate, .particles = SoftAttachmentParticles::Below});
-            const SoftBodyId box = world.createSoftBody(def);
+            const SoftBodyId box = addBoxUnderPlate(world, load, cells, radius);
             const double weight = (load + world.softBodyReadout(box).mass) * kG;
             const Resting r = settle(world, box, radius, 3.0, 1.0);
             const std::string label = std::to_string(cells[0]) + "x" + std::to_string(cells[1]) + " cells, " +
@@ -84,20 +113,10 @@ TEST(SoftContacts, LoadedSoftBoxRestsOnTheGroundAndCarriesTheWeight) {
 TEST(SoftContacts, LoadedTyreRestsOnTheGroundAndCarriesTheWeight) {
     // The RC car's tyre on a rim of mass M that slides on a vertical rail (a prismatic joint
     // to the world): the ground carries (M + m_tyre) g.
-    const double radius = 0.005, ro = 0.07, ri = 0.05;
+    const double radius = 0.005;
     for (const double load : {0.1, 0.5, 2.0}) {
         World world = worldWithGround();
-        const Vec3 centre(0, ro + radius, 0);
-        const BodyId rim = world.createBody({.shape = cylinderShape(ri, 0.06), .mass = load, .position = centre,
-                                             .orientation = kAxisAlongZ, .collide = false});
-        world.createJoint({.type = JointType::Prismatic, .body1 = rim, .anchor0 = centre,
-                           .axis0 = Vec3::UnitY(), .axis1 = -Vec3::UnitZ()});  // local −z is world y
-        SoftBodyDef def{.type = SoftBodyType::Tyre, .outerRadius = ro, .innerRadius = ri, .width = 0.06,
-                        .cells = {46, 4, 6}, .position = centre, .orientation = kAxisAlongZ, .density = 200.0,
-                        .compliance = 2e-6, .damping = 20.0, .staticFriction = 1.0, .dynamicFriction = 0.9,
-                        .particleRadius = radius};
-        def.attachments.push_back({.body = rim, .particles = SoftAttachmentParticles::Inner});
-        const SoftBodyId tyre = world.createSoftBody(def);
+        const SoftBodyId tyre = addTyreOnRail(world, load, radius).tyre;
         const double weight = (load + world.softBodyReadout(tyre).mass) * kG;
         const Resting r = settle(world, tyre, radius, 3.0, 1.0);
         const std::string label = std::to_string(load) + " kg";
@@ -114,43 +133,30 @@ TEST(SoftContacts, HeldContactsKeepLoadedParticlesOnTheSurface) {
     // above), on a box under a plate of 0.1 / 0.5 / 2 kg and a tyre on a rim of the same, at 20
     // and 80 substeps. The rim's drop is reported at both: the sag moves into the elements
     // above the contact (docs/SOFT_BODIES.md), so it is not asserted substep-independent.
-    const double radius = 0.005, ro = 0.07, ri = 0.05;
+    const double radius = 0.005;
+    const auto heldWorld = [](int substeps) {
+        World world = worldWithGround(substeps);
+        WorldSettings settings = world.settings();
+        settings.softHeldContacts = true;
+        world.setSettings(settings);
+        return world;
+    };
     for (const double load : {0.1, 0.5, 2.0}) {
         for (const int substeps : {20, 80}) {
             const std::string label = std::to_string(load) + " kg, " + std::to_string(substeps) + " substeps";
             {
-                World world({.gravity = Vec3(0.0, -kG, 0.0), .substeps = substeps, .softHeldContacts = true});
-                world.createBody({.shape = planeShape(Vec3::UnitY(), 0.0), .type = BodyType::Static,
-                                  .staticFriction = 0.8, .dynamicFriction = 0.6});
-                const Vec3 size(0.06, 0.03, 0.06);
-                const BodyId plate = world.createBody({.shape = boxShape(Vec3(0.08, 0.01, 0.08)), .mass = load,
-                                                       .position = Vec3(0, 0.004 + size.y(), 0), .collide = false});
-                SoftBodyDef def{.size = size, .cells = {3, 2, 3}, .position = Vec3(0, 0.004 + 0.5 * size.y(), 0),
-                                .density = 200.0, .compliance = 2e-6, .damping = 20.0, .particleRadius = 0.004};
-                def.attachments.push_back({.body = plate, .particles = SoftAttachmentParticles::Below});
-                const SoftBodyId box = world.createSoftBody(def);
+                World world = heldWorld(substeps);
+                const SoftBodyId box = addBoxUnderPlate(world, load, {3, 2, 3}, 0.004);
                 const Resting r = settle(world, box, 0.004, 3.0, 1.0);
                 report("box, " + label + ": deepest sinking (mm)", 1e3 * r.deepest);
                 EXPECT_TRUE(world.isFinite()) << label;
                 EXPECT_LT(r.deepest, 1e-3) << label;
             }
-            World world({.gravity = Vec3(0.0, -kG, 0.0), .substeps = substeps, .softHeldContacts = true});
-            world.createBody({.shape = planeShape(Vec3::UnitY(), 0.0), .type = BodyType::Static,
-                              .staticFriction = 0.8, .dynamicFriction = 0.6});
-            const Vec3 centre(0, ro + radius, 0);
-            const BodyId rim = world.createBody({.shape = cylinderShape(ri, 0.06), .mass = load, .position = centre,
-                                                 .orientation = kAxisAlongZ, .collide = false});
-            world.createJoint({.type = JointType::Prismatic, .body1 = rim, .anchor0 = centre,
-                               .axis0 = Vec3::UnitY(), .axis1 = -Vec3::UnitZ()});
-            SoftBodyDef def{.type = SoftBodyType::Tyre, .outerRadius = ro, .innerRadius = ri, .width = 0.06,
-                            .cells = {46, 4, 6}, .position = centre, .orientation = kAxisAlongZ, .density = 200.0,
-                            .compliance = 2e-6, .damping = 20.0, .staticFriction = 1.0, .dynamicFriction = 0.9,
-                            .particleRadius = radius};
-            def.attachments.push_back({.body = rim, .particles = SoftAttachmentParticles::Inner});
-            const SoftBodyId tyre = world.createSoftBody(def);
-            const Resting r = settle(world, tyre, radius, 3.0, 1.0);
+            World world = heldWorld(substeps);
+            const TyreOnRail wheel = addTyreOnRail(world, load, radius);
+            const Resting r = settle(world, wheel.tyre, radius, 3.0, 1.0);
             report("tyre, " + label + ": deepest sinking (mm)", 1e3 * r.deepest);
-            report("tyre, " + label + ": rim drop (mm)", 1e3 * (centre.y() - world.body(rim).x.y()));
+            report("tyre, " + label + ": rim drop (mm)", 1e3 * (wheel.centre.y() - world.body(wheel.rim).x.y()));
             EXPECT_TRUE(world.isFinite()) << label;
             EXPECT_LT(r.deepest, 1e-3) << label;
         }
