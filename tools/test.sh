@@ -11,7 +11,8 @@
 # Both stages fit CI's 20 minutes from a fresh clone on two cores: the release stage about
 # 10-12 minutes, the asan stage about 7 (746 s of CPU to build; docs/STABILITY.md, "Continuous
 # integration", has the measures and how the wall time was estimated). Without a compiler launcher (CI, a fresh
-# clone) both precompile Eigen for the libraries (SUBSTEP_PRECOMPILE_HEADERS); a build folder
+# clone) both precompile Eigen for the libraries, and the release stage one header for
+# every test program (SUBSTEP_PRECOMPILE_HEADERS); a build folder
 # configured with ccache keeps its settings.
 # SUBSTEP_CI_STAGES picks stages (default "release asan"; "clang" is another name for asan).
 # Long soak and sweep cases carry the CTest labels `stability` and `soak` and run with:
