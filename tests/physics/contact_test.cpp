@@ -1,4 +1,4 @@
-// Tests engine/physics/contact.cpp (and the contact stages of world.cpp) against closed forms:
+// Tests engine/physics/contact.cpp, contact_patch.cpp (and the contact stages of world.cpp) against closed forms:
 // bounce heights e²h, friction thresholds and accelerations on inclines, rolling at 5/7 g sin θ,
 // impulse transfer through a row of spheres (paper Fig. 12), overlap recovery (Fig. 13).
 
