@@ -27,30 +27,32 @@ namespace {
 /// constraints does not repay it (chain100's colours of 50 joints at 2 threads: 0.47 ms/frame
 /// split, against 0.27 ms at 1 thread).
 constexpr size_t kMinParallelItems = 128;
-/// Smallest chunk of a parallel loop (items).
-constexpr size_t kMinChunkItems = 8;
+/// The same for a colour of contact pairs.
+constexpr size_t kMinParallelPairs = 128;
+/// Smallest block of a parallel loop (items).
+constexpr size_t kMinBlockItems = 8;
 /// Fewer bodies than this are integrated and derived by the calling thread alone.
 constexpr size_t kMinParallelBodies = 256;
 
-/// Calls run(first, last) over [0, count) in chunks on the pool, or at once on this thread when
-/// there is no pool, `serial` asks for it or there are few items. One chunk per thread, in
-/// order: the pool's threads claim chunks in order, so the caller mostly takes the first part
-/// of every loop and the worker the next. Bodies and pairs are listed by index, so each thread
-/// keeps working on mostly the same bodies from stage to stage and colour to colour, and their
-/// cache lines stay in its core: on this project's two-core machine a line moving between cores
-/// costs ~170 ns, and with four chunks per thread handed out as they came spheres1000 at 2
-/// threads took 25.5 ms/frame against 18-20 ms this way (docs/PERFORMANCE.md).
+/// Calls run(first, last) over [0, count) in blocks on the pool, or at once on this thread when
+/// there is no pool, `serial` asks for it or there are few items. WorkerPool::kBlocksPerThread per
+/// thread, in order: each thread starts on its own run of them (the caller the first part of
+/// every loop, a worker the next, worker_pool.h) and takes the others' last blocks when its own
+/// are done. Bodies and pairs are listed by index, so each thread keeps working on mostly the
+/// same bodies from stage to stage and colour to colour, and their cache lines stay in its core
+/// (on this project's two-core machine a line moving between cores costs ~170 ns; with four
+/// chunks per thread handed out as they came spheres1000 at 2 threads took 25.5 ms/frame
+/// against 18-20 ms with one chunk per thread, docs/PERFORMANCE.md), while the stealing evens
+/// out chunks of unequal cost (the floor's and walls' pairs, listed first, against the pile's).
 template <class Run>
-void forChunks(WorkerPool* pool, size_t count, bool serial, const Run& run) {
-    if (serial || pool == nullptr || count < kMinParallelItems) {
+void forChunks(WorkerPool* pool, size_t count, bool serial, const Run& run, size_t minItems = kMinParallelItems) {
+    if (serial || pool == nullptr || count < minItems) {
         run(size_t{0}, count);
         return;
     }
-    const auto chunks =
-        static_cast<int>(std::min<size_t>(static_cast<size_t>(pool->threads()), count / kMinChunkItems));
-    pool->parallelFor(chunks, [&](int chunk) {
-        run(count * static_cast<size_t>(chunk) / static_cast<size_t>(chunks),
-            count * static_cast<size_t>(chunk + 1) / static_cast<size_t>(chunks));
+    const auto blocks = static_cast<size_t>(pool->blocksFor(count, kMinBlockItems));
+    pool->parallelFor(static_cast<int>(blocks), [&](int block) {
+        run(count * static_cast<size_t>(block) / blocks, count * static_cast<size_t>(block + 1) / blocks);
     });
 }
 
@@ -74,10 +76,10 @@ void World::visitBodyRanges(BodyRangeTask task, const void* context) {
         task(context, *this, 0, count);
         return;
     }
-    // One chunk per thread, in order, as forChunks (the same bodies on the same thread).
-    const auto chunks = static_cast<size_t>(pool->threads());
-    pool->parallelFor(static_cast<int>(chunks), [&](int chunk) {
-        task(context, *this, count * static_cast<size_t>(chunk) / chunks, count * static_cast<size_t>(chunk + 1) / chunks);
+    // In blocks, each thread starting on its own run of them, as forChunks.
+    const auto blocks = static_cast<size_t>(pool->blocksFor(count, kMinBlockItems));
+    pool->parallelFor(static_cast<int>(blocks), [&](int block) {
+        task(context, *this, count * static_cast<size_t>(block) / blocks, count * static_cast<size_t>(block + 1) / blocks);
     });
 }
 
@@ -104,7 +106,14 @@ void World::colourConstraints() {
     }
 }
 
-void World::groupTouchingPairs() { coloured_->touching.group(touchingPairs_, coloured_->pairColours.data()); }
+void World::groupTouchingPairs() {
+    // The parallel narrowphase groups them as it lists them (world_contacts.cpp).
+    if (coloured_->touchingGrouped) {
+        coloured_->touchingGrouped = false;
+        return;
+    }
+    coloured_->touching.group(touchingPairs_, coloured_->pairColours.data());
+}
 
 void World::solveColouredPositions(SolverContext& ctx, JointBlockSolver* clusters) {
     const ColouredSolve& state = *coloured_;
@@ -133,7 +142,7 @@ void World::solveColouredPositions(SolverContext& ctx, JointBlockSolver* cluster
                 ContactPair& pair = contactPairs_[pairs[k]];
                 solveContactPositions(pair, std::span(contacts_).subspan(pair.first, pair.count), local);
             }
-        });
+        }, kMinParallelPairs);
     }
 }
 
@@ -149,7 +158,7 @@ void World::solveColouredContactVelocities(double h, double gravity) {
                 solveContactVelocities(pair, std::span(contacts_).subspan(pair.first, pair.count), bodies_.data(),
                                        h, gravity);
             }
-        });
+        }, kMinParallelPairs);
     }
 }
 
