@@ -1,14 +1,19 @@
 /// The world's parallel step (WorldSettings::threads): integration and velocity derivation in
-/// chunks of bodies, and the position solve and velocity pass by colour (constraint_colouring.h),
-/// each colour's constraints in chunks on the worker pool.
+/// blocks of bodies, and the position solve and velocity pass by colour (constraint_colouring.h),
+/// each colour's constraints in blocks on the worker pool (each thread starting on its own run
+/// of blocks and taking the others' last ones when done, worker_pool.h).
 ///
-/// Why the bytes do not depend on the thread count or the chunks: a chunk of the body loops writes
-/// its own bodies alone; a colour's constraints share no dynamic body, and each writes only its
-/// own joint or pair, that pair's contact points and its two bodies (static ones never: every
+/// Why the bytes do not depend on the thread count or the blocks: a block of the body loops
+/// writes its own bodies alone; a colour's constraints share no dynamic body, and each writes only
+/// its own joint or pair, that pair's contact points and its two bodies (static ones never: every
 /// write is guarded by invMass > 0), and reads only those and static bodies. So within a colour
 /// no constraint reads what another writes, and any order or split gives the same results. The
-/// colours, the joints around light bodies (one cluster solve moves many bodies), the overflow
-/// and the velocity pass's joint damping and collision sweeps run serially, in a fixed order.
+/// colours, the joints around light bodies (one cluster solve moves many bodies), the overflow,
+/// the velocity pass's joint damping and the restitution sweeps' chain of collisions run serially,
+/// in a fixed order; the sweeps' looks over every touching pair (contact_restitution.h), the
+/// narrowphase with the grouping of its touching pairs by colour (world_contacts.cpp) and the
+/// broadphase's sweep (broadphase.h) run in blocks, each block into its own list, the lists
+/// joined in block order.
 
 #include "physics/world.h"
 
@@ -27,8 +32,10 @@ namespace {
 /// constraints does not repay it (chain100's colours of 50 joints at 2 threads: 0.47 ms/frame
 /// split, against 0.27 ms at 1 thread).
 constexpr size_t kMinParallelItems = 128;
-/// The same for a colour of contact pairs.
-constexpr size_t kMinParallelPairs = 128;
+/// The same for a colour of contact pairs: a pile's last colours hold 30 to 100 pairs (a
+/// sphere pair costs ~150 ns), and with the blocks' stealing splitting them paid (spheres1000 at
+/// 2 threads 9.9-10.1 ms/frame at 32 against 10.2-10.3 at 128; docs/PERFORMANCE.md).
+constexpr size_t kMinParallelPairs = 32;
 /// Smallest block of a parallel loop (items).
 constexpr size_t kMinBlockItems = 8;
 /// Fewer bodies than this are integrated and derived by the calling thread alone.
@@ -97,13 +104,20 @@ void World::colourConstraints() {
                         : ColourGroups::kSkip;
     }
     state.joints.groupAll(joints_.size(), state.jointColours.data());
+    // The pairs that pushed in the last substep of the frame before (a pile's resting contacts)
+    // are coloured first, in pair order, then the others: the pairs that touch in a substep
+    // fill the first, large colours, and the candidates that do not touch (half of a pile's)
+    // the last ones, whose few touching pairs run serially or in short loops. Coloured in one
+    // pass in pair order, spheres1000's touching pairs spread over 21 colours (docs/PERFORMANCE.md).
     state.colouring.begin(bodies_.size());
     state.pairColours.resize(contactPairs_.size());
-    for (size_t p = 0; p < contactPairs_.size(); ++p) {
-        const ContactPair& pair = contactPairs_[p];
-        state.pairColours[p] = state.colouring.assign(pair.body0, bodies_[pair.body0].isDynamic(), pair.body1,
-                                                      bodies_[pair.body1].isDynamic());
-    }
+    for (const bool pushed : {true, false})
+        for (size_t p = 0; p < contactPairs_.size(); ++p) {
+            const ContactPair& pair = contactPairs_[p];
+            if ((pair.lambdaNormal > 0.0) != pushed) continue;
+            state.pairColours[p] = state.colouring.assign(pair.body0, bodies_[pair.body0].isDynamic(), pair.body1,
+                                                          bodies_[pair.body1].isDynamic());
+        }
 }
 
 void World::groupTouchingPairs() {
