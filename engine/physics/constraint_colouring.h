@@ -71,6 +71,18 @@ public:
     /// Groups holding at least one item (overflow included).
     int usedGroups() const;
 
+    /// Items per colour in one block of items (kSkip not counted).
+    using Counts = std::array<uint32_t, kGroups>;
+    /// Counts a block's items by colourOf[item] into `counts`.
+    static void count(std::span<const uint32_t> items, const uint8_t* colourOf, Counts& counts);
+    /// Grouping in parallel, items given as blocks in order: with every block's counts (count())
+    /// in `counts`, makes room and turns each block's counts into where its items of each colour
+    /// go; then placeBlock(block's items, colourOf, counts[block]) for every block, on any
+    /// thread and in any order (each block writes its own slots), groups them exactly as group()
+    /// groups the blocks joined in order.
+    void beginBlocks(std::span<Counts> counts);
+    void placeBlock(std::span<const uint32_t> items, const uint8_t* colourOf, Counts& starts);
+
 private:
     void place(size_t count, const uint32_t* items, const uint8_t* colourOf);
     std::vector<uint32_t> items_;
@@ -88,6 +100,10 @@ struct ColouredSolve {
     std::vector<uint8_t> pairColours;   ///< per contact pair of the frame
     std::vector<uint8_t> jointColours;  ///< per joint slot (ColourGroups::kSkip: dead)
     ColourGroups touching;              ///< this substep's touching pairs
+    /// The parallel narrowphase grouped this substep's touching pairs already (per block of
+    /// pairs: its touching pairs' counts by colour, then where they go).
+    bool touchingGrouped = false;
+    std::vector<ColourGroups::Counts> blockCounts;
     ColourGroups joints;                ///< the frame's live joints
 };
 

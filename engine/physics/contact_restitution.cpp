@@ -10,6 +10,8 @@
 // which no pair starts a collision and the window is closed costs one test of two flags per
 // touching pair.
 
+#include "physics/worker_pool.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -30,6 +32,24 @@ constexpr double kRestingApproach = 1e-9;
 /// three struck at 1 m/s ended at −0.02, 0.01, 0.01, 1). The overlaps shrink substep by
 /// substep; eight substeps still left 7.5e-3 m/s in a row of six, sixteen leave < 1e-3.
 constexpr uint32_t kCollisionWindow = 16;
+/// Below this many pairs a look over them runs on the calling thread alone; a parallel look's
+/// blocks hold at least kMinLookBlock pairs (a pair's look costs a few nanoseconds).
+constexpr size_t kMinParallelLook = 512;
+constexpr size_t kMinLookBlock = 128;
+
+/// Runs look(block, first, last) over [0, count) in blocks on the pool, each block's results in
+/// scratch.blockPairs[block] and scratch.blockFlags[block]; returns the number of blocks.
+template <class Look>
+size_t lookInBlocks(WorkerPool& pool, size_t count, RestitutionScratch& scratch, const Look& look) {
+    const auto blocks = static_cast<size_t>(pool.blocksFor(count, kMinLookBlock));
+    if (scratch.blockPairs.size() < blocks) scratch.blockPairs.resize(blocks);
+    scratch.blockFlags.assign(blocks, 0);
+    pool.parallelFor(static_cast<int>(blocks), [&](int block) {
+        const auto b = static_cast<size_t>(block);
+        look(b, count * b / blocks, count * (b + 1) / blocks);
+    });
+    return blocks;
+}
 
 /// The velocities a body brought into the substep: v̄ for a dynamic body (before the
 /// derivation), the current ones for a static or kinematic body (it has no v̄).
@@ -61,7 +81,7 @@ inline bool starts(const ContactPair& pair, std::span<const Contact> contacts) {
 
 bool findRestitutionImpulses(std::span<const uint32_t> touching, std::span<const ContactPair> pairs,
                              std::span<Contact> contacts, const Body* bodies, size_t bodyCount, double h,
-                             double gravity, RestitutionScratch& scratch) {
+                             double gravity, RestitutionScratch& scratch, WorkerPool* pool) {
     // The paper's jitter guard (Eq. 34's e = 0 below 2 |g| h), and a floor without gravity.
     const double resting = std::max(2.0 * gravity * h, kRestingApproach);
     if (scratch.stamp.size() < bodyCount) {
@@ -92,7 +112,30 @@ bool findRestitutionImpulses(std::span<const uint32_t> touching, std::span<const
     std::vector<uint32_t>& visited = scratch.pairs;
     visited.clear();
     bool starting = false;
-    if (windowOpen) {
+    const bool parallel = pool != nullptr && pool->threads() > 1 && touching.size() >= kMinParallelLook;
+    if (parallel) {
+        // The same look as below over every touching pair, in blocks: each block lists its
+        // sweeps' pairs in order and notes whether one starts a collision (it reads pairs,
+        // contacts and bodies and writes its own list and flag alone); the lists are joined in
+        // block order, the serial `visited`. The serial look stops at the first pair that starts
+        // one when the window is closed; that changes how much is looked at, not what is found.
+        const size_t blocks = lookInBlocks(*pool, touching.size(), scratch, [&](size_t block, size_t first, size_t last) {
+            std::vector<uint32_t>& list = scratch.blockPairs[block];
+            list.clear();
+            bool starts = false;
+            for (size_t i = first; i < last; ++i) {
+                const ContactPair& pair = pairs[touching[i]];
+                if (!sweeps(pair, contacts)) continue;
+                list.push_back(touching[i]);
+                starts = starts || startsNow(pair);
+            }
+            scratch.blockFlags[block] = starts ? 1 : 0;
+        });
+        for (size_t block = 0; block < blocks; ++block) starting = starting || scratch.blockFlags[block] != 0;
+        if (!starting && !windowOpen) return false;
+        for (size_t block = 0; block < blocks; ++block)
+            visited.insert(visited.end(), scratch.blockPairs[block].begin(), scratch.blockPairs[block].end());
+    } else if (windowOpen) {
         // The sweeps' pairs are needed whatever happens: one pass lists them and looks.
         for (const uint32_t k : touching) {
             const ContactPair& pair = pairs[k];
@@ -200,13 +243,24 @@ bool findRestitutionImpulses(std::span<const uint32_t> touching, std::span<const
     const auto reached = [&](uint32_t body) {
         return collidedIn[body] != 0 && call - collidedIn[body] < kCollisionWindow;
     };
+    // Each pair sets its own contact's flag from collidedIn, which no pair writes here: in
+    // blocks with a pool, any order gives the same flags.
+    const auto markPasses = [&](size_t first, size_t last) {
+        bool any = false;
+        for (size_t i = first; i < last; ++i) {
+            const ContactPair& pair = pairs[visited[i]];
+            Contact& c = contacts[pair.first];
+            c.collisionPass = c.restitutionImpulse > 0.0 || (reached(pair.body0) && reached(pair.body1));
+            any = any || c.collisionPass;
+        }
+        return any;
+    };
+    if (!parallel || visited.size() < kMinParallelLook) return markPasses(0, visited.size());
+    const size_t blocks = lookInBlocks(*pool, visited.size(), scratch, [&](size_t block, size_t first, size_t last) {
+        scratch.blockFlags[block] = markPasses(first, last) ? 1 : 0;
+    });
     bool any = false;
-    for (const uint32_t k : visited) {
-        const ContactPair& pair = pairs[k];
-        Contact& c = contacts[pair.first];
-        c.collisionPass = c.restitutionImpulse > 0.0 || (reached(pair.body0) && reached(pair.body1));
-        any = any || c.collisionPass;
-    }
+    for (size_t block = 0; block < blocks; ++block) any = any || scratch.blockFlags[block] != 0;
     return any;
 }
 

@@ -45,6 +45,8 @@
 
 namespace substep {
 
+class WorkerPool;
+
 /// A body's velocities in the restitution sweeps.
 struct BodyVelocity {
     Vec3 v = Vec3::Zero();
@@ -60,6 +62,10 @@ struct RestitutionScratch {
     std::vector<int> changedIn;            ///< per body: the sweep its velocities last changed in
     std::vector<uint32_t> pairs;           ///< the pairs the sweeps visit
     std::vector<uint32_t> collidedIn;      ///< per body: the last call a collision reached it in
+    /// Per block of a parallel look over the touching pairs: the sweeps' pairs it found, and
+    /// whether one of them starts a collision (or, later, takes the collision pass).
+    std::vector<std::vector<uint32_t>> blockPairs;
+    std::vector<uint8_t> blockFlags;
     uint32_t call = 0;                     ///< this call's stamp
     uint32_t lastCollision = 0;            ///< the last call with a collision (0: none yet)
 };
@@ -69,8 +75,12 @@ struct RestitutionScratch {
 /// Contact::collisionPass of those the velocity pass gives their collision impulse (see
 /// above). Returns whether any contact takes that pass; when none does (no collision in the
 /// window) every contact is left as it was and the velocity pass is exactly the paper's.
+/// With a `pool` the looks over every touching pair and every sweeps' pair (which pairs sweep,
+/// whether one starts a collision, which take the collision pass) run in blocks on its threads;
+/// the sweeps themselves, a chain of collisions in pair order, stay on the calling thread. The
+/// results are the same bytes with or without.
 bool findRestitutionImpulses(std::span<const uint32_t> touching, std::span<const ContactPair> pairs,
                              std::span<Contact> contacts, const Body* bodies, size_t bodyCount, double h,
-                             double gravity, RestitutionScratch& scratch);
+                             double gravity, RestitutionScratch& scratch, WorkerPool* pool = nullptr);
 
 }  // namespace substep

@@ -21,12 +21,19 @@ inline void relax() {
 #endif
 }
 
+constexpr uint64_t kFrontUnit = uint64_t{1} << 16;
+
+uint64_t runState(uint32_t epoch, int front, int end) {
+    return uint64_t{epoch} << 32 | uint64_t(front) << 16 | uint64_t(end);
+}
+
 }  // namespace
 
 WorkerPool::WorkerPool(int threads) {
     const int workers = std::max(threads, 1) - 1;
+    runs_ = std::make_unique<BlockRun[]>(static_cast<size_t>(workers) + 1);
     workers_.reserve(static_cast<size_t>(workers));
-    for (int i = 0; i < workers; ++i) workers_.emplace_back([this] { work(); });
+    for (int i = 0; i < workers; ++i) workers_.emplace_back([this, i] { work(i + 1); });
 }
 
 WorkerPool::~WorkerPool() {
@@ -36,18 +43,48 @@ WorkerPool::~WorkerPool() {
     for (std::thread& worker : workers_) worker.join();
 }
 
-void WorkerPool::run(int chunks, Task task, void* context) {
-    // The task is published before the cursor that names its epoch; a worker that claims a
-    // chunk of this epoch has acquired the cursor and so reads this task.
+int WorkerPool::claimFront(BlockRun& run, uint32_t epoch) {
+    uint64_t state = run.state.load(std::memory_order_acquire);
+    int front;
+    do {
+        if (static_cast<uint32_t>(state >> 32) != epoch) return -1;
+        front = static_cast<int>((state >> 16) & 0xffffu);
+        if (front >= static_cast<int>(state & 0xffffu)) return -1;
+    } while (!run.state.compare_exchange_weak(state, state + kFrontUnit, std::memory_order_acq_rel,
+                                              std::memory_order_acquire));
+    return front;
+}
+
+int WorkerPool::claimBack(BlockRun& run, uint32_t epoch) {
+    uint64_t state = run.state.load(std::memory_order_acquire);
+    int end;
+    do {
+        if (static_cast<uint32_t>(state >> 32) != epoch) return -1;
+        end = static_cast<int>(state & 0xffffu);
+        if (static_cast<int>((state >> 16) & 0xffffu) >= end) return -1;
+    } while (!run.state.compare_exchange_weak(state, state - 1, std::memory_order_acq_rel,
+                                              std::memory_order_acquire));
+    return end - 1;
+}
+
+void WorkerPool::run(int blocks, Task task, void* context) {
+    // The task is published before the runs that name its epoch; a thread that claims a block
+    // of this epoch has acquired its run and so reads this task, which stays until the loop
+    // ends: the loop cannot end before that claimed block is done (remaining_).
     const uint32_t epoch = epoch_.load(std::memory_order_relaxed) + 1;
     task_.store(task, std::memory_order_relaxed);
     context_.store(context, std::memory_order_relaxed);
-    remaining_.store(chunks, std::memory_order_relaxed);
-    cursor_.store(uint64_t{epoch} << 32 | uint64_t(chunks) << 16, std::memory_order_release);
+    remaining_.store(blocks, std::memory_order_relaxed);
+    const int threads = this->threads();
+    for (int t = 0; t < threads; ++t)
+        runs_[static_cast<size_t>(t)].state.store(
+            runState(epoch, static_cast<int>(static_cast<long long>(blocks) * t / threads),
+                     static_cast<int>(static_cast<long long>(blocks) * (t + 1) / threads)),
+            std::memory_order_release);
     epoch_.store(epoch, std::memory_order_release);
     epoch_.notify_all();
-    drain(epoch);
-    // Wait for the chunks the workers claimed: spin a while, then sleep until the last one.
+    drain(epoch, 0);
+    // Wait for the blocks the workers claimed: spin a while, then sleep until the last one.
     for (int spin = 0; spin < kSpins; ++spin) {
         if (remaining_.load(std::memory_order_acquire) == 0) return;
         relax();
@@ -57,23 +94,23 @@ void WorkerPool::run(int chunks, Task task, void* context) {
         remaining_.wait(left, std::memory_order_acquire);
 }
 
-void WorkerPool::drain(uint32_t epoch) {
-    for (;;) {
-        uint64_t cursor = cursor_.load(std::memory_order_acquire);
-        int chunk;
-        // Claim the next chunk of this epoch's loop; a later loop's cursor means this one is over.
-        do {
-            if (static_cast<uint32_t>(cursor >> 32) != epoch) return;
-            chunk = static_cast<int>(cursor & 0xffffu);
-            if (chunk >= static_cast<int>((cursor >> 16) & 0xffffu)) return;
-        } while (!cursor_.compare_exchange_weak(cursor, cursor + 1, std::memory_order_acq_rel,
-                                                std::memory_order_acquire));
-        task_.load(std::memory_order_relaxed)(context_.load(std::memory_order_relaxed), chunk);
+void WorkerPool::drain(uint32_t epoch, int self) {
+    const auto execute = [&](int block) {
+        task_.load(std::memory_order_relaxed)(context_.load(std::memory_order_relaxed), block);
         if (remaining_.fetch_sub(1, std::memory_order_acq_rel) == 1) remaining_.notify_all();
+    };
+    // Its own run from the front, then the others' from their backs, the next thread's first.
+    for (int block = claimFront(runs_[static_cast<size_t>(self)], epoch); block >= 0;
+         block = claimFront(runs_[static_cast<size_t>(self)], epoch))
+        execute(block);
+    const int threads = this->threads();
+    for (int k = 1; k < threads; ++k) {
+        BlockRun& other = runs_[static_cast<size_t>((self + k) % threads)];
+        for (int block = claimBack(other, epoch); block >= 0; block = claimBack(other, epoch)) execute(block);
     }
 }
 
-void WorkerPool::work() {
+void WorkerPool::work(int self) {
     uint32_t seen = 0;
     for (;;) {
         uint32_t epoch = epoch_.load(std::memory_order_acquire);
@@ -87,7 +124,7 @@ void WorkerPool::work() {
         }
         seen = epoch;
         if (stop_.load(std::memory_order_acquire)) return;
-        drain(epoch);
+        drain(epoch, self);
     }
 }
 

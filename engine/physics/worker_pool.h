@@ -1,17 +1,27 @@
 #pragma once
 /// Worker threads for the step's parallel loops (WorldSettings::threads).
 ///
-/// One loop runs at a time: its chunks are claimed one by one by the calling thread and the
-/// workers, and parallelFor returns when every chunk is done. Which thread runs a chunk varies
-/// from run to run, so a caller makes every chunk's result depend on the chunk alone (its own
-/// output slots, merged in chunk order afterwards): the step's output is then the same bytes for
-/// every thread count.
+/// One loop runs at a time, over blocks [0, blocks). The blocks are dealt out in T runs of
+/// consecutive blocks, one run per thread (the caller's is the first): each thread takes the
+/// blocks of its own run from its front, and when its run is done takes blocks from the backs
+/// of the others' runs, one at a time, until none is left (work stealing, as Box2D v3's solver
+/// stages do). So each thread mostly visits the same part of every loop, loop after loop (the
+/// bodies and pairs are listed by index: their cache lines stay in its core), and a thread that
+/// is slower, late or has the dearer items is helped by the others instead of waited for.
+/// parallelFor returns when every block is done.
 ///
-/// Between loops the workers spin briefly, then sleep on an atomic (a futex), so a pool costs
-/// nothing while the solver runs its serial stages for long.
+/// Which thread runs a block varies from run to run, so a caller makes every block's result
+/// depend on the block alone (its own output slots, merged in block order afterwards): the
+/// step's output is then the same bytes for every thread count.
+///
+/// Between loops the workers spin for a while, then sleep on an atomic (a futex), so a pool
+/// costs nothing while the solver runs its serial stages for long.
 
+#include <algorithm>
 #include <atomic>
+#include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <thread>
 #include <vector>
 
@@ -28,45 +38,67 @@ public:
     /// Threads taking part in a loop, the caller included.
     int threads() const { return static_cast<int>(workers_.size()) + 1; }
 
-    /// Calls body(chunk) for every chunk in [0, chunks), spread over the threads; returns when
+    /// Blocks per thread a loop over many items is cut into: enough that a thread done early
+    /// finds blocks to take from the others, few enough that a block's hand-out (an atomic
+    /// exchange) is small beside its work.
+    static constexpr int kBlocksPerThread = 8;
+    /// Blocks for a loop over `count` items: kBlocksPerThread per thread, fewer where a block
+    /// would hold under `minItems` items, at least one.
+    int blocksFor(size_t count, size_t minItems) const {
+        const size_t most = static_cast<size_t>(threads()) * kBlocksPerThread;
+        const size_t fit = minItems > 0 ? count / minItems : count;
+        return static_cast<int>(std::max<size_t>(1, std::min(most, fit)));
+    }
+
+    /// Calls body(block) for every block in [0, blocks), spread over the threads; returns when
     /// all are done. `body` must not throw.
     template <class Body>
-    void parallelFor(int chunks, Body&& body) {
-        if (chunks <= 0) return;
-        if (workers_.empty() || chunks == 1) {
-            for (int i = 0; i < chunks; ++i) body(i);
+    void parallelFor(int blocks, Body&& body) {
+        if (blocks <= 0) return;
+        if (workers_.empty() || blocks == 1) {
+            for (int i = 0; i < blocks; ++i) body(i);
             return;
         }
-        if (chunks <= kMaxChunks) {
-            run(chunks, [](void* context, int chunk) { (*static_cast<Body*>(context))(chunk); }, &body);
+        if (blocks <= kMaxBlocks) {
+            run(blocks, [](void* context, int block) { (*static_cast<Body*>(context))(block); }, &body);
             return;
         }
-        // More chunks than the cursor counts: groups of consecutive chunks.
-        auto groups = [&body, chunks](int group) {
-            const long long first = static_cast<long long>(group) * chunks / kMaxChunks;
-            const long long last = static_cast<long long>(group + 1) * chunks / kMaxChunks;
+        // More blocks than a run's counters hold: groups of consecutive blocks.
+        auto groups = [&body, blocks](int group) {
+            const long long first = static_cast<long long>(group) * blocks / kMaxBlocks;
+            const long long last = static_cast<long long>(group + 1) * blocks / kMaxBlocks;
             for (long long i = first; i < last; ++i) body(static_cast<int>(i));
         };
-        run(kMaxChunks, [](void* context, int group) { (*static_cast<decltype(groups)*>(context))(group); },
+        run(kMaxBlocks, [](void* context, int group) { (*static_cast<decltype(groups)*>(context))(group); },
             &groups);
     }
 
-    /// Most chunks one loop hands out (more are grouped).
-    static constexpr int kMaxChunks = 0xffff;
+    /// Most blocks one loop hands out (more are grouped).
+    static constexpr int kMaxBlocks = 0xffff;
 
 private:
     using Task = void (*)(void*, int);
-    void run(int chunks, Task task, void* context);
-    /// Claims and runs chunks of the loop of `epoch` until none is left.
-    void drain(uint32_t epoch);
-    void work();
+    void run(int blocks, Task task, void* context);
+    /// Runs blocks of the loop of `epoch` as thread `self` (0: the caller) until none is left.
+    void drain(uint32_t epoch, int self);
+    void work(int self);
+
+    /// A thread's run of blocks in the current loop: the loop's epoch in the high 32 bits, the
+    /// next block from the front in the next 16, the end (one past the next block from the back)
+    /// in the low 16. One atomic, so a claim never mixes two loops; a cache line each, so a
+    /// thread claiming from its own run does not disturb the others'.
+    struct alignas(64) BlockRun {
+        std::atomic<uint64_t> state{0};
+    };
+    /// Claims the front (owner) or back (thief) block of `run` in the loop of `epoch`; −1 when
+    /// the run is empty or belongs to another loop.
+    static int claimFront(BlockRun& run, uint32_t epoch);
+    static int claimBack(BlockRun& run, uint32_t epoch);
 
     std::vector<std::thread> workers_;
-    /// The loop being run: its epoch in the high 32 bits, its chunk count in the next 16, the
-    /// next chunk to claim in the low 16 (one atomic, so a claim never mixes two loops).
-    std::atomic<uint64_t> cursor_{0};
-    std::atomic<uint32_t> epoch_{0};  ///< what idle workers wait on
-    std::atomic<int> remaining_{0};   ///< chunks of the current loop not yet finished
+    std::unique_ptr<BlockRun[]> runs_;  ///< one per thread, the caller's first
+    std::atomic<uint32_t> epoch_{0};    ///< the current loop; what idle workers wait on
+    std::atomic<int> remaining_{0};     ///< blocks of the current loop not yet finished
     std::atomic<Task> task_{nullptr};
     std::atomic<void*> context_{nullptr};
     std::atomic<bool> stop_{false};

@@ -515,7 +515,7 @@ void World::solveVelocities(double h) {
         // up in any order, so they all go in before Eq. 34 sets the other contacts' velocities.
         const bool collided = settings_.sweptRestitution &&
                               findRestitutionImpulses(touchingPairs_, contactPairs_, contacts_, bodies_.data(), bodies_.size(), h,
-                                                      gravity, restitutionScratch_);
+                                                      gravity, restitutionScratch_, workerPool());
         // Only the pairs the sweeps visited (RestitutionScratch::pairs, in pair order) can take it.
         if (collided)
             for (const uint32_t p : restitutionScratch_.pairs) {

@@ -7,6 +7,7 @@
 
 #include "physics/step_cancellation.h"
 
+#include "physics/constraint_colouring.h"
 #include "physics/collision/narrowphase.h"
 #include "physics/collision/shape_bounds.h"
 #include "physics/contact_spheres.h"
@@ -67,7 +68,7 @@ void World::collectContactPairs(double dt) {
     }
     // Sleeping bodies keep their boxes and their pairs with one another (broadphase.h).
     const bool anyAsleep = sleepingActive() && sleep_.sleepingCount() > 0;
-    broadphase_.update(bodies_, dt, 2.0, anyAsleep ? sleep_.flags() : nullptr);
+    broadphase_.update(bodies_, dt, 2.0, anyAsleep ? sleep_.flags() : nullptr, workerPool());
     reaches_.assign(bodies_.size(), 0.0);
     poses_.resize(bodies_.size());
     size_t previous = 0;
@@ -130,16 +131,20 @@ void World::findContacts(bool sleeping) {
         listTouchingPairs();
         return;
     }
-    // In parallel: each chunk of pairs finds its contacts and its touching pairs into its own
-    // lists, and the lists are joined in chunk order (each chunk copying its own at offsets
+    // In parallel: each block of pairs finds its contacts and its touching pairs into its own
+    // lists, and the lists are joined in block order (each block copying its own at offsets
     // summed in order), so the contacts and touching pairs are the serial ones, in the serial
-    // order. One chunk per thread, so that each thread visits the same bodies as in the other
-    // stages (world_parallel.cpp, forChunks).
-    const auto chunks = static_cast<size_t>(pool->threads());
+    // order whichever thread ran a block. The blocks are dealt out as in the other stages
+    // (world_parallel.cpp, forChunks), so each thread mostly visits the same bodies.
+    const auto chunks = static_cast<size_t>(pool->blocksFor(pairs, kPairsPerChunk));
     const auto chunkStart = [&](size_t chunk) { return pairs * chunk / chunks; };
     if (chunkContacts_.size() < chunks) chunkContacts_.resize(chunks);
     if (chunkTouching_.size() < chunks) chunkTouching_.resize(chunks);
     const auto pairIndex = [&](size_t k) { return static_cast<uint32_t>(order ? order[k] : k); };
+    // The coloured solve's grouping of the touching pairs by colour (groupTouchingPairs) is
+    // done here too, block by block: counted in the first loop, placed in the second.
+    const bool grouping = frame_.coloured && coloured_ != nullptr;
+    if (grouping && coloured_->blockCounts.size() < chunks) coloured_->blockCounts.resize(chunks);
     pool->parallelFor(static_cast<int>(chunks), [&](int chunk) {
         const size_t first = chunkStart(static_cast<size_t>(chunk));
         const size_t last = chunkStart(static_cast<size_t>(chunk) + 1);
@@ -149,6 +154,7 @@ void World::findContacts(bool sleeping) {
         touching.clear();
         for (size_t k = first; k < last; ++k)
             if (contactPairs_[pairIndex(k)].count > 0) touching.push_back(pairIndex(k));
+        if (grouping) ColourGroups::count(touching, coloured_->pairColours.data(), coloured_->blockCounts[chunk]);
     });
     chunkContactOffsets_.resize(chunks + 1);
     chunkTouchingOffsets_.resize(chunks + 1);
@@ -162,6 +168,10 @@ void World::findContacts(bool sleeping) {
     // Resized, not cleared: only slots beyond the last substep's count are constructed.
     contacts_.resize(chunkContactOffsets_[chunks]);
     touchingPairs_.resize(chunkTouchingOffsets_[chunks]);
+    if (grouping) {
+        coloured_->touching.beginBlocks(std::span(coloured_->blockCounts).first(chunks));
+        coloured_->touchingGrouped = true;
+    }
     pool->parallelFor(static_cast<int>(chunks), [&](int chunk) {
         const uint32_t offset = chunkContactOffsets_[chunk];
         for (size_t k = chunkStart(static_cast<size_t>(chunk)); k < chunkStart(static_cast<size_t>(chunk) + 1); ++k)
@@ -169,6 +179,9 @@ void World::findContacts(bool sleeping) {
         std::copy(chunkContacts_[chunk].begin(), chunkContacts_[chunk].end(), contacts_.begin() + offset);
         std::copy(chunkTouching_[chunk].begin(), chunkTouching_[chunk].end(),
                   touchingPairs_.begin() + chunkTouchingOffsets_[chunk]);
+        if (grouping)
+            coloured_->touching.placeBlock(chunkTouching_[chunk], coloured_->pairColours.data(),
+                                           coloured_->blockCounts[chunk]);
     });
 }
 

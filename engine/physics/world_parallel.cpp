@@ -1,14 +1,19 @@
 /// The world's parallel step (WorldSettings::threads): integration and velocity derivation in
-/// chunks of bodies, and the position solve and velocity pass by colour (constraint_colouring.h),
-/// each colour's constraints in chunks on the worker pool.
+/// blocks of bodies, and the position solve and velocity pass by colour (constraint_colouring.h),
+/// each colour's constraints in blocks on the worker pool (each thread starting on its own run
+/// of blocks and taking the others' last ones when done, worker_pool.h).
 ///
-/// Why the bytes do not depend on the thread count or the chunks: a chunk of the body loops writes
-/// its own bodies alone; a colour's constraints share no dynamic body, and each writes only its
-/// own joint or pair, that pair's contact points and its two bodies (static ones never: every
+/// Why the bytes do not depend on the thread count or the blocks: a block of the body loops
+/// writes its own bodies alone; a colour's constraints share no dynamic body, and each writes only
+/// its own joint or pair, that pair's contact points and its two bodies (static ones never: every
 /// write is guarded by invMass > 0), and reads only those and static bodies. So within a colour
 /// no constraint reads what another writes, and any order or split gives the same results. The
-/// colours, the joints around light bodies (one cluster solve moves many bodies), the overflow
-/// and the velocity pass's joint damping and collision sweeps run serially, in a fixed order.
+/// colours, the joints around light bodies (one cluster solve moves many bodies), the overflow,
+/// the velocity pass's joint damping and the restitution sweeps' chain of collisions run serially,
+/// in a fixed order; the sweeps' looks over every touching pair (contact_restitution.h), the
+/// narrowphase with the grouping of its touching pairs by colour (world_contacts.cpp) and the
+/// broadphase's sweep (broadphase.h) run in blocks, each block into its own list, the lists
+/// joined in block order.
 
 #include "physics/world.h"
 
@@ -27,30 +32,34 @@ namespace {
 /// constraints does not repay it (chain100's colours of 50 joints at 2 threads: 0.47 ms/frame
 /// split, against 0.27 ms at 1 thread).
 constexpr size_t kMinParallelItems = 128;
-/// Smallest chunk of a parallel loop (items).
-constexpr size_t kMinChunkItems = 8;
+/// The same for a colour of contact pairs: a pile's last colours hold 30 to 100 pairs (a
+/// sphere pair costs ~150 ns), and with the blocks' stealing splitting them paid (spheres1000 at
+/// 2 threads 9.9-10.1 ms/frame at 32 against 10.2-10.3 at 128; docs/PERFORMANCE.md).
+constexpr size_t kMinParallelPairs = 32;
+/// Smallest block of a parallel loop (items).
+constexpr size_t kMinBlockItems = 8;
 /// Fewer bodies than this are integrated and derived by the calling thread alone.
 constexpr size_t kMinParallelBodies = 256;
 
-/// Calls run(first, last) over [0, count) in chunks on the pool, or at once on this thread when
-/// there is no pool, `serial` asks for it or there are few items. One chunk per thread, in
-/// order: the pool's threads claim chunks in order, so the caller mostly takes the first part
-/// of every loop and the worker the next. Bodies and pairs are listed by index, so each thread
-/// keeps working on mostly the same bodies from stage to stage and colour to colour, and their
-/// cache lines stay in its core: on this project's two-core machine a line moving between cores
-/// costs ~170 ns, and with four chunks per thread handed out as they came spheres1000 at 2
-/// threads took 25.5 ms/frame against 18-20 ms this way (docs/PERFORMANCE.md).
+/// Calls run(first, last) over [0, count) in blocks on the pool, or at once on this thread when
+/// there is no pool, `serial` asks for it or there are few items. WorkerPool::kBlocksPerThread per
+/// thread, in order: each thread starts on its own run of them (the caller the first part of
+/// every loop, a worker the next, worker_pool.h) and takes the others' last blocks when its own
+/// are done. Bodies and pairs are listed by index, so each thread keeps working on mostly the
+/// same bodies from stage to stage and colour to colour, and their cache lines stay in its core
+/// (on this project's two-core machine a line moving between cores costs ~170 ns; with four
+/// chunks per thread handed out as they came spheres1000 at 2 threads took 25.5 ms/frame
+/// against 18-20 ms with one chunk per thread, docs/PERFORMANCE.md), while the stealing evens
+/// out chunks of unequal cost (the floor's and walls' pairs, listed first, against the pile's).
 template <class Run>
-void forChunks(WorkerPool* pool, size_t count, bool serial, const Run& run) {
-    if (serial || pool == nullptr || count < kMinParallelItems) {
+void forChunks(WorkerPool* pool, size_t count, bool serial, const Run& run, size_t minItems = kMinParallelItems) {
+    if (serial || pool == nullptr || count < minItems) {
         run(size_t{0}, count);
         return;
     }
-    const auto chunks =
-        static_cast<int>(std::min<size_t>(static_cast<size_t>(pool->threads()), count / kMinChunkItems));
-    pool->parallelFor(chunks, [&](int chunk) {
-        run(count * static_cast<size_t>(chunk) / static_cast<size_t>(chunks),
-            count * static_cast<size_t>(chunk + 1) / static_cast<size_t>(chunks));
+    const auto blocks = static_cast<size_t>(pool->blocksFor(count, kMinBlockItems));
+    pool->parallelFor(static_cast<int>(blocks), [&](int block) {
+        run(count * static_cast<size_t>(block) / blocks, count * static_cast<size_t>(block + 1) / blocks);
     });
 }
 
@@ -74,10 +83,10 @@ void World::visitBodyRanges(BodyRangeTask task, const void* context) {
         task(context, *this, 0, count);
         return;
     }
-    // One chunk per thread, in order, as forChunks (the same bodies on the same thread).
-    const auto chunks = static_cast<size_t>(pool->threads());
-    pool->parallelFor(static_cast<int>(chunks), [&](int chunk) {
-        task(context, *this, count * static_cast<size_t>(chunk) / chunks, count * static_cast<size_t>(chunk + 1) / chunks);
+    // In blocks, each thread starting on its own run of them, as forChunks.
+    const auto blocks = static_cast<size_t>(pool->blocksFor(count, kMinBlockItems));
+    pool->parallelFor(static_cast<int>(blocks), [&](int block) {
+        task(context, *this, count * static_cast<size_t>(block) / blocks, count * static_cast<size_t>(block + 1) / blocks);
     });
 }
 
@@ -95,16 +104,30 @@ void World::colourConstraints() {
                         : ColourGroups::kSkip;
     }
     state.joints.groupAll(joints_.size(), state.jointColours.data());
+    // The pairs that pushed in the last substep of the frame before (a pile's resting contacts)
+    // are coloured first, in pair order, then the others: the pairs that touch in a substep
+    // fill the first, large colours, and the candidates that do not touch (half of a pile's)
+    // the last ones, whose few touching pairs run serially or in short loops. Coloured in one
+    // pass in pair order, spheres1000's touching pairs spread over 21 colours (docs/PERFORMANCE.md).
     state.colouring.begin(bodies_.size());
     state.pairColours.resize(contactPairs_.size());
-    for (size_t p = 0; p < contactPairs_.size(); ++p) {
-        const ContactPair& pair = contactPairs_[p];
-        state.pairColours[p] = state.colouring.assign(pair.body0, bodies_[pair.body0].isDynamic(), pair.body1,
-                                                      bodies_[pair.body1].isDynamic());
-    }
+    for (const bool pushed : {true, false})
+        for (size_t p = 0; p < contactPairs_.size(); ++p) {
+            const ContactPair& pair = contactPairs_[p];
+            if ((pair.lambdaNormal > 0.0) != pushed) continue;
+            state.pairColours[p] = state.colouring.assign(pair.body0, bodies_[pair.body0].isDynamic(), pair.body1,
+                                                          bodies_[pair.body1].isDynamic());
+        }
 }
 
-void World::groupTouchingPairs() { coloured_->touching.group(touchingPairs_, coloured_->pairColours.data()); }
+void World::groupTouchingPairs() {
+    // The parallel narrowphase groups them as it lists them (world_contacts.cpp).
+    if (coloured_->touchingGrouped) {
+        coloured_->touchingGrouped = false;
+        return;
+    }
+    coloured_->touching.group(touchingPairs_, coloured_->pairColours.data());
+}
 
 void World::solveColouredPositions(SolverContext& ctx, JointBlockSolver* clusters) {
     const ColouredSolve& state = *coloured_;
@@ -133,7 +156,7 @@ void World::solveColouredPositions(SolverContext& ctx, JointBlockSolver* cluster
                 ContactPair& pair = contactPairs_[pairs[k]];
                 solveContactPositions(pair, std::span(contacts_).subspan(pair.first, pair.count), local);
             }
-        });
+        }, kMinParallelPairs);
     }
 }
 
@@ -149,7 +172,7 @@ void World::solveColouredContactVelocities(double h, double gravity) {
                 solveContactVelocities(pair, std::span(contacts_).subspan(pair.first, pair.count), bodies_.data(),
                                        h, gravity);
             }
-        });
+        }, kMinParallelPairs);
     }
 }
 

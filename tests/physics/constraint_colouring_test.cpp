@@ -1,6 +1,7 @@
 // Tests engine/physics/constraint_colouring.cpp: over random graphs of dynamic and static bodies,
 // no two constraints of a colour share a dynamic body, every constraint is grouped exactly once
-// in its colour, in the given order; static bodies do not count; what fits no colour overflows.
+// in its colour, in the given order; static bodies do not count; what fits no colour overflows;
+// grouping in blocks (the parallel narrowphase's) gives the same groups as the joined list.
 
 #include "physics/constraint_colouring.h"
 
@@ -130,6 +131,39 @@ TEST(ColourGroupsTest, GroupAllLeavesOutSkippedItems) {
               (std::vector<uint32_t>{4}));
     EXPECT_EQ(groups.all().size(), 5u);
     EXPECT_EQ(groups.usedGroups(), 3);
+}
+
+TEST(ColourGroupsTest, BlocksPlacedInAnyOrderGroupAsTheJoinedList) {
+    // The parallel narrowphase's grouping: blocks of a list counted, then placed in any order,
+    // give exactly what group() gives on the list (each colour in the list's order).
+    std::mt19937 random(7);
+    for (const size_t items : {0u, 1u, 50u, 3000u}) {
+        std::vector<uint8_t> colourOf(4000);
+        for (uint8_t& colour : colourOf)
+            colour = random() % 9 == 0 ? ColourGroups::kOverflowGroup : static_cast<uint8_t>(random() % 12);
+        std::vector<uint32_t> list;
+        for (uint32_t i = 0; i < colourOf.size() && list.size() < items; ++i)
+            if (random() % 4 != 0) list.push_back(i);
+        ColourGroups joined;
+        joined.group(list, colourOf.data());
+        for (const size_t blockCount : {1u, 3u, 16u}) {
+            std::vector<std::span<const uint32_t>> blocks;
+            for (size_t b = 0; b < blockCount; ++b)
+                blocks.push_back(std::span<const uint32_t>(list).subspan(list.size() * b / blockCount,
+                                                                          list.size() * (b + 1) / blockCount -
+                                                                              list.size() * b / blockCount));
+            std::vector<ColourGroups::Counts> counts(blockCount);
+            for (size_t b = 0; b < blockCount; ++b) ColourGroups::count(blocks[b], colourOf.data(), counts[b]);
+            ColourGroups placed;
+            placed.beginBlocks(counts);
+            for (size_t b = blockCount; b-- > 0;) placed.placeBlock(blocks[b], colourOf.data(), counts[b]);  // last first
+            for (int g = 0; g < ColourGroups::kGroups; ++g)
+                ASSERT_EQ(std::vector<uint32_t>(placed[g].begin(), placed[g].end()),
+                          std::vector<uint32_t>(joined[g].begin(), joined[g].end()))
+                    << items << " items in " << blockCount << " blocks, colour " << g;
+            EXPECT_EQ(placed.all().size(), list.size());
+        }
+    }
 }
 
 }  // namespace

@@ -4,6 +4,10 @@
 // closed forms: a pile settles without sinking, stacks stand, head-on collisions keep momentum
 // and give the restitution's relative speed. The scenes are large enough that colours of at
 // least 128 constraints (world_parallel.cpp's kMinParallelItems) run split over the threads.
+// Also the parallel forms of the restitution sweeps' looks (contact_restitution.cpp, with 512
+// touching pairs and more) and of the broadphase's sweep (broadphase.cpp): a bouncing pile gives
+// the same bytes at every thread count, and Newton's cradles and bouncing balls through them
+// match the closed forms (the far sphere leaves with the striker's speed, a ball bounces to e² h).
 
 #include "physics_test_support.h"
 
@@ -198,6 +202,114 @@ TEST(ParallelStepTest, HeadOnCollisionsKeepMomentumAndRestitution) {
             EXPECT_NEAR(va, expectedA, 1e-6) << "e " << e << ", masses " << p.ma << " and " << p.mb;
             EXPECT_LE(world.body(p.a).x.x(), world.body(p.b).x.x() - 0.2 + 1e-9) << "apart, not through";
         }
+    }
+}
+
+/// 640 spheres (radius 5 cm, 0.1 to 0.4 kg, restitution 0.5 to 0.7) in ten layers 5 cm apart
+/// dropped into a walled pit: layer after layer strikes the one below and bounces, so the
+/// restitution sweeps open through the fall over more than 512 touching pairs.
+World bouncingPile(const WorldSettings& settings) {
+    World world(settings);
+    addFloorAndWalls(world, 0.55);
+    for (int i = 0; i < 640; ++i) {
+        const Vec3 position(-0.385 + 0.11 * (i % 8) + 0.003 * (i % 3), 0.3 + 0.15 * (i / 64),
+                            -0.385 + 0.11 * ((i / 8) % 8));
+        world.createBody({.shape = sphereShape(0.05), .mass = 0.1 + 0.05 * (i % 7), .position = position,
+                          .restitution = 0.5 + 0.1 * (i % 3)});
+    }
+    return world;
+}
+
+TEST(ParallelStepTest, BouncingPileSameBytesForEveryThreadCount) {
+    expectSameBytesForEveryThreadCount(bouncingPile, 75, false, "bouncing pile");
+    // The sweeps acted: under the paper's rule alone (Eq. 34) the same pile goes otherwise.
+    WorldSettings paper = settingsFor(2);
+    paper.sweptRestitution = false;
+    World swept = bouncingPile(settingsFor(2));
+    World paperRule = bouncingPile(paper);
+    size_t mostContacts = 0;
+    for (int frame = 0; frame < 45; ++frame) {
+        swept.step(test::kDt);
+        paperRule.step(test::kDt);
+        mostContacts = std::max(mostContacts, swept.contacts().size());
+    }
+    EXPECT_GT(test::differingBodies(swept, paperRule), 100);
+    EXPECT_GE(mostContacts, 512u) << "the sweeps' looks must run in blocks";
+}
+
+TEST(ParallelStepTest, NewtonsCradlesPassTheStrikersSpeedToTheFarSphere) {
+    // 150 cradles in zero gravity, each a striker at 1 m/s into five touching equal spheres
+    // (600 touching pairs: the sweeps' looks run in blocks, their colours split over the
+    // threads). The closed form of elastic collisions handed down the row: everything stops
+    // but the far sphere, which leaves at 1 m/s. The same bytes at 1 (coloured), 2 and 3 threads.
+    constexpr int kCradles = 150;
+    constexpr double kRadius = 0.1;
+    const auto build = [&](int threads) {
+        World world({.gravity = Vec3::Zero(), .substeps = 20, .threads = threads, .colouredSolve = true});
+        for (int cradle = 0; cradle < kCradles; ++cradle) {
+            const double z = 0.5 * cradle;
+            const double mass = 0.3 + 0.1 * (cradle % 9);  // equal within a cradle
+            for (int k = 0; k < 6; ++k) {
+                const double x = k == 0 ? 0.0 : 2 * kRadius + 0.05 + (k - 1) * 2 * kRadius;
+                world.createBody({.shape = sphereShape(kRadius), .mass = mass, .position = Vec3(x, 0, z),
+                                  .velocity = k == 0 ? Vec3(1.0, 0, 0) : Vec3::Zero(), .staticFriction = 0.0,
+                                  .dynamicFriction = 0.0, .restitution = 1.0});
+            }
+        }
+        return world;
+    };
+    World one = build(1), two = build(2), three = build(3);
+    size_t mostContacts = 0;
+    for (int frame = 0; frame < 60; ++frame) {
+        for (World* world : {&one, &two, &three}) world->step(test::kDt);
+        mostContacts = std::max(mostContacts, two.contacts().size());
+        ASSERT_EQ(test::differingBodies(one, two), 0) << "frame " << frame;
+        ASSERT_EQ(test::differingBodies(one, three), 0) << "frame " << frame;
+    }
+    EXPECT_GE(mostContacts, 600u);
+    for (int cradle = 0; cradle < kCradles; ++cradle)
+        for (int k = 0; k < 6; ++k) {
+            const Body& sphere = two.bodies()[static_cast<size_t>(1 + 6 * cradle + k)];  // 0: the world
+            EXPECT_NEAR(sphere.v.x(), k == 5 ? 1.0 : 0.0, 2e-3) << "cradle " << cradle << ", sphere " << k;
+        }
+}
+
+TEST(ParallelStepTest, BallsBounceToRestitutionSquaredTimesTheirDropAtTwoThreads) {
+    // 1728 balls dropped 0.9 m onto the ground side by side (1728 touching pairs at the impact,
+    // one colour: the sweeps' looks and the solve run in blocks), restitution 0.3, 0.6 or 0.9 and
+    // masses 0.2 to 40 kg: each first bounce rises to e² times the drop, as one ball alone does.
+    World world({.gravity = Vec3(0, -9.81, 0), .substeps = 20, .threads = 2});
+    constexpr double kDrop = 0.9;
+    constexpr int kBalls = 1728;
+    const double restitutions[] = {0.3, 0.6, 0.9};
+    const double masses[] = {0.2, 2.5, 40.0};
+    // The ground's restitution is the ball's, so the pair's average is e: one ground per e,
+    // meeting only its own balls (collision groups).
+    for (uint32_t k = 0; k < 3; ++k)
+        world.createBody({.shape = planeShape(Vec3::UnitY(), 0.0), .type = BodyType::Static,
+                          .restitution = restitutions[k], .collisionGroup = 1u << k, .collisionMask = 1u << k});
+    std::vector<BodyId> balls;
+    for (int i = 0; i < kBalls; ++i)
+        balls.push_back(world.createBody({.shape = sphereShape(0.1), .mass = masses[(i / 3) % 3],
+                                          .position = Vec3(0.3 * (i % 24), 0.1 + kDrop, 0.3 * (i / 24)),
+                                          .restitution = restitutions[i % 3], .collisionGroup = 1u << (i % 3),
+                                          .collisionMask = 1u << (i % 3)}));
+    std::vector<double> apex(kBalls, 0.0);
+    std::vector<bool> bounced(kBalls, false);
+    size_t mostContacts = 0;
+    test::runFor(world, 0.43 * 1.9 + 0.05, [&](double) {
+        mostContacts = std::max(mostContacts, world.contacts().size());
+        for (int i = 0; i < kBalls; ++i) {
+            const Body& b = world.body(balls[static_cast<size_t>(i)]);
+            if (b.v.y() > 0.0) bounced[static_cast<size_t>(i)] = true;
+            if (bounced[static_cast<size_t>(i)]) apex[static_cast<size_t>(i)] = std::max(apex[static_cast<size_t>(i)], b.x.y() - 0.1);
+        }
+    });
+    EXPECT_GE(mostContacts, 512u) << "at the end of a frame";
+    for (int i = 0; i < kBalls; ++i) {
+        const double e = restitutions[i % 3];
+        ASSERT_TRUE(bounced[static_cast<size_t>(i)]) << "ball " << i;
+        EXPECT_NEAR(apex[static_cast<size_t>(i)], e * e * kDrop, 0.03 * e * e * kDrop + 2e-3) << "ball " << i << ", e " << e;
     }
 }
 

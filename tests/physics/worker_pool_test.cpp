@@ -20,7 +20,7 @@ TEST(WorkerPoolTest, EveryChunkRunsOnceInEveryLoop) {
     for (const int threads : {1, 2, 4}) {
         WorkerPool pool(threads);
         EXPECT_EQ(pool.threads(), threads);
-        for (const int chunks : {0, 1, 2, 7, 64, 1000, WorkerPool::kMaxChunks + 5}) {
+        for (const int chunks : {0, 1, 2, 7, 64, 1000, WorkerPool::kMaxBlocks + 5}) {
             for (int loop = 0; loop < 3; ++loop) {
                 std::vector<std::atomic<int>> runs(static_cast<size_t>(chunks));
                 pool.parallelFor(chunks, [&](int chunk) { runs[static_cast<size_t>(chunk)].fetch_add(1); });

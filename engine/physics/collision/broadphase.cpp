@@ -1,6 +1,7 @@
 #include "physics/collision/broadphase.h"
 
 #include "physics/collision/shape_bounds.h"
+#include "physics/worker_pool.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,6 +10,12 @@
 namespace substep {
 
 namespace {
+
+/// Below this many boxes in the sweep its overlap tests run on the calling thread alone, and a
+/// parallel sweep's blocks hold at least kMinSweepBlock boxes: a box's tests cost some tens of
+/// nanoseconds, a loop's hand-out about a microsecond.
+constexpr size_t kMinParallelSweep = 256;
+constexpr size_t kMinSweepBlock = 32;
 
 Aabb infiniteBox() {
     const double inf = std::numeric_limits<double>::infinity();
@@ -75,7 +82,7 @@ const Aabb& Broadphase::bounds(uint32_t index) const {
     return index < boxes_.size() ? boxes_[index] : kEmpty;
 }
 
-void Broadphase::update(std::span<const Body> bodies, double dt, double k, const uint8_t* asleep) {
+void Broadphase::update(std::span<const Body> bodies, double dt, double k, const uint8_t* asleep, WorkerPool* pool) {
     // Slots beyond the span belong to bodies that no longer exist.
     for (size_t i = bodies.size(); i < slots_.size(); ++i)
         leave(static_cast<uint32_t>(i));
@@ -91,7 +98,7 @@ void Broadphase::update(std::span<const Body> bodies, double dt, double k, const
         syncSlot(static_cast<uint32_t>(i), bodies[i], dt, k, asleep != nullptr && asleep[i] != 0);
 
     found_.clear();
-    if (settings_.method == BroadphaseMethod::SweepAndPrune) collectSweepPairs();
+    if (settings_.method == BroadphaseMethod::SweepAndPrune) collectSweepPairs(pool);
     collectStaticAndTreePairs();
     collectPlanePairs(bodies);
     collectSleepingPairs(bodies);
@@ -256,7 +263,7 @@ void Broadphase::collectStaticAndTreePairs() {
     }
 }
 
-void Broadphase::collectSweepPairs() {
+void Broadphase::collectSweepPairs(WorkerPool* pool) {
     // Drop entries of bodies that left, add the newcomers.
     std::erase_if(sweep_, [&](const SweepEntry& e) {
         return e.body >= slots_.size() || !slots_[e.body].inSweep;
@@ -323,13 +330,33 @@ void Broadphase::collectSweepPairs() {
     }
     // A sentinel past the end stops every scan without a bounds check.
     sweepMin_[count] = std::numeric_limits<double>::infinity();
-    for (size_t i = 0; i < count; ++i) {
+    if (pool == nullptr || count < kMinParallelSweep) {
+        sweepOverlaps(0, count, found_);
+        return;
+    }
+    // In blocks of sweep positions, each block's pairs into its own list (it reads the sweep
+    // arrays, written above, and writes its list alone), joined in block order: found_ is the
+    // serial one whichever thread ran a block.
+    const auto blocks = static_cast<size_t>(pool->blocksFor(count, kMinSweepBlock));
+    if (blockFound_.size() < blocks) blockFound_.resize(blocks);
+    pool->parallelFor(static_cast<int>(blocks), [&](int block) {
+        std::vector<BodyPair>& out = blockFound_[static_cast<size_t>(block)];
+        out.clear();
+        sweepOverlaps(count * static_cast<size_t>(block) / blocks, count * static_cast<size_t>(block + 1) / blocks,
+                      out);
+    });
+    for (size_t block = 0; block < blocks; ++block)
+        found_.insert(found_.end(), blockFound_[block].begin(), blockFound_[block].end());
+}
+
+void Broadphase::sweepOverlaps(size_t first, size_t last, std::vector<BodyPair>& out) const {
+    for (size_t i = first; i < last; ++i) {
         const double maxA = sweepMax_[i];
         const CrossExtent p = sweepCross_[i];
         for (size_t j = i + 1; sweepMin_[j] <= maxA; ++j) {
             const CrossExtent& q = sweepCross_[j];
             if (q.minB <= p.maxB && p.minB <= q.maxB && q.minC <= p.maxC && p.minC <= q.maxC) {
-                found_.push_back(orderedPair(sweep_[i].body, sweep_[j].body));
+                out.push_back(orderedPair(sweep_[i].body, sweep_[j].body));
             }
         }
     }

@@ -39,6 +39,8 @@
 
 namespace substep {
 
+class WorkerPool;
+
 /// A candidate pair of body indices, body0 < body1.
 struct BodyPair {
     uint32_t body0 = 0;
@@ -81,8 +83,11 @@ class Broadphase {
     /// by body id; slots may die, be reused (a new generation) or change between calls.
     /// `asleep` (null: none) flags sleeping bodies, as many as `bodies`: a body flagged in two
     /// updates in a row must not have moved or changed between them (the world wakes every body
-    /// it edits), and its box and kept pairs are not looked at again.
-    void update(std::span<const Body> bodies, double dt, double k = 2.0, const uint8_t* asleep = nullptr);
+    /// it edits), and its box and kept pairs are not looked at again. With a `pool` the sweep's
+    /// overlap tests run in blocks on its threads, the pairs joined in block order: the same
+    /// pairs in the same order as without.
+    void update(std::span<const Body> bodies, double dt, double k = 2.0, const uint8_t* asleep = nullptr,
+                WorkerPool* pool = nullptr);
 
     /// The pairs of the last update, sorted by (body0, body1) so that runs are deterministic.
     std::span<const BodyPair> pairs() const { return pairs_; }
@@ -134,7 +139,9 @@ class Broadphase {
     void syncSlot(uint32_t index, const Body& body, double dt, double k, bool asleep);
     void leave(uint32_t index);
     void collectStaticAndTreePairs();
-    void collectSweepPairs();
+    void collectSweepPairs(WorkerPool* pool);
+    /// The sweep's overlaps of the boxes at sweep positions [first, last) with those after them.
+    void sweepOverlaps(size_t first, size_t last, std::vector<BodyPair>& out) const;
     void collectPlanePairs(std::span<const Body> bodies);
     /// The pairs of bodies that fell asleep, and of static bodies and planes that changed, with
     /// the sleeping bodies; keeps last update's pairs between unchanged sleeping, static and
@@ -160,6 +167,7 @@ class Broadphase {
     std::vector<CrossExtent> sweepCross_;
     int sweepAxis_ = 0;
     std::vector<BodyPair> found_;  ///< unsorted pairs of this update
+    std::vector<std::vector<BodyPair>> blockFound_;  ///< per block of a parallel sweep: its pairs
     std::vector<BodyPair> pairs_;
     std::vector<uint32_t> bucketStart_;
 };

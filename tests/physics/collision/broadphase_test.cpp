@@ -1,7 +1,7 @@
 // Tests engine/physics/collision/broadphase.cpp, with aabb_tree.cpp and shape_bounds.cpp under it:
 // shape bounds against closed forms and corner enumeration, the tree against brute-force queries,
 // and the broadphase's pairs against an O(n²) brute force over the same grown boxes
-// (broadphase_reference.h).
+// (broadphase_reference.h); with a worker pool, the same pairs in the same order.
 
 #include "physics/collision/broadphase.h"
 
@@ -10,6 +10,7 @@
 #include "physics/collision/aabb_tree.h"
 #include "physics/collision/shape_bounds.h"
 #include "physics/world.h"
+#include "physics/worker_pool.h"
 
 #include <gtest/gtest.h>
 
@@ -228,6 +229,25 @@ TEST(AabbTreeTest, ReusesFreedNodes) {
     for (uint32_t i = 0; i < 10; ++i)
         EXPECT_LT(tree.createProxy({Vec3::Zero(), Vec3::Ones()}, i), 19);
     EXPECT_STREQ(tree.validate(), "");
+}
+
+TEST(BroadphaseParallelTest, APoolGivesTheSamePairsInTheSameOrder) {
+    // The sweep's overlap tests in blocks on 2 and 3 threads (broadphase.cpp): the pairs of the
+    // serial update, frame after frame, with more boxes than the parallel sweep's threshold.
+    std::mt19937 rng(11);
+    std::vector<Body> bodies = randomScene(rng, 1200);
+    uint32_t nextGeneration = 100000;
+    WorkerPool two(2), three(3);
+    Broadphase serial, onTwo, onThree;
+    for (int frame = 0; frame < 20; ++frame) {
+        serial.update(bodies, kDt);
+        onTwo.update(bodies, kDt, 2.0, nullptr, &two);
+        onThree.update(bodies, kDt, 2.0, nullptr, &three);
+        ASSERT_GT(serial.pairs().size(), 300u);
+        ASSERT_EQ(toVector(onTwo.pairs()), toVector(serial.pairs())) << "frame " << frame;
+        ASSERT_EQ(toVector(onThree.pairs()), toVector(serial.pairs())) << "frame " << frame;
+        advance(rng, bodies, nextGeneration);
+    }
 }
 
 // --- Broadphase: against the brute-force reference (broadphase_reference.h) -------------------
