@@ -1,6 +1,7 @@
 #include "state_columns.h"
 
 #include "ecs/components.h"
+#include "ecs/physics_system.h"
 #include "ecs/soft_body_component.h"
 
 #include <array>
@@ -92,7 +93,7 @@ void sampleState(const SceneInstance& scene, double t, std::vector<double>& valu
         *out++ = readout.error;
     });
     forEachNamed(scene, scene.softBodyEntities, [&](ecs::Entity entity, const std::string&) {
-        const SoftBodyReadout& readout = registry.get<ecs::SoftBody>(entity).readout;
+        const SoftBodyReadout readout = ecs::softBodyReadout(scene.world(), registry.get<ecs::SoftBody>(entity));
         for (const double value :
              {readout.centreOfMass.x(), readout.centreOfMass.y(), readout.centreOfMass.z(),
               readout.velocity.x(), readout.velocity.y(), readout.velocity.z(), readout.extent.x(),

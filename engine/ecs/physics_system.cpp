@@ -9,7 +9,10 @@
 #include "ecs/body_components.h"
 #include "ecs/components.h"
 
+#include "physics/soft/soft_system.h"
+
 #include <cstddef>
+#include <limits>
 #include <optional>
 #include <span>
 
@@ -215,8 +218,11 @@ void PhysicsSystem::writeBack() {
             joint.readout = world.isValid(joint.id) ? world.jointReadout(joint.id) : JointReadout{};
     }
     if (ComponentPool<SoftBody>* softBodies = registry_->findPool<SoftBody>()) {
-        for (SoftBody& softBody : softBodies->components())
-            softBody.readout = world.isValid(softBody.id) ? world.softBodyReadout(softBody.id) : SoftBodyReadout{};
+        // The volume only on demand (softBodyReadout): NaN, so that a reader who forgot shows.
+        for (SoftBody& softBody : softBodies->components()) {
+            softBody.readout = world.isValid(softBody.id) ? world.softBodies()->readout(softBody.id, false) : SoftBodyReadout{};
+            if (world.isValid(softBody.id)) softBody.readout.volume = std::numeric_limits<double>::quiet_NaN();
+        }
     }
 }
 
@@ -247,6 +253,10 @@ void PhysicsSystem::destroy(Entity entity) {
         softBody->id = {};
     }
     registry.destroy(entity);
+}
+
+SoftBodyReadout softBodyReadout(const World& world, const SoftBody& softBody) {
+    return world.isValid(softBody.id) ? world.softBodyReadout(softBody.id) : SoftBodyReadout{};
 }
 
 WorldSnapshot PhysicsSystem::snapshot() const { return world_->snapshot(); }

@@ -1,6 +1,7 @@
 #include "capture/capture_state.h"
 
 #include "ecs/components.h"
+#include "ecs/physics_system.h"
 #include "ecs/soft_body_component.h"
 
 #include "capture/json_input.h"
@@ -139,7 +140,7 @@ void CaptureScene::readState(CaptureState& state) const {
     }
     state.joints.resize(count);
 
-    // Soft bodies: centre of mass and volume, from the readout the physics system wrote back.
+    // Soft bodies: centre of mass and volume (the volume on demand, ecs::softBodyReadout).
     count = 0;
     for (const ecs::Entity entity : scene.softBodyEntities) {
         const ecs::SoftBody* softBody = registry.tryGet<ecs::SoftBody>(entity);
@@ -147,9 +148,10 @@ void CaptureScene::readState(CaptureState& state) const {
         if (state.softBodies.size() <= count) state.softBodies.emplace_back();
         SoftBodyState& out = state.softBodies[count++];
         out.name = nameOf(entity);
-        const Vec3& centre = softBody->readout.centreOfMass;
+        const SoftBodyReadout readout = ecs::softBodyReadout(scene.world(), *softBody);
+        const Vec3& centre = readout.centreOfMass;
         out.centre = {centre.x(), centre.y(), centre.z()};
-        out.volume = softBody->readout.volume;
+        out.volume = readout.volume;
     }
     state.softBodies.resize(count);
 }

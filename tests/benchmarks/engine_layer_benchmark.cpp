@@ -2,8 +2,8 @@
 // applied, the world stepped, poses, velocities and joint readouts written back into components)
 // against the world's step alone, timed inside the same call (PhysicsSystem::step returns it).
 // The difference is the layer's overhead; docs/PERFORMANCE.md records it (goal: under 5 %).
-// tyre1100 is a soft body alone, whose readout (centre, velocity, extent, volume) the layer
-// writes back after every step.
+// tyre1100 is a soft body alone, whose readout (centre, velocity, extent; the volume only on
+// demand, ecs::softBodyReadout) the layer writes back after every step.
 
 #include "scene/scene.h"
 #include "scenes/scene_registry.h"

@@ -1,6 +1,6 @@
 // Tests engine/ecs/physics_system.cpp's soft bodies: SoftBody components become world soft bodies
 // (after rigid bodies, since attachments name body entities), their readouts are written back
-// after every step, and destroy() removes them. Physics against closed forms: a free soft box
+// after every step (the volume on demand: softBodyReadout), and destroy() removes them. Physics against closed forms: a free soft box
 // falls at g (symplectic Euler's y0 − g t²/2 − g t h/2 exactly, with h the substep), rigidly
 // (extent and volume kept); a hard attachment to a static body holds it where it was made.
 
@@ -67,8 +67,48 @@ TEST(PhysicsSystemSoftBodies, AFreeSoftBoxFallsAtGAndItsReadoutFollows) {
         EXPECT_NEAR(soft.readout.centreOfMass.x(), c.position.x(), 1e-12);
         EXPECT_NEAR(soft.readout.velocity.x(), 0.0, 1e-12);
         EXPECT_LT((soft.readout.extent - c.size).norm(), 1e-9);
-        EXPECT_NEAR(soft.readout.volume, c.size.prod(), 1e-9 * c.size.prod());
+        // The volume on demand (the step's readout leaves it out).
+        EXPECT_NEAR(softBodyReadout(scene.world, soft).volume, c.size.prod(), 1e-9 * c.size.prod());
     }
+}
+
+TEST(PhysicsSystemSoftBodies, TheStepsReadoutLeavesTheVolumeToSoftBodyReadout) {
+    // After a step the component's readout is the world's, bit for bit, but for the volume,
+    // which is NaN (a reader who forgot it shows) until softBodyReadout computes it: a sheared
+    // box of 2 x 1 x 3 cells whose volume is its rest volume to rounding, and after a squeeze
+    // against the ground, less.
+    SoftScene scene;
+    const Entity floor = scene.registry.create();
+    emplaceBody(scene.registry, floor,
+                {.shape = boxShape(Vec3(4, 0.2, 4)), .type = BodyType::Static, .position = Vec3(0, -0.1, 0)});
+    const Entity box = scene.registry.create();
+    const Vec3 size(0.3, 0.2, 0.45);
+    SoftBodyDef def = softBox(Vec3(0.1, 0.5, -0.2), size, {2, 1, 3});
+    def.compliance = 1e-4;  // soft: it squashes where it lands
+    scene.registry.emplace<SoftBody>(box, SoftBody{.def = def});
+    scene.run(1);
+    const SoftBody& soft = scene.registry.get<SoftBody>(box);
+    ASSERT_TRUE(std::isnan(soft.readout.volume));
+    const SoftBodyReadout whole = softBodyReadout(scene.world, soft);
+    EXPECT_NEAR(whole.volume, size.prod(), 1e-9 * size.prod());
+    const SoftBodyReadout direct = scene.world.softBodyReadout(soft.id);
+    EXPECT_EQ(whole.volume, direct.volume);
+    for (int axis = 0; axis < 3; ++axis) {
+        EXPECT_EQ(soft.readout.centreOfMass[axis], direct.centreOfMass[axis]);
+        EXPECT_EQ(soft.readout.velocity[axis], direct.velocity[axis]);
+        EXPECT_EQ(soft.readout.extent[axis], direct.extent[axis]);
+    }
+    EXPECT_EQ(soft.readout.mass, direct.mass);
+    EXPECT_EQ(soft.readout.particles, 24);
+    EXPECT_EQ(soft.readout.elements, 6);
+    // Landed and squashed under its weight: the on-demand volume follows the current shape.
+    scene.run(90);
+    EXPECT_TRUE(std::isnan(soft.readout.volume));
+    EXPECT_LT(softBodyReadout(scene.world, soft).volume, size.prod() * (1.0 - 1e-4));
+    EXPECT_GT(softBodyReadout(scene.world, soft).volume, 0.5 * size.prod());
+    // A destroyed soft body reads zeros, as writeBack writes them.
+    scene.physics().destroy(box);
+    EXPECT_EQ(softBodyReadout(scene.world, SoftBody{}).volume, 0.0);
 }
 
 TEST(PhysicsSystemSoftBodies, AHardAttachmentHoldsTheBoxAndWaitsForItsBody) {

@@ -35,7 +35,7 @@ TEST(RcCarSoak, AutopilotLapsCoverFortyMetresAndStayOnTheTerrain) {
     std::array<double, 4> restVolume{};
     for (int corner = 0; corner < 4; ++corner) {
         tyres[corner] = s.softBodyNamed("tyre_" + std::string(car::kCorners[corner]));
-        restVolume[corner] = s.registry.get<ecs::SoftBody>(tyres[corner]).readout.volume;
+        restVolume[corner] = ecs::softBodyReadout(s.world(), s.registry.get<ecs::SoftBody>(tyres[corner])).volume;
     }
     double travelled = 0.0;
     double lowestVolume = 1.0;
@@ -50,8 +50,9 @@ TEST(RcCarSoak, AutopilotLapsCoverFortyMetresAndStayOnTheTerrain) {
         last = pose.position;
         farthest = std::max({farthest, std::abs(pose.position.x()), std::abs(pose.position.z())});
         for (int corner = 0; corner < 4; ++corner)
-            lowestVolume = std::min(lowestVolume,
-                                    s.registry.get<ecs::SoftBody>(tyres[corner]).readout.volume / restVolume[corner]);
+            lowestVolume = std::min(
+                lowestVolume,
+                ecs::softBodyReadout(s.world(), s.registry.get<ecs::SoftBody>(tyres[corner])).volume / restVolume[corner]);
         for (int i = 0; i < 8; ++i) {
             const Vec3 corner = pose.position + pose.rotation * (0.5 * car::kChassisSize.cwiseProduct(Vec3(
                                                                      i & 1 ? 1 : -1, i & 2 ? 1 : -1, i & 4 ? 1 : -1)));

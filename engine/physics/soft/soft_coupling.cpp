@@ -89,6 +89,52 @@ bool staticSlip(const Body& b, const Vec3& r, const Vec3& local1, const Vec3& n,
     return true;
 }
 
+/// Whether a body is still for a particle contact (ParticleContact::still): no inverse mass and
+/// every velocity +0, so that its point's velocity b.v + ω × r is +0 and v − that is v, bit for
+/// bit (−0 would turn a particle's −0 into +0).
+bool isStill(const Body& b) {
+    const auto positiveZero = [](const Vec3& a) {
+        return a.x() == 0.0 && a.y() == 0.0 && a.z() == 0.0 && !std::signbit(a.x()) && !std::signbit(a.y()) &&
+               !std::signbit(a.z());
+    };
+    return b.invMass == 0.0 && positiveZero(b.v) && positiveZero(b.omega) && positiveZero(b.vPrev) &&
+           positiveZero(b.omegaPrev);
+}
+
+/// pushOut against a still body whose point is `anchor`: its velocity and generalised inverse
+/// mass are zero (and w + 0 = w), so the same depth, cap and Δλ_n without rotating r1.
+double pushOutOfStill(const SolverContext& ctx, const Vec3& anchor, const Vec3& n, double radius, Vec3& x, double w,
+                      const Vec3& v) {
+    double depth = (anchor - (x - radius * n)).dot(n);
+    if (depth > 0.0 && ctx.capPushOut) {
+        const double approach = -v.dot(n);
+        depth = std::min(depth, ctx.h * std::max(approach, kPushOutSpeed));
+    }
+    if (!(depth > 0.0)) return 0.0;
+    const double deltaLambda = depth / w;
+    x += (w * deltaLambda) * n;
+    return deltaLambda;
+}
+
+/// staticSlip against a still body: its point did not move, so the slip is the particle's own
+/// tangential motion.
+bool staticSlipOnStill(const Vec3& n, const Vec3& x, const Vec3& xPrev, double w, Vec3& t, double& deltaTangent) {
+    const Vec3 motion = x - xPrev;
+    const Vec3 slip = motion - motion.dot(n) * n;
+    const double length = slip.norm();
+    if (!(length > kDirectionEpsilon)) return false;
+    t = slip / length;
+    deltaTangent = length / w;
+    return true;
+}
+
+/// applyVelocityChange against a still body: the particle takes it all.
+inline void changeVelocityOnStill(Vec3& v, double w, const Vec3& change) {
+    if (!(change.norm() > kDirectionEpsilon)) return;
+    const Vec3 p = change / w;
+    v += w * p;
+}
+
 /// Eq. 4 for an attachment whose particle is `delta` short of the body's point (c = |delta|,
 /// c2 = c²), multiplier lambda (updated) and compliance term α̃ = α / h², between generalised
 /// inverse masses w + w_body = wLinear + angular / c² (Eqs. 2-3: `angular` is
@@ -389,6 +435,7 @@ void SoftSystem::findContacts(std::span<const Body> bodies, double margin) {
     const HeightfieldGrid* grid = nullptr;
     HeightfieldGrid ownGrid;  // a heightfield's without candidates kept by collectCandidates
     double staticFriction = 0.0, dynamicFriction = 0.0, restitution = 0.0;
+    bool still = false;
     // Candidates come grouped by soft body, then rigid body: poses and probes are made once
     // per group.
     for (const Candidate& candidate : candidates_) {
@@ -420,6 +467,7 @@ void SoftSystem::findContacts(std::span<const Body> bodies, double margin) {
             staticFriction = 0.5 * (soft.staticFriction + b.staticFriction);
             dynamicFriction = 0.5 * (soft.dynamicFriction + b.dynamicFriction);
             restitution = 0.5 * (soft.restitution + b.restitution);
+            still = isStill(b);
         }
         // A heightfield's cells straight from its heights (heightfield_sphere.h), the same points.
         if (grid) collideSphereHeightfield(*grid, x_[candidate.particle], soft.radius, pose, margin, manifold);
@@ -427,14 +475,17 @@ void SoftSystem::findContacts(std::span<const Body> bodies, double margin) {
         const Quat inverse = b.q.conjugate();
         for (int k = 0; k < manifold.count; ++k) {
             const ContactPoint& point = manifold.points[k];
+            const Vec3 local1 = inverse * (point.point1 - b.x);
             contacts_.push_back({.particle = candidate.particle,
                                  .body = candidate.body,
-                                 .local1 = inverse * (point.point1 - b.x),
+                                 .local1 = local1,
                                  .normal = point.normal,
                                  .radius = soft.radius,
                                  .staticFriction = staticFriction,
                                  .dynamicFriction = dynamicFriction,
-                                 .restitution = restitution});
+                                 .restitution = restitution,
+                                 .still = still,
+                                 .anchor = still ? b.pointToWorld(local1) : Vec3::Zero()});
         }
     }
 }
@@ -497,6 +548,21 @@ void SoftSystem::solveContactsPerParticle(SolverContext& ctx) {
         // The elements' push this particle's normal did not take first (a moving body
         // receives it), then Eq. 26.
         const double held = takeHeldImpulse(ctx, c);
+        if (c.still) {
+            // The ground and the obstacles: the same steps with the body's terms left out.
+            const double pushed = pushOutOfStill(ctx, c.anchor, n, c.radius, x, w, v_[c.particle]);
+            if (!(pushed > 0.0) && !(held > 0.0)) continue;
+            if (pushed > 0.0) c.lambdaNormal += pushed;
+            if (!(c.staticFriction > 0.0)) continue;
+            Vec3 t;
+            double deltaTangent;
+            if (!staticSlipOnStill(n, x, xPrev_[c.particle], w, t, deltaTangent)) continue;
+            if (c.lambdaTangent + deltaTangent > c.staticFriction * c.lambdaNormal) continue;
+            c.lambdaTangent += deltaTangent;
+            c.frictionImpulse -= deltaTangent * t;
+            x -= (w * deltaTangent) * t;
+            continue;
+        }
         const double pushed = pushOut(ctx, c.body, c.local1, n, c.radius, x, w, v_[c.particle]);
         if (!(pushed > 0.0) && !(held > 0.0)) continue;
         if (pushed > 0.0) c.lambdaNormal += pushed;
@@ -615,6 +681,26 @@ void SoftSystem::solveContactVelocities(Body* bodies, double h, double gravity) 
         const Vec3& n = c.normal;
         Vec3& v = v_[c.particle];
         const double w = invMass_[c.particle];
+        // A sliding patch's contact had its μ_d in the solve.
+        const bool slid = patchFriction_ && c.lambdaTangent > 0.0 && k < contactPatch_.size() &&
+                          patches_[contactPatch_[k]].kept < 1.0;
+        if (c.still) {
+            // The ground and the obstacles: below, with the body's velocities and inverse mass,
+            // zero, left out (the same bits).
+            const double vn = v.dot(n);
+            const double vnBefore = vPrev_[c.particle].dot(n);
+            const double e = std::abs(vnBefore) <= restingSpeed ? 0.0 : c.restitution;
+            const double change = std::max(-e * vnBefore, 0.0) - vn;
+            if (std::abs(change) > kRestingSpeed) changeVelocityOnStill(v, w, change * n);
+            if (!(c.dynamicFriction > 0.0) || slid) continue;
+            const Vec3 slip = v - v.dot(n) * n;
+            const double slipSpeed = slip.norm();
+            if (!(slipSpeed > kRestingSpeed)) continue;
+            const Vec3 t = slip / slipSpeed;
+            const double maxChange = c.dynamicFriction * c.lambdaNormal / h * w;
+            changeVelocityOnStill(v, w, -std::min(maxChange, slipSpeed) * t);
+            continue;
+        }
         const Vec3 r = b.q * c.local1;
         // Eq. 34: the normal velocity becomes −e v̄_n (no bounce below 2|g|h).
         const double vn = (v - pointVelocity(b, r)).dot(n);
@@ -622,10 +708,7 @@ void SoftSystem::solveContactVelocities(Body* bodies, double h, double gravity) 
         const double e = std::abs(vnBefore) <= restingSpeed ? 0.0 : c.restitution;
         const double change = std::max(-e * vnBefore, 0.0) - vn;
         if (std::abs(change) > kRestingSpeed) applyVelocityChange(v, w, b, r, change * n);
-        // A contact of a sliding patch had its μ_d in the solve.
-        if (!(c.dynamicFriction > 0.0) || (patchFriction_ && c.lambdaTangent > 0.0 && k < contactPatch_.size() &&
-                                             patches_[contactPatch_[k]].kept < 1.0))
-            continue;
+        if (!(c.dynamicFriction > 0.0) || slid) continue;
         // Eq. 30 (ERRATA item 2's units): slip removed by at most h μ_d |f_n| = μ_d λ_n / h.
         const Vec3 relative = v - pointVelocity(b, r);
         const Vec3 slip = relative - relative.dot(n) * n;

@@ -363,7 +363,7 @@ bool SoftSystem::isFinite() const {
            std::all_of(v_.begin(), v_.end(), [](const Vec3& p) { return p.allFinite(); });
 }
 
-SoftBodyReadout SoftSystem::readout(SoftBodyId id) const {
+SoftBodyReadout SoftSystem::readout(SoftBodyId id, bool withVolume) const {
     SoftBodyReadout out;
     if (!isValid(id)) return out;
     const SoftBodyData& body = bodies_[id.index];
@@ -383,7 +383,7 @@ SoftBodyReadout SoftSystem::readout(SoftBodyId id) const {
         out.velocity = momentum / out.mass;
     }
     out.extent = body.particleCount > 0 ? Vec3(hi - lo) : Vec3::Zero();
-    for (uint32_t k = body.firstElement; k < body.firstElement + body.elementCount; ++k)
+    for (uint32_t k = body.firstElement; withVolume && k < body.firstElement + body.elementCount; ++k)
         out.volume += hexVolume(corners(x_, elements_[k]));
     out.particles = static_cast<int>(body.particleCount);
     out.elements = static_cast<int>(body.elementCount);

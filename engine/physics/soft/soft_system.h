@@ -81,7 +81,9 @@ public:
 
     SoftEnergies energies(const Vec3& gravity) const;
     bool isFinite() const;
-    SoftBodyReadout readout(SoftBodyId id) const;
+    /// `withVolume` false leaves `volume` at 0 and skips its sum over every element (the engine
+    /// layer's per-step readout, ecs::PhysicsSystem::writeBack).
+    SoftBodyReadout readout(SoftBodyId id, bool withVolume = true) const;
     /// Current particle positions of one soft body.
     std::span<const Vec3> positions(SoftBodyId id) const;
     std::span<const Vec3> velocities(SoftBodyId id) const;
@@ -153,6 +155,11 @@ private:
         double lambdaNormal = 0.0;
         double lambdaTangent = 0.0;
         Vec3 frictionImpulse = Vec3::Zero();  ///< Σ of the static friction's impulses on the particle
+        /// The body is still (static: no inverse mass, no velocity now or at the substep's start):
+        /// its point is `anchor` (world, b.x + b.q r1 as the solve computes it) all substep, and
+        /// its terms of Eqs. 26-30 and 34 are zero, so the solve leaves them out (the same bits).
+        bool still = false;
+        Vec3 anchor = Vec3::Zero();
     };
 
     /// One soft body's contacts with one rigid body in a substep: their static friction holds
