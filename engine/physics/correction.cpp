@@ -29,6 +29,27 @@ inline BodyResponse positionalResponse(const Body& body, const Vec3& r, const Ve
     return {body.invMass + rn.dot(invInertiaRn), body.q * invInertiaRn};
 }
 
+/// Turns the unit quaternion q by the world rotation vector θ exactly, as integrateRotation does,
+/// but shorter on the solver's critical path (each correction's turn of a body is what the next
+/// constraint on that body waits for): q ← cos φ q + (sin φ / φ) (0, θ/2) q with φ = |θ|/2, by
+/// their Taylor series in φ² (through φ⁸: the remainder is below 3e-17 for φ² < 0.01), without
+/// integrateRotation's square root and division. Both terms are orthogonal with norms cos φ and
+/// sin φ, so q stays unit to rounding; World::integrate normalises it again every substep, so
+/// rounding cannot accumulate over substeps. Larger turns (beyond 0.2 rad) take integrateRotation.
+inline void turnQuaternion(Quat& q, const Vec3& rotation) {
+    const double x = 0.25 * rotation.squaredNorm();  // φ²
+    if (!(x < 0.01)) {
+        integrateRotation(q, rotation);
+        return;
+    }
+    // The series grouped in pairs (Estrin's scheme) so that their latency is a few products.
+    const double x2 = x * x;
+    const double cosine = (1.0 - 0.5 * x) + x2 * ((1.0 / 24 - x * (1.0 / 720)) + x2 * (1.0 / 40320));
+    const double sinc = (1.0 - x * (1.0 / 6)) + x2 * ((1.0 / 120 - x * (1.0 / 5040)) + x2 * (1.0 / 362880));
+    const Quat product = Quat(0.0, rotation.x(), rotation.y(), rotation.z()) * q;
+    q.coeffs() = cosine * q.coeffs() + (0.5 * sinc) * product.coeffs();
+}
+
 /// In the repair pass, whether a correction of this size and compliance is left alone: the pass
 /// only moves hard parts that are far from satisfied. Counts the ones it makes.
 inline bool skippedByRepair(SolverContext& ctx, double size, double threshold, double compliance) {
@@ -52,7 +73,7 @@ inline void moveBody(SolverContext& ctx, uint32_t index, const Vec3& dx, const V
         return;
     }
     body.x += dx;
-    if (body.rotates()) integrateRotation(body.q, dtheta);
+    if (body.rotates()) turnQuaternion(body.q, dtheta);
 }
 
 /// Whether a correction turns the body: a dynamic rigid body (particles and static bodies do not).
@@ -67,7 +88,7 @@ inline void turnBody(SolverContext& ctx, uint32_t index, const Vec3& dtheta) {
         ++d.count;
         return;
     }
-    integrateRotation(ctx.bodies[index].q, dtheta);
+    turnQuaternion(ctx.bodies[index].q, dtheta);
 }
 
 /// World inverse inertia R diag(I⁻¹) Rᵀ at `orientation` (zero for bodies that do not rotate).
@@ -326,8 +347,8 @@ Vec3 applyPointCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, const Ma
     }
     if (b0.invMass > 0.0) b0.x += deltaLambda * b0.invMass;
     if (b1.invMass > 0.0) b1.x -= deltaLambda * b1.invMass;
-    if (turns0) integrateRotation(b0.q, turn0);
-    if (turns1) integrateRotation(b1.q, -turn1);
+    if (turns0) turnQuaternion(b0.q, turn0);
+    if (turns1) turnQuaternion(b1.q, -turn1);
     return deltaLambda;
 }
 

@@ -239,6 +239,27 @@ TEST(AngularCorrectionTest, SharesByInverseInertia) {
     EXPECT_NEAR(i0 * turn0.z() + i1 * turn1.z(), 0.0, 1e-15);
 }
 
+// A correction turns a body by exactly the angle it computes (Eq. 15 by the exponential map),
+// below and above the turn's series range (0.2 rad) and about any axis: a sphere corrected
+// against the static world (index 0 of a world-like pair, w = 0) turns by the whole rotation,
+// which Eigen's angle-axis gives independently, and its quaternion stays unit.
+TEST(AngularCorrectionTest, TurnsByTheExactAngle) {
+    for (const double angle : {1e-7, 1e-3, 0.05, 0.19, 0.21, 0.8}) {
+        std::array<Body, 2> bodies;
+        bodies[1] = makeBody({.shape = sphereShape(0.3), .mass = 2.0,
+                              .orientation = Quat(Eigen::AngleAxisd(1.3, Vec3(1, -1, 2).normalized()))});
+        SolverContext ctx{.bodies = bodies.data(), .h = 0.01, .invH2 = 1e4};
+        const Vec3 axis = Vec3(0.3, -0.5, 0.8).normalized();
+        const Quat start = bodies[1].q;
+        double lambda = 0.0;
+        // Body 0 (the world) turns by `rotation` relative to body 1: body 1 turns by its opposite.
+        applyAngularCorrection(ctx, 0, 1, -angle * axis, 0.0, lambda);
+        const Quat expected = Quat(Eigen::AngleAxisd(angle, axis)) * start;
+        EXPECT_LT((bodies[1].q.coeffs() - expected.coeffs()).norm(), 4e-16) << "angle " << angle;
+        EXPECT_NEAR(bodies[1].q.norm(), 1.0, 4e-16) << "angle " << angle;
+    }
+}
+
 // Zero-length (and NaN-free tiny) corrections do nothing and leave λ alone.
 TEST(CorrectionDegenerateTest, ZeroLengthCorrectionsAreNoOps) {
     Pair pair(1.0, 1.0, 0.01);
