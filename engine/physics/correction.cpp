@@ -400,17 +400,21 @@ Vec3 applyRotationCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, const
     // K = I0⁻¹ + I1⁻¹ in world coordinates (nᵀ K n is Eq. 11 plus Eq. 12).
     Vec3 deltaLambda;
     if (freeAxis) {
-        // Only the two directions u, v normal to the free axis are constrained: K restricted to
-        // that plane, a 2 x 2 system, so the correction leaves the rotation about the axis alone.
-        const Vec3 u = anyPerpendicular(*freeAxis);
-        const Vec3 v = freeAxis->cross(u);
-        double a = alphaTilde, b = 0.0, d = alphaTilde;
+        // Only the two directions normal to the free axis are constrained: K restricted to that
+        // plane, a 2 x 2 system, so the correction leaves the rotation about the axis alone. The
+        // plane's basis u = axis × helper, v = axis × u need not be unit (the solution
+        // P (Pᵀ K P)⁻¹ Pᵀ rhs does not depend on the basis P = [u v]); u ⊥ v keeps the
+        // isotropic part on the diagonal. No square root or division then waits on the axis.
+        const Vec3& axis = *freeAxis;
+        const bool helperX = axis.x() * axis.x() < 0.3249 * axis.squaredNorm();  // |x| < 0.57 |axis|
+        const Vec3 u = axis.cross(helperX ? Vec3::UnitX() : Vec3::UnitY());
+        const Vec3 v = axis.cross(u);
+        const double uu = u.squaredNorm(), vv = v.squaredNorm();
+        double diagonal = alphaTilde, a = 0.0, b = 0.0, d = 0.0;
         for (const InverseInertia* inverse : {turns0 ? &inverse0 : nullptr, turns1 ? &inverse1 : nullptr}) {
             if (!inverse) continue;
-            // uᵀ I⁻¹ u, uᵀ I⁻¹ v and vᵀ I⁻¹ v with u ⊥ v unit: the isotropic part adds to the
-            // diagonal alone.
-            a += inverse->isotropic;
-            d += inverse->isotropic;
+            // uᵀ I⁻¹ u, uᵀ I⁻¹ v and vᵀ I⁻¹ v: the isotropic part adds |u|², 0 and |v|².
+            diagonal += inverse->isotropic;
             for (int t = 0; t < inverse->count; ++t) {
                 const double eu = inverse->axes[t].dot(u), ev = inverse->axes[t].dot(v);
                 a += inverse->excess[t] * eu * eu;
@@ -418,10 +422,13 @@ Vec3 applyRotationCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, const
                 d += inverse->excess[t] * ev * ev;
             }
         }
+        a += diagonal * uu;
+        d += diagonal * vv;
         const double determinant = a * d - b * b;
         if (!(determinant > 1e-300) || !std::isfinite(determinant)) return Vec3::Zero();
         const double ru = u.dot(rhs), rv = v.dot(rhs);
-        deltaLambda = u * ((d * ru - b * rv) / determinant) + v * ((a * rv - b * ru) / determinant);
+        const double inverseDeterminant = 1.0 / determinant;
+        deltaLambda = u * ((d * ru - b * rv) * inverseDeterminant) + v * ((a * rv - b * ru) * inverseDeterminant);
     } else {
         Symmetric3 k{.xx = alphaTilde, .yy = alphaTilde, .zz = alphaTilde};
         if (turns0) inverse0.addTo(k);
