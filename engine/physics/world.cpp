@@ -4,14 +4,13 @@
 #include "physics/substep_corrections.h"
 
 #include "physics/constraint_colouring.h"
+#include "physics/gyroscopic_step.h"
 #include "physics/joint_block_solve.h"
 #include "physics/joints/joint_frame.h"
 #include "physics/joints/joint_geometry.h"
 #include "physics/joints/joint_solver.h"
 #include "physics/soft/soft_system.h"
 #include "physics/worker_pool.h"
-
-#include <Eigen/LU>
 
 #include <algorithm>
 #include <cassert>
@@ -28,24 +27,6 @@ using Clock = std::chrono::steady_clock;
 
 /// Whether a body takes part in collision detection.
 bool collides(const Body& b) { return b.alive && b.collide && b.shape.type != ShapeType::None; }
-
-/// One Newton step of the implicit gyroscopic update (Catto, "Numerical Methods", GDC 2015):
-/// ω' = ω − J⁻¹ h ω × Iω with J = I + h ([ω]× I − [Iω]×), all in the principal frame.
-Vec3 implicitGyroscopicStep(const Vec3& omega, const Vec3& inertia, double h) {
-    const Vec3 momentum = inertia.cwiseProduct(omega);
-    const Vec3 residual = h * omega.cross(momentum);
-    // J = diag(I) + h ([ω]× diag(I) − [Iω]×), written out entry by entry.
-    Mat3 jacobian;
-    jacobian << inertia.x(), h * (momentum.z() - omega.z() * inertia.y()),
-        h * (omega.y() * inertia.z() - momentum.y()),  //
-        h * (omega.z() * inertia.x() - momentum.z()), inertia.y(),
-        h * (momentum.x() - omega.x() * inertia.z()),  //
-        h * (momentum.y() - omega.y() * inertia.x()), h * (omega.x() * inertia.y() - momentum.x()),
-        inertia.z();
-    const double determinant = jacobian.determinant();
-    if (!(std::abs(determinant) > 1e-300)) return omega;
-    return omega - jacobian.inverse() * residual;
-}
 
 /// The type's own parameters from its definition (`joint` has its frames already, for the
 /// hinge motor's starting angle). Keys a type does not use are ignored (the loader rejects
@@ -408,12 +389,9 @@ void World::integrate(double h) {
         b.x += h * b.v;
         if (!b.rotates()) return;
         b.qPrev = b.q;
-        // Algorithm 2's gyroscopic term ω ← ω − h I⁻¹ (ω × Iω), taken implicitly: one Newton
-        // step on I (ω' − ω) + h ω' × Iω' = 0 in the principal frame, where I is diagonal.
-        // The explicit form grows a wobble on a stable spin by exp(λ² h t / 2) (a disc at
-        // 100 rad/s: 14x per second at 20 substeps; a wheel on a light carrier blew up).
-        // With equal moments ω × Iω vanishes, so cubes and spheres skip it.
-        if (!b.isotropic) b.omega = b.q * implicitGyroscopicStep(b.q.conjugate() * b.omega, b.inertia, h);
+        // Algorithm 2's gyroscopic term, taken implicitly (gyroscopic_step.h); with equal
+        // moments ω × Iω vanishes, so cubes and spheres skip it.
+        if (!b.isotropic) b.omega = gyroscopicStep(b, h);
         integrateRotation(b.q, h * b.omega);
     };
     // While some bodies sleep, the awake ones' list alone; in chunks with more than one thread.

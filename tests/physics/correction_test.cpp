@@ -239,6 +239,27 @@ TEST(AngularCorrectionTest, SharesByInverseInertia) {
     EXPECT_NEAR(i0 * turn0.z() + i1 * turn1.z(), 0.0, 1e-15);
 }
 
+// A correction turns a body by exactly the angle it computes (Eq. 15 by the exponential map),
+// below and above the turn's series range (0.2 rad) and about any axis: a sphere corrected
+// against the static world (index 0 of a world-like pair, w = 0) turns by the whole rotation,
+// which Eigen's angle-axis gives independently, and its quaternion stays unit.
+TEST(AngularCorrectionTest, TurnsByTheExactAngle) {
+    for (const double angle : {1e-7, 1e-3, 0.05, 0.19, 0.21, 0.8}) {
+        std::array<Body, 2> bodies;
+        bodies[1] = makeBody({.shape = sphereShape(0.3), .mass = 2.0,
+                              .orientation = Quat(Eigen::AngleAxisd(1.3, Vec3(1, -1, 2).normalized()))});
+        SolverContext ctx{.bodies = bodies.data(), .h = 0.01, .invH2 = 1e4};
+        const Vec3 axis = Vec3(0.3, -0.5, 0.8).normalized();
+        const Quat start = bodies[1].q;
+        double lambda = 0.0;
+        // Body 0 (the world) turns by `rotation` relative to body 1: body 1 turns by its opposite.
+        applyAngularCorrection(ctx, 0, 1, -angle * axis, 0.0, lambda);
+        const Quat expected = Quat(Eigen::AngleAxisd(angle, axis)) * start;
+        EXPECT_LT((bodies[1].q.coeffs() - expected.coeffs()).norm(), 4e-16) << "angle " << angle;
+        EXPECT_NEAR(bodies[1].q.norm(), 1.0, 4e-16) << "angle " << angle;
+    }
+}
+
 // Zero-length (and NaN-free tiny) corrections do nothing and leave λ alone.
 TEST(CorrectionDegenerateTest, ZeroLengthCorrectionsAreNoOps) {
     Pair pair(1.0, 1.0, 0.01);
@@ -324,23 +345,30 @@ Pair unevenPair() {
 // A hard alignment with a free axis f (a hinge's, Eq. 20 in block form) turns body 0 relative to
 // body 1 by the rotation's part normal to f, gives no angular impulse about f, and shares the
 // turn by inverse inertia: I0 Δθ0 = Δλ = −I1 Δθ1 (world inertia tensors; angular momentum
-// kept). Checked on bodies whose principal axes lie along none of the directions involved.
+// kept). Checked on bodies whose principal axes lie along none of the directions involved, for
+// free axes near x and away from it (either helper of the plane's basis), of any length (the
+// hinge passes a0 + a1 unnormalised: the result does not depend on it).
 TEST(RotationCorrectionTest, FreeAxisAlignmentTurnsInThePlaneNormalToTheAxis) {
-    Pair pair = unevenPair();
-    const Body before0 = pair.bodies[0], before1 = pair.bodies[1];
-    const Vec3 free = Vec3(0.2, 1.0, -0.4).normalized();
-    const Vec3 rotation = 1e-5 * Vec3(0.3, -0.1, 0.8) + 2e-5 * free;  // a part along f too
-    Vec3 lambda = Vec3::Zero();
-    const Vec3 impulse = applyRotationCorrection(pair.ctx, 0, 1, rotation, 0.0, lambda, &free);
-    EXPECT_NEAR(impulse.dot(free), 0.0, 1e-12 * impulse.norm());
-    EXPECT_EQ(impulse, lambda);
-    const Vec3 turn0 = test::turnBetween(before0.q, pair.bodies[0].q);
-    const Vec3 turn1 = test::turnBetween(before1.q, pair.bodies[1].q);
-    const Vec3 relative = turn0 - turn1;
-    const Vec3 inPlane = rotation - rotation.dot(free) * free;
-    EXPECT_LT((relative - relative.dot(free) * free - inPlane).norm(), 1e-9 * inPlane.norm());
-    EXPECT_LT((inertiaOf(before0) * turn0 - impulse).norm(), 1e-9 * impulse.norm());
-    EXPECT_LT((inertiaOf(before1) * turn1 + impulse).norm(), 1e-9 * impulse.norm());
+    for (const Vec3& direction : {Vec3(0.2, 1.0, -0.4), Vec3(1.0, 0.1, -0.3)})
+        for (const double length : {1.0, 0.3, 2.0, 1e3}) {
+            SCOPED_TRACE(::testing::Message() << "axis " << direction.transpose() << " length " << length);
+            Pair pair = unevenPair();
+            const Body before0 = pair.bodies[0], before1 = pair.bodies[1];
+            const Vec3 free = direction.normalized();
+            const Vec3 freeAxis = length * free;
+            const Vec3 rotation = 1e-5 * Vec3(0.3, -0.1, 0.8) + 2e-5 * free;  // a part along f too
+            Vec3 lambda = Vec3::Zero();
+            const Vec3 impulse = applyRotationCorrection(pair.ctx, 0, 1, rotation, 0.0, lambda, &freeAxis);
+            EXPECT_NEAR(impulse.dot(free), 0.0, 1e-12 * impulse.norm());
+            EXPECT_EQ(impulse, lambda);
+            const Vec3 turn0 = test::turnBetween(before0.q, pair.bodies[0].q);
+            const Vec3 turn1 = test::turnBetween(before1.q, pair.bodies[1].q);
+            const Vec3 relative = turn0 - turn1;
+            const Vec3 inPlane = rotation - rotation.dot(free) * free;
+            EXPECT_LT((relative - relative.dot(free) * free - inPlane).norm(), 1e-9 * inPlane.norm());
+            EXPECT_LT((inertiaOf(before0) * turn0 - impulse).norm(), 1e-9 * impulse.norm());
+            EXPECT_LT((inertiaOf(before1) * turn1 + impulse).norm(), 1e-9 * impulse.norm());
+        }
 }
 
 // Without a free axis the lock turns body 0 relative to body 1 by the whole rotation, shared by

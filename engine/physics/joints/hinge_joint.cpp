@@ -55,17 +55,16 @@ void solveHingeJoint(const Joint& joint, HingeJoint& hinge, SolverContext& ctx) 
         const Vec3 a1 = rotations.r1 * axis1;
         const Vec3 rotation = jointRotationBetween(a0, a1);  // Eq. 20, with the exact angle
         // Block form over the two directions normal to the hinge axis, so the alignment never
-        // turns the hinge itself (applyRotationCorrection).
+        // turns the hinge itself (applyRotationCorrection, which takes the axis unnormalised).
         const Vec3 sum = a0 + a1;
-        const double length = sum.norm();
-        Vec3 free = length > 1e-9 ? Vec3(sum / length) : a0;
+        Vec3 free = sum.squaredNorm() > 1e-18 ? sum : a0;
         if (ctx.projection == JointProjection::Start) {
             // The constrained directions of the substep's start, as the inverse inertias are.
             const Mat3 start0 = directionRotation(ctx, body0, rotations.r0);
             const Mat3 start1 = directionRotation(ctx, body1, rotations.r1);
             const Vec3 s0 = start0 * axis0;
             const Vec3 s1 = start1 * axis1;
-            if ((s0 + s1).norm() > 1e-9) free = (s0 + s1).normalized();
+            if ((s0 + s1).squaredNorm() > 1e-18) free = s0 + s1;
             hinge.alignment.solve(ctx, joint.body0, joint.body1, start0, start1, rotation, 0.0, &free);
         } else {
             hinge.alignment.solve(ctx, joint.body0, joint.body1, rotations.r0, rotations.r1, rotation, 0.0, &free);
