@@ -2,7 +2,6 @@
 
 #include "physics/contact_kinematics.h"
 #include "physics/contact_patch.h"
-#include "physics/contact_turn.h"
 
 #include <algorithm>
 #include <cmath>
@@ -15,25 +14,21 @@ namespace {
 
 /// One body's side of a point correction along unit n at world offset r (Eq. 2 or Eq. 3, and
 /// the rotation Eq. 8 or Eq. 9 makes per unit multiplier): what applyPositionalCorrection
-/// computes, without its normalisation of a direction that is already unit. Along a direction
-/// n that is not unit, give lengthSquared = |n|²: w is then |n|² times the unit direction's
-/// and the rotation |n| times. Always inlined: the compiler kept it out of line, a call per
-/// body and direction (4 % of spheres1000).
+/// computes, without its normalisation of a direction that is already unit. Always inlined:
+/// the compiler kept it out of line, a call per body and direction (4 % of spheres1000).
 struct PointResponse {
     double w = 0.0;
     Vec3 turn = Vec3::Zero();
 };
 
-[[gnu::always_inline]] inline PointResponse pointResponse(const Body& b, const Vec3& r, const Vec3& n,
-                                                        double lengthSquared = 1.0) {
+[[gnu::always_inline]] inline PointResponse pointResponse(const Body& b, const Vec3& r, const Vec3& n) {
     if (b.invMass == 0.0) return {};
-    const double linear = b.invMass * lengthSquared;
-    if (!b.rotates()) return {linear, Vec3::Zero()};
+    if (!b.rotates()) return {b.invMass, Vec3::Zero()};
     const Vec3 rn = r.cross(n);
-    if (b.isotropic) return {linear + b.invInertia.x() * rn.squaredNorm(), b.invInertia.x() * rn};
+    if (b.isotropic) return {b.invMass + b.invInertia.x() * rn.squaredNorm(), b.invInertia.x() * rn};
     const Vec3 rnBody = b.q.conjugate() * rn;  // into the rest frame (paper 3.3.2)
     const Vec3 scaled = b.invInertia.cwiseProduct(rnBody);
-    return {linear + rnBody.dot(scaled), b.q * scaled};
+    return {b.invMass + rnBody.dot(scaled), b.q * scaled};
 }
 
 /// Eq. 6 to Eq. 9 for one body: moved by Δλ n / m and turned by Δλ I⁻¹ (r × n) (exactly, as
@@ -41,7 +36,7 @@ struct PointResponse {
 inline void movePoint(Body& b, const PointResponse& s, const Vec3& p, double deltaLambda) {
     if (b.invMass == 0.0) return;
     b.x += p * b.invMass;
-    if (b.rotates()) turnBy(b.q, s.turn * deltaLambda);
+    if (b.rotates()) integrateRotation(b.q, s.turn * deltaLambda);
 }
 
 /// The paper's contact for a pair with one point (a marble, a coin on its rim): the push
@@ -92,24 +87,18 @@ inline void movePoint(Body& b, const PointResponse& s, const Vec3& p, double del
     double lambdaTangent = pair.lambdaTangent();
     const double limit = pair.staticFriction * pair.lambdaNormal;
     if (gaussSeidel) {
-        // Along u = −Δp_t as it is, not normalised: with S = |u|², the responses are S times
-        // the unit direction's w and |u| times its rotation, so Eq. 4's Δλ = |u| / w is
-        // |u| S / W and the bodies move by k = S / W per unit of u. No square root or division
-        // stands between the push's turn and this one's; the square root for the bound
-        // (λ_t ≤ μ_s λ_n) is taken beside it.
-        const double slipSquared = slip.squaredNorm();
-        if (slipSquared > kDirectionEpsilon * kDirectionEpsilon) {
-            const Vec3 u = -slip;
-            const PointResponse s0 = pointResponse(b0, r0, u, slipSquared);
-            const PointResponse s1 = pointResponse(b1, r1, u, slipSquared);
+        const double slipLength = slip.norm();
+        if (slipLength > kDirectionEpsilon) {
+            const Vec3 t = slip / -slipLength;  // the correction's direction, −Δp_t / |Δp_t|
+            const PointResponse s0 = pointResponse(b0, r0, t);
+            const PointResponse s1 = pointResponse(b1, r1, t);
             const double w = s0.w + s1.w;
-            const double k = slipSquared / w;
-            const double deltaLambda = std::sqrt(slipSquared) * k;
+            const double deltaLambda = slipLength / w;
             if (w > 0.0 && lambdaTangent + deltaLambda <= limit) {
                 lambdaTangent += deltaLambda;
-                const Vec3 p = k * u;
-                movePoint(b0, s0, p, k);
-                movePoint(b1, s1, -p, -k);
+                const Vec3 p = deltaLambda * t;
+                movePoint(b0, s0, p, deltaLambda);
+                movePoint(b1, s1, -p, -deltaLambda);
             }
         }
     } else {
@@ -144,27 +133,15 @@ inline void changePointVelocity(Body& b0, Body& b1, const PointResponse& s0, con
     const Vec3& n = c.normal;
     const Vec3 vAfter = pointVelocity(b0.v, b0.omega, r0) - pointVelocity(b1.v, b1.omega, r1);
     const Vec3 slip = vAfter - vAfter.dot(n) * n;  // Eq. 29: v_t
-    const double slipSquared = slip.squaredNorm();
-    if (!(slipSquared > kRestingSpeed * kRestingSpeed)) return;
-    // Along v_t as it is, not normalised (S = |v_t|²): the responses are W = S (w1 + w2) and
-    // |v_t| times the unit direction's rotation. Removing the whole slip takes the impulse
-    // |v_t| / (w1 + w2) (Eq. 33), S / W per unit of v_t; Eq. 30 with ERRATA item 2 allows at
-    // most h μ_d f_n = μ_d λ_n / h (f_n = λ_n / h², Eq. 10), μ_d λ_n / (h |v_t|) per unit of
-    // v_t. The smaller is applied: no division by |v_t| before the bodies' velocities change.
-    const PointResponse s0 = pointResponse(b0, r0, slip, slipSquared);
-    const PointResponse s1 = pointResponse(b1, r1, slip, slipSquared);
-    const double w = s0.w + s1.w;
-    if (!(w > 0.0)) return;
-    const double perSlip =
-        std::min(slipSquared / w, pair.dynamicFriction * c.lambdaNormal / (h * std::sqrt(slipSquared)));
-    if (b0.invMass > 0.0) {
-        b0.v -= (perSlip * b0.invMass) * slip;
-        if (b0.rotates()) b0.omega -= perSlip * s0.turn;
-    }
-    if (b1.invMass > 0.0) {
-        b1.v += (perSlip * b1.invMass) * slip;
-        if (b1.rotates()) b1.omega += perSlip * s1.turn;
-    }
+    const double slipSpeed = slip.norm();
+    if (!(slipSpeed > kRestingSpeed)) return;
+    const Vec3 t = slip / slipSpeed;
+    const PointResponse s0 = pointResponse(b0, r0, t);
+    const PointResponse s1 = pointResponse(b1, r1, t);
+    // Eq. 30 with ERRATA item 2: an impulse of at most h μ_d f_n, f_n = λ_n / h² (Eq. 10),
+    // changes the slip speed by at most that times w1 + w2; applied by Eq. 33.
+    const double maxChange = pair.dynamicFriction * c.lambdaNormal / h * (s0.w + s1.w);
+    changePointVelocity(b0, b1, s0, s1, t, -std::min(maxChange, slipSpeed));
 }
 
 /// The velocity pass for a pair with one point (Eq. 29, Eq. 30, Eq. 33, Eq. 34): restitution,

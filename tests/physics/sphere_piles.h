@@ -93,8 +93,8 @@ struct SettledPile {
 /// Sleep thresholds four times the default speed and forty times its turning rate (a ball of
 /// 0.1 m rolling at 0.2 m/s turns at 2 rad/s): above the settled pile's creep. With them
 /// spheres1000 fell asleep between 10.0 and 20.0 s in three layouts at 372059e, and between
-/// 13.0 and 23.2 s in five under the one-point chain's rounding (contact_turn.h), against the
-/// 60 s it is given.
+/// 13.0 and 23.2 s in five under another rounding of the one-point contacts, against the 60 s
+/// it is given.
 inline constexpr SleepSettings kPileSleep{.speed = 0.2, .angularSpeed = 2.0, .time = 0.5};
 
 /// What a settledSpherePile run saw. Frame counts are of the phase they belong to.
