@@ -19,10 +19,11 @@ struct SoftBody {
     std::vector<Entity> attachedBodies;  ///< one per def.attachments entry, same order
     SoftBodyId id;                       ///< null until PhysicsSystem::sync() creates it
 
-    /// Written by the PhysicsSystem when it creates the soft body (whole) and after every step:
-    /// centre of mass, mean velocity, axis-aligned extent, mass and counts, but not the volume,
-    /// a sum over every element that most steps nobody reads: NaN after a step. DESIGN.md's CSV
-    /// columns, the volume among them, come from ecs::softBodyReadout (physics_system.h).
+    /// Written by the PhysicsSystem when it creates the soft body (whole) and by every
+    /// write-back (after each step, and once when buildScene has made the scene): centre of
+    /// mass, mean velocity, axis-aligned extent, mass and counts, but not the volume, a sum over
+    /// every element that most steps nobody reads: NaN there. DESIGN.md's CSV columns, the
+    /// volume among them, come from ecs::softBodyReadout (physics_system.h).
     SoftBodyReadout readout;
 };
 
