@@ -33,6 +33,19 @@ using namespace simd;
         p[l] = padded[l];
 }
 
+/// The `count` (at most four) points at `from` to `to` as they are stored (a full block as
+/// three rows of four doubles, without the transposes).
+[[gnu::always_inline]] inline void copyBlock(Vec3* to, const Vec3* from, uint32_t count) {
+    if (count == kLanes) {
+        Lanes v0, v1, v2;
+        load(v0, from->data()), load(v1, from->data() + 4), load(v2, from->data() + 8);
+        store(to->data(), v0), store(to->data() + 4, v1), store(to->data() + 8, v2);
+        return;
+    }
+    for (uint32_t l = 0; l < count; ++l)
+        to[l] = from[l];
+}
+
 /// The `count` (at most four) masses at m into lanes; lanes past `count` get 0.
 [[gnu::always_inline]] inline void loadMasses(const double* m, uint32_t count, Lanes& out) {
     if (count == kLanes) return load(out, m);
@@ -89,9 +102,9 @@ rigidModeMoments(const Vec3* x, const Vec3* v, const double* m, uint32_t count) 
     for (uint32_t i = 0; i < count; i += kLanes) {
         const uint32_t n = std::min<uint32_t>(kLanes, count - i);
         Lanes px, py, pz, vx, vy, vz;
+        copyBlock(xPrev + i, x + i, n);
         loadBlock(x + i, n, Vec3::Zero(), px, py, pz);
         loadBlock(v + i, n, Vec3::Zero(), vx, vy, vz);
-        storeBlock(xPrev + i, n, px, py, pz);
         vx += gravityStep.x(), vy += gravityStep.y(), vz += gravityStep.z();
         const Lanes rx = px - centre.x(), ry = py - centre.y(), rz = pz - centre.z();
         px += h * vx + (arc(0, 0) * rx + arc(0, 1) * ry + arc(0, 2) * rz);
@@ -143,8 +156,8 @@ rigidModeMoments(const Vec3* x, const Vec3* v, const double* m, uint32_t count) 
         Lanes px, py, pz, qx, qy, qz, vx, vy, vz;
         loadBlock(x + i, n, Vec3::Zero(), px, py, pz);
         loadBlock(xPrev + i, n, Vec3::Zero(), qx, qy, qz);
+        copyBlock(vPrev + i, v + i, n);
         loadBlock(v + i, n, Vec3::Zero(), vx, vy, vz);
-        storeBlock(vPrev + i, n, vx, vy, vz);
         const Lanes rx = px - centre.x(), ry = py - centre.y(), rz = pz - centre.z();
         const Lanes sx = qx - centrePrev.x(), sy = qy - centrePrev.y(), sz = qz - centrePrev.z();
         vx = ((px - qx) * invH + (spin(0, 0) * rx + spin(0, 1) * ry + spin(0, 2) * rz)) -
