@@ -89,13 +89,6 @@ bool staticSlip(const Body& b, const Vec3& r, const Vec3& local1, const Vec3& n,
     return true;
 }
 
-/// Attachments to one body solved side by side against the same pose (solveAttachments).
-constexpr size_t kAttachmentBlock = 4;
-/// The largest share w_body / (w + w_body) of an attachment's correction its body may take for
-/// the attachment to be solved in a block: the block's result differs from one attachment
-/// after the other by the products of the shares.
-constexpr double kBlockShare = 0.01;
-
 /// Eq. 4 for an attachment whose particle is `delta` short of the body's point (c = |delta|,
 /// c2 = c²), multiplier lambda (updated) and compliance term α̃ = α / h², between generalised
 /// inverse masses w + w_body = wLinear + angular / c² (Eqs. 2-3: `angular` is
@@ -263,14 +256,6 @@ void SoftSystem::solveAttachments(SolverContext& ctx) {
     // accumulated rotation (microradians per substep), written back once at the end by the
     // exact map. The same corrections as one attachment after the other, to second order in
     // that rotation, without a quaternion update per particle.
-    //
-    // Four attachments at a time are solved against the same pose of the body and move it by
-    // their sum (Jacobi among the four, Gauss-Seidel between blocks), so the four divisions
-    // overlap instead of forming one chain through the body's pose. Each moves the body by
-    // its share s = w_body / (w + w_body) of its correction and misses the others' moves: the
-    // block differs from the sequence by the products of the shares, so a block is solved this
-    // way only where every share is under kBlockShare (a rim hundreds of times its particles'
-    // mass: s about 1e-3 on the car, 3e-6 on the benchmark's tyre); a light body goes one by one.
     size_t k = 0;
     while (k < attachments_.size()) {
         const uint32_t bodyIndex = attachments_[k].body;
@@ -286,42 +271,8 @@ void SoftSystem::solveAttachments(SolverContext& ctx) {
                   : Mat3::Zero();
         const double inverseMass = moves ? b.invMass : 0.0;
         Vec3 position = b.x, turned = Vec3::Zero();
-        while (k < end) {
-            if (end - k >= kAttachmentBlock) {
-                Vec3 delta[kAttachmentBlock], spin[kAttachmentBlock];
-                double c2[kAttachmentBlock], angular[kAttachmentBlock], w[kAttachmentBlock];
-                bool block = true;
-                for (size_t l = 0; l < kAttachmentBlock; ++l) {
-                    const Attachment& a = attachments_[k + l];
-                    const Vec3 r0 = rotation * a.local;
-                    const Vec3 r = r0 + turned.cross(r0);
-                    delta[l] = position + r - x_[a.particle];
-                    c2[l] = delta[l].squaredNorm();
-                    w[l] = invMass_[a.particle];
-                    const Vec3 rd = r.cross(delta[l]);
-                    spin[l] = inverseInertia * rd;
-                    angular[l] = rd.dot(spin[l]);  // Eqs. 2-3, times c²
-                    // s < kBlockShare without a division: w_body c² < kBlockShare w c².
-                    block = block && inverseMass * c2[l] + angular[l] <= kBlockShare * w[l] * c2[l];
-                }
-                if (block) {
-                    Vec3 bodyStep = Vec3::Zero(), bodyTurn = Vec3::Zero();
-                    for (size_t l = 0; l < kAttachmentBlock; ++l) {
-                        if (!(c2[l] > kDirectionEpsilon * kDirectionEpsilon)) continue;
-                        Attachment& a = attachments_[k + l];
-                        const double factor =
-                            attachmentImpulse(a.lambda, a.compliance * ctx.invH2, c2[l], w[l] + inverseMass, angular[l]);
-                        x_[a.particle] += (w[l] * factor) * delta[l];  // Eq. 6
-                        bodyStep += factor * delta[l];
-                        bodyTurn += factor * spin[l];
-                    }
-                    position -= inverseMass * bodyStep;  // Eq. 7, the body receiving −Σ p
-                    turned -= bodyTurn;                  // Eq. 8
-                    k += kAttachmentBlock;
-                    continue;
-                }
-            }
-            Attachment& a = attachments_[k++];
+        for (; k < end; ++k) {
+            Attachment& a = attachments_[k];
             const Vec3 r0 = rotation * a.local;
             const Vec3 r = r0 + turned.cross(r0);
             const Vec3 delta = position + r - x_[a.particle];
