@@ -296,10 +296,13 @@ template <bool Contiguous, bool Held>
     {
         // C ≤ 1e-12 ℓ (C² ≤ 1e-24 ℓ²): already at the goal.
         const auto active = (sum > 8e-24 * spread) & (weighted > 0.0);
+        // Δλ = (−C − α̃ λ) / (weighted / (64 C²) + α̃) and the step Δλ / (8 C): with
+        // 64 C² = 8 Σ|d_j|², the step is (−Σ|d_j|² − 8 α̃ λ C) / (weighted + 8 α̃ Σ|d_j|²), one
+        // division that does not wait for the square root (C only meets λ, 0 in a substep's
+        // first iteration).
         const Lanes cc = active ? c : one;
-        // Δλ = (−C − α̃ λ) / (weighted / (64 C²) + α̃) and the step Δλ / (8 C), by one division.
-        const Lanes scaled = weighted / (8.0 * cc) + 8.0 * alpha * cc;  // (8 C) × denominator
-        const Lanes solved = (-cc - alpha * lambda) / scaled;  // inf or NaN when inactive
+        const Lanes inverse = one / (weighted + 8.0 * alpha * sum);  // inf or NaN when inactive
+        const Lanes solved = (-sum - 8.0 * alpha * lambda * cc) * inverse;
         step = active ? solved : zero;
         lambda += step * (8.0 * cc);
     }

@@ -33,6 +33,19 @@ using namespace simd;
         p[l] = padded[l];
 }
 
+/// The `count` (at most four) points at `from` to `to` as they are stored (a full block as
+/// three rows of four doubles, without the transposes).
+[[gnu::always_inline]] inline void copyBlock(Vec3* to, const Vec3* from, uint32_t count) {
+    if (count == kLanes) {
+        Lanes v0, v1, v2;
+        load(v0, from->data()), load(v1, from->data() + 4), load(v2, from->data() + 8);
+        store(to->data(), v0), store(to->data() + 4, v1), store(to->data() + 8, v2);
+        return;
+    }
+    for (uint32_t l = 0; l < count; ++l)
+        to[l] = from[l];
+}
+
 /// The `count` (at most four) masses at m into lanes; lanes past `count` get 0.
 [[gnu::always_inline]] inline void loadMasses(const double* m, uint32_t count, Lanes& out) {
     if (count == kLanes) return load(out, m);
@@ -42,24 +55,15 @@ using namespace simd;
     load(out, padded);
 }
 
-}  // namespace
+/// rigidModeMoments' sums over blocks of four particles, relative to `origin`: each block's
+/// positions (relative), velocities and masses (0 past the end) added lane by lane.
+struct MomentSums {
+    Lanes mass = {}, fx = {}, fy = {}, fz = {}, px = {}, py = {}, pz = {};
+    Lanes lx = {}, ly = {}, lz = {};
+    Lanes sxx = {}, syy = {}, szz = {}, sxy = {}, sxz = {}, syz = {};
 
-[[gnu::target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")]] RigidModeMoments
-rigidModeMoments(const Vec3* x, const Vec3* v, const double* m, uint32_t count) {
-    RigidModeMoments out;
-    if (count == 0) return out;
-    const Vec3 origin = x[0];
-    const Lanes zero = {};
-    Lanes mass = zero, fx = zero, fy = zero, fz = zero, px = zero, py = zero, pz = zero;
-    Lanes lx = zero, ly = zero, lz = zero;
-    Lanes sxx = zero, syy = zero, szz = zero, sxy = zero, sxz = zero, syz = zero;
-    for (uint32_t i = 0; i < count; i += kLanes) {
-        const uint32_t n = std::min<uint32_t>(kLanes, count - i);
-        Lanes rx, ry, rz, vx, vy, vz, mi;
-        loadBlock(x + i, n, origin, rx, ry, rz);
-        loadBlock(v + i, n, Vec3::Zero(), vx, vy, vz);
-        loadMasses(m + i, n, mi);
-        rx -= origin.x(), ry -= origin.y(), rz -= origin.z();
+    [[gnu::always_inline]] void add(const Lanes& rx, const Lanes& ry, const Lanes& rz, const Lanes& vx,
+                                    const Lanes& vy, const Lanes& vz, const Lanes& mi) {
         const Lanes mx = mi * rx, my = mi * ry, mz = mi * rz;
         mass += mi, fx += mx, fy += my, fz += mz;
         px += mi * vx, py += mi * vy, pz += mi * vz;
@@ -67,20 +71,44 @@ rigidModeMoments(const Vec3* x, const Vec3* v, const double* m, uint32_t count) 
         sxx += mx * rx, syy += my * ry, szz += mz * rz;
         sxy += mx * ry, sxz += mx * rz, syz += my * rz;
     }
-    out.mass = sum(mass);
-    if (!(out.mass > 0.0)) return out;
-    const Vec3 first(sum(fx), sum(fy), sum(fz));
-    const Vec3 momentum(sum(px), sum(py), sum(pz));
-    const Vec3 angular(sum(lx), sum(ly), sum(lz));
-    Mat3 second;
-    second << sum(sxx), sum(sxy), sum(sxz), sum(sxy), sum(syy), sum(syz), sum(sxz), sum(syz), sum(szz);
-    const Vec3 d = first / out.mass;  // centre − origin
-    out.centre = origin + d;
-    out.velocity = momentum / out.mass;
-    out.angularMomentum = angular - d.cross(momentum);
-    const Mat3 centred = second - out.mass * d * d.transpose();  // Σ m r rᵀ about the centre
-    out.inertia = centred.trace() * Mat3::Identity() - centred;
-    return out;
+
+    /// The lanes added in a fixed order and moved to the centre of mass.
+    [[gnu::always_inline]] RigidModeMoments moments(const Vec3& origin) const {
+        RigidModeMoments out;
+        out.mass = sum(mass);
+        if (!(out.mass > 0.0)) return out;
+        const Vec3 first(sum(fx), sum(fy), sum(fz));
+        const Vec3 momentum(sum(px), sum(py), sum(pz));
+        const Vec3 angular(sum(lx), sum(ly), sum(lz));
+        Mat3 second;
+        second << sum(sxx), sum(sxy), sum(sxz), sum(sxy), sum(syy), sum(syz), sum(sxz), sum(syz), sum(szz);
+        const Vec3 d = first / out.mass;  // centre − origin
+        out.centre = origin + d;
+        out.velocity = momentum / out.mass;
+        out.angularMomentum = angular - d.cross(momentum);
+        const Mat3 centred = second - out.mass * d * d.transpose();  // Σ m r rᵀ about the centre
+        out.inertia = centred.trace() * Mat3::Identity() - centred;
+        return out;
+    }
+};
+
+}  // namespace
+
+[[gnu::target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")]] RigidModeMoments
+rigidModeMoments(const Vec3* x, const Vec3* v, const double* m, uint32_t count) {
+    if (count == 0) return {};
+    const Vec3 origin = x[0];
+    MomentSums sums;
+    for (uint32_t i = 0; i < count; i += kLanes) {
+        const uint32_t n = std::min<uint32_t>(kLanes, count - i);
+        Lanes rx, ry, rz, vx, vy, vz, mi;
+        loadBlock(x + i, n, origin, rx, ry, rz);
+        loadBlock(v + i, n, Vec3::Zero(), vx, vy, vz);
+        loadMasses(m + i, n, mi);
+        rx -= origin.x(), ry -= origin.y(), rz -= origin.z();
+        sums.add(rx, ry, rz, vx, vy, vz, mi);
+    }
+    return sums.moments(origin);
 }
 
 [[gnu::target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")]] void predictOnArc(
@@ -89,9 +117,9 @@ rigidModeMoments(const Vec3* x, const Vec3* v, const double* m, uint32_t count) 
     for (uint32_t i = 0; i < count; i += kLanes) {
         const uint32_t n = std::min<uint32_t>(kLanes, count - i);
         Lanes px, py, pz, vx, vy, vz;
+        copyBlock(xPrev + i, x + i, n);
         loadBlock(x + i, n, Vec3::Zero(), px, py, pz);
         loadBlock(v + i, n, Vec3::Zero(), vx, vy, vz);
-        storeBlock(xPrev + i, n, px, py, pz);
         vx += gravityStep.x(), vy += gravityStep.y(), vz += gravityStep.z();
         const Lanes rx = px - centre.x(), ry = py - centre.y(), rz = pz - centre.z();
         px += h * vx + (arc(0, 0) * rx + arc(0, 1) * ry + arc(0, 2) * rz);
@@ -135,16 +163,19 @@ rigidModeMoments(const Vec3* x, const Vec3* v, const double* m, uint32_t count) 
     return out;
 }
 
-[[gnu::target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")]] void deriveOnArc(
+[[gnu::target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")]] RigidModeMoments deriveOnArc(
     const Vec3* x, const Vec3* xPrev, Vec3* v, Vec3* vPrev, uint32_t count, double invH,
-    const Mat3& spin, const Vec3& centre, const Mat3& turnBack, const Vec3& centrePrev) {
+    const Mat3& spin, const Vec3& centre, const Mat3& turnBack, const Vec3& centrePrev, const double* m) {
+    if (count == 0) return {};
+    const Vec3 origin = x[0];
+    MomentSums sums;
     for (uint32_t i = 0; i < count; i += kLanes) {
         const uint32_t n = std::min<uint32_t>(kLanes, count - i);
         Lanes px, py, pz, qx, qy, qz, vx, vy, vz;
         loadBlock(x + i, n, Vec3::Zero(), px, py, pz);
         loadBlock(xPrev + i, n, Vec3::Zero(), qx, qy, qz);
+        copyBlock(vPrev + i, v + i, n);
         loadBlock(v + i, n, Vec3::Zero(), vx, vy, vz);
-        storeBlock(vPrev + i, n, vx, vy, vz);
         const Lanes rx = px - centre.x(), ry = py - centre.y(), rz = pz - centre.z();
         const Lanes sx = qx - centrePrev.x(), sy = qy - centrePrev.y(), sz = qz - centrePrev.z();
         vx = ((px - qx) * invH + (spin(0, 0) * rx + spin(0, 1) * ry + spin(0, 2) * rz)) -
@@ -154,7 +185,11 @@ rigidModeMoments(const Vec3* x, const Vec3* v, const double* m, uint32_t count) 
         vz = ((pz - qz) * invH + (spin(2, 0) * rx + spin(2, 1) * ry + spin(2, 2) * rz)) -
              (turnBack(2, 0) * sx + turnBack(2, 1) * sy + turnBack(2, 2) * sz);
         storeBlock(v + i, n, vx, vy, vz);
+        Lanes mi;
+        loadMasses(m + i, n, mi);  // 0 past the end: those lanes add nothing
+        sums.add(px - origin.x(), py - origin.y(), pz - origin.z(), vx, vy, vz, mi);
     }
+    return sums.moments(origin);
 }
 
 static_assert(sizeof(Quat) == 4 * sizeof(double), "rotations are read as packed (x, y, z, w)");

@@ -167,6 +167,7 @@ void SoftSystem::destroy(SoftBodyId id) {
     freeBodies_.push_back(id.index);
     --liveBodies_;
     rebuildBatches();
+    for (SoftBodyData& body : bodies_) body.momentsKept = false;
 }
 
 ElementArrays SoftSystem::elementArrays() {
@@ -260,8 +261,12 @@ void SoftSystem::integrate(double h, const Vec3& gravity) {
     for (SoftBodyData& body : bodies_) {
         if (!body.alive) continue;
         const uint32_t first = body.firstParticle;
-        const RigidModeMoments moments =
-            rigidModeMoments(x_.data() + first, v_.data() + first, mass_.data() + first, body.particleCount);
+        // The moments the last velocity derivation summed (the velocity pass's changes added),
+        // or afresh after damping and at the start.
+        if (!body.momentsKept)
+            body.moments = rigidModeMoments(x_.data() + first, v_.data() + first, mass_.data() + first, body.particleCount);
+        body.momentsKept = false;
+        const RigidModeMoments& moments = body.moments;
         const Vec3 spin = momentumKeepingSpin(moments.inertia, moments.angularMomentum, h);
         body.turn = Quat::Identity();
         // A turn under 1e-7 rad per substep (the chord's loss, (h ω)², is below rounding) or
@@ -321,16 +326,38 @@ void SoftSystem::deriveVelocities(double h) {
             correction = crossMatrix(spin);
             turnBack = (r - Mat3::Identity()) * invH;
         }
-        deriveOnArc(x_.data() + first, xPrev_.data() + first, v_.data() + first, vPrev_.data() + first, body.particleCount,
-                    invH, correction, centre, turnBack, centrePrev);
+        body.moments = deriveOnArc(x_.data() + first, xPrev_.data() + first, v_.data() + first, vPrev_.data() + first,
+                                   body.particleCount, invH, correction, centre, turnBack, centrePrev, mass_.data() + first);
+        body.momentsKept = true;
     }
 }
 
 void SoftSystem::solveVelocities(Body* bodies, double h, double gravity) {
+    // The contacts change their particles' velocities: each body's kept moments (deriveOnArc)
+    // take the change of its momentum and angular momentum, Σ m Δv and Σ m (x − c) × Δv.
+    passed_.resize(x_.size(), 0);
+    passedVelocities_.clear();
+    for (const ParticleContact& c : contacts_) {
+        if (passed_[c.particle] != 0) continue;
+        passed_[c.particle] = 1;
+        passedVelocities_.emplace_back(c.particle, v_[c.particle]);
+    }
     solveContactVelocities(bodies, h, gravity);
+    for (const auto& [i, before] : passedVelocities_) {
+        passed_[i] = 0;
+        const Vec3 change = mass_[i] * (v_[i] - before);
+        for (SoftBodyData& body : bodies_) {
+            if (!body.alive || i < body.firstParticle || i >= body.firstParticle + body.particleCount) continue;
+            RigidModeMoments& moments = body.moments;
+            if (moments.mass > 0.0) moments.velocity += change / moments.mass;
+            moments.angularMomentum += (x_[i] - moments.centre).cross(change);
+            break;
+        }
+    }
 }
 
 void SoftSystem::damp(double dt) {
+    for (SoftBodyData& body : bodies_) body.momentsKept = false;  // the velocities change
     // Each element's deformation rate, its batches' lanes side by side (element_damping.h).
     dampElementBatches(batches_, {.positions = x_, .velocities = v_, .mass = mass_, .damping = elementDamping_}, dt);
 }

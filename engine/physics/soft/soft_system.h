@@ -17,6 +17,7 @@
 #include "physics/math.h"
 #include "physics/soft/element_batch.h"
 #include "physics/soft/lattice.h"
+#include "physics/soft/rigid_mode.h"
 #include "physics/soft/soft_body.h"
 
 #include <array>
@@ -123,6 +124,12 @@ private:
         /// The rigid mode's turn in this substep (rigid_mode.h): predicted by integrate, the
         /// warm start of the best-fit rotation in deriveVelocities.
         Quat turn = Quat::Identity();
+        /// The moments of the particles' positions and velocities, summed by the velocity
+        /// derivation (deriveOnArc) and kept up to date through the velocity pass, for the next
+        /// substep's prediction; `momentsKept` false (after damping, at creation) makes
+        /// integrate sum them afresh.
+        RigidModeMoments moments;
+        bool momentsKept = false;
     };
     /// A particle held to a point of a rigid body (principal frame).
     struct Attachment {
@@ -244,6 +251,10 @@ private:
     std::vector<uint32_t> heldParticles_;  ///< the particles with a non-zero holdNormal_
     std::vector<uint8_t> heldBatches_;     ///< per batch: 1 where a corner is held
     std::vector<uint32_t> particleBatchStart_, particleBatches_;  ///< each particle's batches
+    /// The velocity pass's particles (solveVelocities): index and velocity before it, and a
+    /// flag per particle while it is listed.
+    std::vector<std::pair<uint32_t, Vec3>> passedVelocities_;
+    std::vector<uint8_t> passed_;
 };
 
 }  // namespace substep

@@ -142,8 +142,9 @@ TEST(RigidMode, PassesInLanesMatchTheirFormulasForEveryRemainder) {
             EXPECT_EQ(lanes.xPrev[i], scalar.xPrev[i]) << count << " " << i;
         }
         const double invH = 1.0 / h;
-        deriveOnArc(lanes.x.data(), lanes.xPrev.data(), lanes.v.data(), lanes.vPrev.data(), count, invH, spin,
-                    centre, turnBack, centrePrev);
+        const RigidModeMoments derived = deriveOnArc(lanes.x.data(), lanes.xPrev.data(), lanes.v.data(),
+                                                     lanes.vPrev.data(), count, invH, spin, centre, turnBack,
+                                                     centrePrev, lanes.m.data());
         for (int i = 0; i < count; ++i) {
             scalar.vPrev[i] = scalar.v[i];
             scalar.v[i] = (scalar.x[i] - scalar.xPrev[i]) * invH + spin * (scalar.x[i] - centre) -
@@ -154,6 +155,13 @@ TEST(RigidMode, PassesInLanesMatchTheirFormulasForEveryRemainder) {
             EXPECT_EQ(lanes.vPrev[i], scalar.vPrev[i]) << count << " " << i;
         }
         EXPECT_EQ(lanes.x[count], Particles(count + 1).x[count]);  // untouched
+        // The moments it returns are those of x and the new v, as rigidModeMoments sums them.
+        const RigidModeMoments after = rigidModeMoments(lanes.x.data(), lanes.v.data(), lanes.m.data(), count);
+        EXPECT_NEAR(derived.mass, after.mass, 1e-14 * after.mass) << count;
+        EXPECT_LT((derived.centre - after.centre).norm(), 1e-12) << count;
+        EXPECT_LT((derived.velocity - after.velocity).norm(), 1e-12 * (1 + after.velocity.norm())) << count;
+        EXPECT_LT((derived.angularMomentum - after.angularMomentum).norm(), 1e-11 * (1 + after.angularMomentum.norm())) << count;
+        EXPECT_LT(distance(derived.inertia, after.inertia), 1e-11 * (1e-6 + after.inertia.norm())) << count;
     }
 }
 
