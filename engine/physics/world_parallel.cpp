@@ -104,20 +104,13 @@ void World::colourConstraints() {
                         : ColourGroups::kSkip;
     }
     state.joints.groupAll(joints_.size(), state.jointColours.data());
-    // The pairs that pushed in the last substep of the frame before (a pile's resting contacts)
-    // are coloured first, in pair order, then the others: the pairs that touch in a substep
-    // fill the first, large colours, and the candidates that do not touch (half of a pile's)
-    // the last ones, whose few touching pairs run serially or in short loops. Coloured in one
-    // pass in pair order, spheres1000's touching pairs spread over 21 colours (docs/PERFORMANCE.md).
     state.colouring.begin(bodies_.size());
     state.pairColours.resize(contactPairs_.size());
-    for (const bool pushed : {true, false})
-        for (size_t p = 0; p < contactPairs_.size(); ++p) {
-            const ContactPair& pair = contactPairs_[p];
-            if ((pair.lambdaNormal > 0.0) != pushed) continue;
-            state.pairColours[p] = state.colouring.assign(pair.body0, bodies_[pair.body0].isDynamic(), pair.body1,
-                                                          bodies_[pair.body1].isDynamic());
-        }
+    for (size_t p = 0; p < contactPairs_.size(); ++p) {
+        const ContactPair& pair = contactPairs_[p];
+        state.pairColours[p] = state.colouring.assign(pair.body0, bodies_[pair.body0].isDynamic(), pair.body1,
+                                                      bodies_[pair.body1].isDynamic());
+    }
 }
 
 void World::groupTouchingPairs() {
