@@ -97,7 +97,7 @@ void solveContactPositions(ContactPair& pair, std::span<Contact> contacts, Solve
 /// removes slip with an impulse of at most h μ_d |f_n| (Eq. 30 with ERRATA item 2's units).
 /// Only points that pushed this substep (λ_n > 0) take part. A one-point pair's point that
 /// took solveCollisionVelocities (Contact::collisionPass) only has an approach left removed
-/// (Eq. 34 with e = 0, never pulling).
+/// (Eq. 34 with e = 0) and, if it did not collide, a separation faster than its v̄_n.
 void solveContactVelocities(const ContactPair& pair, std::span<const Contact> contacts,
                             Body* bodies, double h, double gravity);
 

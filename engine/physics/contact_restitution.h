@@ -23,8 +23,8 @@
 /// impulse λ_n / h replaced by its collision impulse (none for the latter); these changes add
 /// up in any order, so all are made before Eq. 34 sets any other contact's velocity. An
 /// approach such a contact is left with (a support under gravity, whose push held it up) is
-/// then removed, Eq. 34 with e = 0: replacing that push with nothing had let marbles sink
-/// 1.5 mm into the wires of the rolling-ball sculpture. A contact between a reached body and
+/// then removed, Eq. 34 with e = 0 (marbles had sunk 1.5 mm into rolling_balls' wires), and
+/// one that did not collide separates no faster than its v̄_n (contact.cpp). A contact between a reached body and
 /// one no collision reached (a floor, a wall, a neighbour in a pile: a support) keeps Eq. 34,
 /// so a settling pile sleeps as under Eq. 34 alone. For a contact alone the collision
 /// impulse gives Eq. 34's −e v̄_n. All other contacts, patches of several points, and every
