@@ -374,7 +374,7 @@ TEST(ContactRestitutionTest, APileOfSpheresComesToRestUnderEitherRule) {
 // substep's other pushes (the bodies' supports) gave it, so spheres wedged between neighbours
 // were pushed apart at every substep, fell back and were pushed apart again: in layout 5 at
 // e 0.8, 25 to 63 spheres still moving from 3 s to 12 s, the energy rising by up to 0.131 J
-// in a frame (layout 1 at e 0.5: 0.074 J, 28 moving at 12 s). Such a point now separates no
+// in a frame (layout 1 at e 0.5: 0.057 J by 8 s, 28 moving at 12 s). Such a point now separates no
 // faster than before the substep. The bound on a rise: Eq. 34 alone, over eight layouts of
 // each, left rises after landing of up to 0.025 J (sixteen layouts at e 0.5 and 0.8); the
 // fixed sweeps up to 0.019 J, all at rest by 5.4 s (tests/stability/sphere_pile_test.cpp).

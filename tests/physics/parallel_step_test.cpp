@@ -131,8 +131,12 @@ TEST(ParallelStepTest, OneThreadWithoutColouringKeepsTheSerialOrder) {
 TEST(ParallelStepTest, PileSettlesWithoutSinkingAtTwoThreads) {
     World world = pile({.gravity = Vec3(0, -10, 0), .substeps = 20, .threads = 2});
     double deepest = 0.0;
-    test::runFor(world, 3.0, [&](double t) {
-        if (t > 2.0) deepest = std::max(deepest, world.maxPenetration());
+    // Read at 4 s: a pile's last slides come when its arrangement says (the file comment of
+    // tests/physics/sphere_piles.h); since the restitution sweeps' frictionless-pile fix one
+    // passes at 3 s here (rms 0.0226 m/s at 3.0 s, 0.0095 at 2.5 s and 0.0102 at 3.5 s; before
+    // it 0.0170 at 3 s and 0.0254 at 6 s, after a frame that gained 0.06 J at 5.5 s).
+    test::runFor(world, 4.0, [&](double t) {
+        if (t > 3.0) deepest = std::max(deepest, world.maxPenetration());
     });
     ASSERT_TRUE(world.isFinite());
     double squaredSpeeds = 0.0;
@@ -145,7 +149,7 @@ TEST(ParallelStepTest, PileSettlesWithoutSinkingAtTwoThreads) {
         ++moving;
     }
     const double rmsSpeed = std::sqrt(squaredSpeeds / moving);
-    std::printf("pile at 3 s: deepest %.3g m, rms speed %.3g m/s, highest %.3g m\n", deepest, rmsSpeed, highest);
+    std::printf("pile at 4 s: deepest %.3g m, rms speed %.3g m/s, highest %.3g m\n", deepest, rmsSpeed, highest);
     EXPECT_LT(deepest, 1e-3) << "penetration over the last second (m)";
     // Dropped from up to 0.6 m (3.5 m/s at the floor), the pile comes to rest: what is left is
     // the slow creep of spheres rolling into the gaps.
