@@ -4,7 +4,6 @@
 #include "physics/collision/triangle_contact.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -163,46 +162,8 @@ void collideSphereHeightfield(const HeightfieldGrid& grid, const Vec3& centre, d
                               double margin, ContactManifold& out) {
     out.clear();
     ContactBuffer buffer(kMergeFraction * r);
-    // A field at rest in the world's axes (rc_car's ground) is turned by the identity, which
-    // changes no coordinate but a zero's sign: where that cannot show, the turns are left out.
-    const bool unturned = pose.rotation.w() == 1.0 && pose.rotation.vec() == Vec3::Zero();
-    const Vec3 shifted = centre - pose.position;
-    const bool noZero = shifted.x() != 0.0 && shifted.y() != 0.0 && shifted.z() != 0.0;
-    addSphereContacts(grid, unturned && noZero ? shifted : pose.applyInverse(centre), r, margin, buffer);
-    if (buffer.count() == 0) return;
-    // position + q p for a point p: a ±0 of p's meets a position's coordinate, the same sum
-    // unless that is −0.
-    const bool noNegativeZero = !(pose.position.x() == 0.0 && std::signbit(pose.position.x())) &&
-                                !(pose.position.y() == 0.0 && std::signbit(pose.position.y())) &&
-                                !(pose.position.z() == 0.0 && std::signbit(pose.position.z()));
-    if (!unturned || !noNegativeZero) {
-        buffer.emit(pose, out);
-        return;
-    }
-    // ContactBuffer::emit with the points' turn left out (the normals still turned: a flat
-    // cell's have zeros).
-    // A sphere meets one to three triangles; more go the general way.
-    std::array<ContactPoint, 4> points;
-    const int count = buffer.count();
-    if (count > static_cast<int>(points.size())) {
-        buffer.emit(pose, out);
-        return;
-    }
-    // Deepest first by insertion, stable: std::sort's order for up to 16 points.
-    for (int i = 0; i < count; ++i) {
-        const ContactPoint p = buffer[i];
-        int k = i;
-        for (; k > 0 && p.depth > points[k - 1].depth; --k)
-            points[k] = points[k - 1];
-        points[k] = p;
-    }
-    for (int i = 0; i < count && !out.full(); ++i) {
-        ContactPoint p = points[i];
-        p.point0 = pose.position + p.point0;
-        p.point1 = pose.position + p.point1;
-        p.normal = pose.rotation * p.normal;
-        out.add(p);
-    }
+    addSphereContacts(grid, pose.applyInverse(centre), r, margin, buffer);
+    if (buffer.count() > 0) buffer.emit(pose, out);
 }
 
 double heightfieldGapBound(const HeightfieldGrid& grid, const Vec3& p, double reach) {
