@@ -1,5 +1,7 @@
 #include "physics/correction.h"
 
+#include "physics/gyroscopic_step.h"
+
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
@@ -220,16 +222,15 @@ struct InverseInertia {
     double excess[2];        ///< d_k − d_j
 
     InverseInertia() = default;  // a body that does not turn: never read
+    /// From the matrix whose columns are the body's principal axes.
     InverseInertia(const Body& body, const Mat3& rotation) {
-        const Vec3& d = body.invInertia;
-        const int j = d.y() == d.z() ? 1 : 0;  // a moment another one shares, where there is one
-        isotropic = d[j];
-        for (int k = 0; k < 3; ++k) {
-            if (k == j || d[k] == isotropic) continue;
-            axes[count] = rotation.col(k);
-            excess[count] = d[k] - isotropic;
-            ++count;
-        }
+        split(body.invInertia, [&](int k) -> Vec3 { return rotation.col(k); });
+    }
+    /// From the orientation itself: only the columns of its matrix that a rank-one term needs
+    /// (principalAxis, the same numbers as toRotationMatrix's columns), so a capsule or a rod
+    /// of square section builds one column, a cube or a sphere none.
+    InverseInertia(const Body& body, const Quat& orientation) {
+        split(body.invInertia, [&](int k) { return principalAxis(orientation, k); });
     }
     /// I⁻¹ v.
     Vec3 times(const Vec3& v) const {
@@ -259,6 +260,25 @@ struct InverseInertia {
 
 private:
     static double square(double x) { return x * x; }
+    /// j is a moment another one shares, where there is one (d_y = d_z: j = 1, else j = 0);
+    /// a term for each other axis whose moment differs from d_j. Written out rather than
+    /// looped, so that the struct is filled in place without a loop's bookkeeping.
+    template <typename Column>
+    void split(const Vec3& d, const Column& column) {
+        if (d.y() == d.z()) {
+            isotropic = d.y();
+            if (d.x() != isotropic) add(column(0), d.x());
+        } else {
+            isotropic = d.x();
+            if (d.y() != isotropic) add(column(1), d.y());
+            if (d.z() != isotropic) add(column(2), d.z());
+        }
+    }
+    void add(const Vec3& axis, double moment) {
+        axes[count] = axis;
+        excess[count] = moment - isotropic;
+        ++count;
+    }
 };
 
 }  // namespace
@@ -281,17 +301,12 @@ Vec3 applyAngularCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, const 
     const Body& b1 = ctx.bodies[i1];
     const bool turns0 = turns(b0);
     const bool turns1 = turns(b1);
-    InverseInertia inverse0, inverse1;
+    const InverseInertia inverse0 = turns0 ? InverseInertia(b0, rotation0) : InverseInertia();
+    const InverseInertia inverse1 = turns1 ? InverseInertia(b1, rotation1) : InverseInertia();
     const double alphaTilde = compliance * ctx.invH2;
     double denominator = alphaTilde;
-    if (turns0) {
-        inverse0 = InverseInertia(b0, rotation0);
-        denominator += inverse0.quadratic(n);  // Eq. 11
-    }
-    if (turns1) {
-        inverse1 = InverseInertia(b1, rotation1);
-        denominator += inverse1.quadratic(n);  // Eq. 12
-    }
+    if (turns0) denominator += inverse0.quadratic(n);  // Eq. 11
+    if (turns1) denominator += inverse1.quadratic(n);  // Eq. 12
     if (!(denominator > 0.0)) return Vec3::Zero();
     // Eq. 13 with ERRATA item 1's sign (θ rather than −θ).
     const double deltaLambda = (theta - alphaTilde * lambda) / denominator;
@@ -324,15 +339,11 @@ Vec3 applyPointCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, const Ma
     Symmetric3 k{.xx = diagonal, .yy = diagonal, .zz = diagonal};
     const bool turns0 = turns(b0);
     const bool turns1 = turns(b1);
-    InverseInertia inverse0, inverse1;  // static bodies and particles have none
-    if (turns0) {
-        inverse0 = InverseInertia(b0, rotation0);
-        inverse0.addPointTo(k, r0);
-    }
-    if (turns1) {
-        inverse1 = InverseInertia(b1, rotation1);
-        inverse1.addPointTo(k, r1);
-    }
+    // Static bodies and particles have none.
+    const InverseInertia inverse0 = turns0 ? InverseInertia(b0, rotation0) : InverseInertia();
+    const InverseInertia inverse1 = turns1 ? InverseInertia(b1, rotation1) : InverseInertia();
+    if (turns0) inverse0.addPointTo(k, r0);
+    if (turns1) inverse1.addPointTo(k, r1);
     Vec3 deltaLambda;
     if (!solveSymmetric(k, delta - alphaTilde * lambda, deltaLambda))  // Eq. 4, vector form
         return Vec3::Zero();                                           // two static bodies
@@ -392,9 +403,8 @@ Vec3 applyRotationCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, const
     const Body& b1 = ctx.bodies[i1];
     const bool turns0 = turns(b0);
     const bool turns1 = turns(b1);
-    InverseInertia inverse0, inverse1;
-    if (turns0) inverse0 = InverseInertia(b0, rotation0);
-    if (turns1) inverse1 = InverseInertia(b1, rotation1);
+    const InverseInertia inverse0 = turns0 ? InverseInertia(b0, rotation0) : InverseInertia();
+    const InverseInertia inverse1 = turns1 ? InverseInertia(b1, rotation1) : InverseInertia();
     const double alphaTilde = compliance * ctx.invH2;
     const Vec3 rhs = rotation - alphaTilde * lambda;  // Eq. 13's numerator, vector form
     // K = I0⁻¹ + I1⁻¹ in world coordinates (nᵀ K n is Eq. 11 plus Eq. 12).
@@ -476,20 +486,16 @@ Vec3 applyAngularVelocityCorrection(Body& b0, Body& b1, const Vec3& deltaOmega) 
     const double magnitude = deltaOmega.norm();
     if (!(magnitude > kDirectionEpsilon)) return Vec3::Zero();
     const Vec3 n = deltaOmega / magnitude;
-    // Each turning body's inverse inertia from one rotation matrix serves both w and the change
-    // of ω (Body::angularInverseMass and applyInverseInertia would rotate n and p twice each).
+    // Each turning body's inverse inertia, from the columns of its rotation matrix it needs,
+    // serves both w and the change of ω (Body::angularInverseMass and applyInverseInertia
+    // would rotate n and p twice each).
     const bool turns0 = turns(b0);
     const bool turns1 = turns(b1);
-    InverseInertia inverse0, inverse1;
+    const InverseInertia inverse0 = turns0 ? InverseInertia(b0, b0.q) : InverseInertia();
+    const InverseInertia inverse1 = turns1 ? InverseInertia(b1, b1.q) : InverseInertia();
     double w = 0.0;
-    if (turns0) {
-        inverse0 = InverseInertia(b0, b0.q.toRotationMatrix());
-        w += inverse0.quadratic(n);
-    }
-    if (turns1) {
-        inverse1 = InverseInertia(b1, b1.q.toRotationMatrix());
-        w += inverse1.quadratic(n);
-    }
+    if (turns0) w += inverse0.quadratic(n);
+    if (turns1) w += inverse1.quadratic(n);
     if (!(w > 0.0)) return Vec3::Zero();
     const Vec3 p = deltaOmega / w;  // Eq. 33's angular form, with Eq. 11 and Eq. 12 for w
     if (turns0) b0.omega += inverse0.times(p);
