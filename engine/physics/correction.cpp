@@ -38,7 +38,7 @@ inline BodyResponse positionalResponse(const Body& body, const Vec3& r, const Ve
 /// integrateRotation's square root and division. Both terms are orthogonal with norms cos φ and
 /// sin φ, so q stays unit to rounding; World::integrate normalises it again every substep, so
 /// rounding cannot accumulate over substeps. Larger turns (beyond 0.2 rad) take integrateRotation.
-inline void turnQuaternion(Quat& q, const Vec3& rotation) {
+[[gnu::always_inline]] inline void turnQuaternion(Quat& q, const Vec3& rotation) {
     const double x = 0.25 * rotation.squaredNorm();  // φ²
     if (!(x < 0.01)) {
         integrateRotation(q, rotation);
