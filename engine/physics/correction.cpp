@@ -324,9 +324,14 @@ Vec3 applyPointCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, const Ve
                                 ctx.bodies[i1].q.toRotationMatrix(), delta, r0, r1, compliance, lambda);
 }
 
-Vec3 applyPointCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, const Mat3& rotation0,
-                          const Mat3& rotation1, const Vec3& delta, const Vec3& r0, const Vec3& r1,
-                          double compliance, Vec3& lambda) {
+namespace {
+
+/// applyPointCorrection's body, inlined into the attachment, whose matrices and lever arms then
+/// stay in registers rather than going through memory to a call on every joint's critical path.
+[[gnu::always_inline]] inline Vec3 pointCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1,
+                                                   const Mat3& rotation0, const Mat3& rotation1,
+                                                   const Vec3& delta, const Vec3& r0, const Vec3& r1,
+                                                   double compliance, Vec3& lambda) {
     if (ctx.repairDistance > 0.0 &&  // the norm only matters while repairing
         skippedByRepair(ctx, delta.norm(), ctx.repairDistance, compliance))
         return Vec3::Zero();
@@ -363,6 +368,14 @@ Vec3 applyPointCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, const Ma
     return deltaLambda;
 }
 
+}  // namespace
+
+Vec3 applyPointCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, const Mat3& rotation0,
+                          const Mat3& rotation1, const Vec3& delta, const Vec3& r0, const Vec3& r1,
+                          double compliance, Vec3& lambda) {
+    return pointCorrection(ctx, i0, i1, rotation0, rotation1, delta, r0, r1, compliance, lambda);
+}
+
 Vec3 applyAttachmentCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1,
                                const Vec3& anchor0, const Vec3& anchor1, double compliance,
                                Vec3& lambda) {
@@ -382,7 +395,7 @@ Vec3 applyAttachmentCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1,
         return applyPointCorrection(ctx, i0, i1, start0, start1, delta, start0 * anchor0, start1 * anchor1,
                                     compliance, lambda);
     }
-    return applyPointCorrection(ctx, i0, i1, rotation0, rotation1, delta, r0, r1, compliance, lambda);
+    return pointCorrection(ctx, i0, i1, rotation0, rotation1, delta, r0, r1, compliance, lambda);
 }
 
 Vec3 applyRotationCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, const Vec3& rotation,
