@@ -10,6 +10,7 @@
 //   swing brings the axes back below about 177°.
 //   Position: the attachment Δx = p1 − p0.
 
+#include "physics/correction_kernels.h"
 #include "physics/joints/joint_geometry.h"
 #include "physics/joints/joint_rows.h"
 
@@ -59,6 +60,16 @@ bool twistFrame(const Mat3& f0, const Mat3& f1, Vec3& n, Vec3& n0, Vec3& n1) {
     return true;
 }
 
+/// AnglePart::solveLimit with its angular correction inlined (correction_kernels.h): a rope's
+/// joints run two limits and an attachment each, every one waiting on the previous one's turn.
+inline void solveAngleLimit(AnglePart& part, SolverContext& ctx, const Joint& joint, const JointRotations& rotations,
+                            const Vec3& n, double phi, double lower, double upper, double compliance) {
+    const double excess = limitExcess(phi, lower, upper);
+    if (excess != 0.0)
+        part.impulse += correction_kernels::angularCorrection(ctx, joint.body0, joint.body1, rotations.r0, rotations.r1,
+                                                              excess * n, compliance, part.lambda);
+}
+
 }  // namespace
 
 void solveSphericalJoint(const Joint& joint, SphericalJoint& spherical, SolverContext& ctx) {
@@ -72,8 +83,8 @@ void solveSphericalJoint(const Joint& joint, SphericalJoint& spherical, SolverCo
         Vec3 n;
         double swing;
         if (swingAxis(a0, a1, n, swing))
-            spherical.swing.solveLimit(ctx, joint.body0, joint.body1, rotations.r0, rotations.r1, n, swing,
-                                       -spherical.swingLimit, spherical.swingLimit, spherical.swingCompliance);
+            solveAngleLimit(spherical.swing, ctx, joint, rotations, n, swing, -spherical.swingLimit,
+                            spherical.swingLimit, spherical.swingCompliance);
     }
     if (spherical.hasTwistLimits) {
         const JointRotations rotations(joint, ctx.bodies);
@@ -84,11 +95,13 @@ void solveSphericalJoint(const Joint& joint, SphericalJoint& spherical, SolverCo
         f1.col(1) = rotations.r1 * frameNormal(joint.frame1);
         Vec3 n, n0, n1;
         if (twistFrame(f0, f1, n, n0, n1))
-            spherical.twist.solveLimit(ctx, joint.body0, joint.body1, rotations.r0, rotations.r1, n,
-                                       jointAtan2(n0.cross(n1).dot(n), n0.dot(n1)), spherical.twistLimits.lower,
-                                       spherical.twistLimits.upper, spherical.twistCompliance);
+            solveAngleLimit(spherical.twist, ctx, joint, rotations, n, jointAtan2(n0.cross(n1).dot(n), n0.dot(n1)),
+                            spherical.twistLimits.lower, spherical.twistLimits.upper, spherical.twistCompliance);
     }
-    spherical.attachment.solve(ctx, joint.body0, joint.body1, joint.anchor0, joint.anchor1, joint.compliance);
+    // PointPart::solve, inlined likewise.
+    PointPart& attachment = spherical.attachment;
+    attachment.impulse += correction_kernels::attachmentCorrection(ctx, joint.body0, joint.body1, joint.anchor0,
+                                                                   joint.anchor1, joint.compliance, attachment.lambda);
 }
 
 void appendSphericalRows(const Joint& joint, SphericalJoint& spherical, const SolverContext& ctx, JointRows& rows) {
