@@ -65,7 +65,7 @@ inline bool turns(const Body& body) { return body.rotates() && body.invMass > 0.
 
 /// Turns body `index` by dtheta alone (the rotation of Eq. 8, Eq. 9, Eq. 15 or Eq. 16), or
 /// gathers it for Jacobi: moveBody without a translation to add.
-inline void turnBody(SolverContext& ctx, uint32_t index, const Vec3& dtheta) {
+[[gnu::always_inline]] inline void turnBody(SolverContext& ctx, uint32_t index, const Vec3& dtheta) {
     if (ctx.solver == SolverType::Jacobi) {
         JacobiDelta& d = ctx.deltas[index];
         d.rotation += dtheta;
