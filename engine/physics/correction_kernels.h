@@ -254,15 +254,15 @@ private:
     return pointCorrection(ctx, i0, i1, rotation0, rotation1, delta, r0, r1, compliance, lambda);
 }
 
-/// applyAngularCorrection's body (with the matrices of the bodies' current orientations).
-[[gnu::always_inline]] inline Vec3 angularCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1,
-                                                     const Mat3& rotation0, const Mat3& rotation1,
-                                                     const Vec3& rotation, double compliance, double& lambda,
-                                                     double lambdaLimit = kUnlimited) {
-    const double theta = rotation.norm();
+/// applyAngularCorrection about a unit axis n by the angle θ ≥ 0 (Eqs. 11-16): the form an
+/// angle limit takes, whose axis is already unit and whose excess is the angle, so that it does
+/// not build the rotation vector θ n only to take its length and divide by it again (a square
+/// root and a division on the joint's critical path).
+[[gnu::always_inline]] inline Vec3 axisCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1, const Mat3& rotation0,
+                                                  const Mat3& rotation1, const Vec3& n, double theta,
+                                                  double compliance, double& lambda, double lambdaLimit = kUnlimited) {
     if (!(theta > kDirectionEpsilon)) return Vec3::Zero();
     if (skippedByRepair(ctx, theta, ctx.repairAngle, compliance)) return Vec3::Zero();
-    const Vec3 n = rotation / theta;
     const Body& b0 = ctx.bodies[i0];
     const Body& b1 = ctx.bodies[i1];
     const bool turns0 = turns(b0);
@@ -282,6 +282,17 @@ private:
     if (turns0) turnBody(ctx, i0, inverse0.times(p));                        // Eq. 15
     if (turns1) turnBody(ctx, i1, -inverse1.times(p));                       // Eq. 16
     return p;
+}
+
+/// applyAngularCorrection's body (with the matrices of the bodies' current orientations): the
+/// rotation vector's length and direction, then axisCorrection.
+[[gnu::always_inline]] inline Vec3 angularCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1,
+                                                     const Mat3& rotation0, const Mat3& rotation1,
+                                                     const Vec3& rotation, double compliance, double& lambda,
+                                                     double lambdaLimit = kUnlimited) {
+    const double theta = rotation.norm();
+    if (!(theta > kDirectionEpsilon)) return Vec3::Zero();
+    return axisCorrection(ctx, i0, i1, rotation0, rotation1, rotation / theta, theta, compliance, lambda, lambdaLimit);
 }
 
 /// applyRotationCorrection's body (with the matrices of the orientations directionOrientation

@@ -60,14 +60,34 @@ bool twistFrame(const Mat3& f0, const Mat3& f1, Vec3& n, Vec3& n0, Vec3& n1) {
     return true;
 }
 
-/// AnglePart::solveLimit with its angular correction inlined (correction_kernels.h): a rope's
-/// joints run two limits and an attachment each, every one waiting on the previous one's turn.
+/// The twist axis n (Eq. 22) and the twist angle between the normals projected onto the plane
+/// normal to it (Eq. 23, Eq. 24), for the solve: atan2((n0 × n1) · n, n0 · n1) does not depend on
+/// the projected normals' lengths, so they are not normalised (two square roots and divisions
+/// fewer than twistFrame, whose unit normals the block rows and the readout use). False where
+/// twist is undefined, as for twistFrame.
+bool twistAngle(const Vec3& a0, const Vec3& b0, const Vec3& a1, const Vec3& b1, Vec3& n, double& angle) {
+    n = a0 + a1;  // Eq. 22
+    const double length = n.norm();
+    if (length < kTwistUndefinedBelow) return false;
+    n /= length;
+    const Vec3 n0 = b0 - n.dot(b0) * n;  // Eq. 23, unnormalised
+    const Vec3 n1 = b1 - n.dot(b1) * n;  // Eq. 24, unnormalised
+    if (n0.squaredNorm() < 1e-18 || n1.squaredNorm() < 1e-18) return false;  // twistFrame's 1e-9 lengths
+    angle = jointAtan2(n0.cross(n1).dot(n), n0.dot(n1));
+    return true;
+}
+
+/// AnglePart::solveLimit with its angular correction inlined (correction_kernels.h) and taken
+/// about the unit axis n by the excess directly: a rope's joints run two limits and an
+/// attachment each, every one waiting on the previous one's turn.
 inline void solveAngleLimit(AnglePart& part, SolverContext& ctx, const Joint& joint, const JointRotations& rotations,
                             const Vec3& n, double phi, double lower, double upper, double compliance) {
+    // The turn is |excess| about ±n (n is unit).
     const double excess = limitExcess(phi, lower, upper);
     if (excess != 0.0)
-        part.impulse += correction_kernels::angularCorrection(ctx, joint.body0, joint.body1, rotations.r0, rotations.r1,
-                                                              excess * n, compliance, part.lambda);
+        part.impulse += correction_kernels::axisCorrection(ctx, joint.body0, joint.body1, rotations.r0, rotations.r1,
+                                                           excess < 0.0 ? Vec3(-n) : n, std::abs(excess), compliance,
+                                                           part.lambda);
 }
 
 }  // namespace
@@ -88,15 +108,12 @@ void solveSphericalJoint(const Joint& joint, SphericalJoint& spherical, SolverCo
     }
     if (spherical.hasTwistLimits) {
         const JointRotations rotations(joint, ctx.bodies);
-        Mat3 f0, f1;
-        f0.col(0) = rotations.r0 * frameAxis(joint.frame0);
-        f0.col(1) = rotations.r0 * frameNormal(joint.frame0);
-        f1.col(0) = rotations.r1 * frameAxis(joint.frame1);
-        f1.col(1) = rotations.r1 * frameNormal(joint.frame1);
-        Vec3 n, n0, n1;
-        if (twistFrame(f0, f1, n, n0, n1))
-            solveAngleLimit(spherical.twist, ctx, joint, rotations, n, jointAtan2(n0.cross(n1).dot(n), n0.dot(n1)),
-                            spherical.twistLimits.lower, spherical.twistLimits.upper, spherical.twistCompliance);
+        Vec3 n;
+        double twist;
+        if (twistAngle(rotations.r0 * frameAxis(joint.frame0), rotations.r0 * frameNormal(joint.frame0),
+                       rotations.r1 * frameAxis(joint.frame1), rotations.r1 * frameNormal(joint.frame1), n, twist))
+            solveAngleLimit(spherical.twist, ctx, joint, rotations, n, twist, spherical.twistLimits.lower,
+                            spherical.twistLimits.upper, spherical.twistCompliance);
     }
     // PointPart::solve, inlined likewise.
     PointPart& attachment = spherical.attachment;
