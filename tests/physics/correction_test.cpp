@@ -3,12 +3,14 @@
 // Eq. 33, against their closed forms and invariants on hand-made bodies.
 
 #include "physics/correction.h"
+#include "physics/correction_kernels.h"
 
 #include "physics_test_support.h"
 
 #include <gtest/gtest.h>
 
 #include <array>
+#include <vector>
 #include <cmath>
 
 namespace substep {
@@ -384,6 +386,104 @@ TEST(RotationCorrectionTest, OrientationLockSharesTheTurnByInverseInertia) {
     const Vec3 turn0 = test::turnBetween(before0.q, pair.bodies[0].q);
     const Vec3 turn1 = test::turnBetween(before1.q, pair.bodies[1].q);
     EXPECT_LT((turn0 - turn1 - rotation).norm(), 1e-9 * rotation.norm());
+}
+
+
+// --- Angular forms without normalising (correction_kernels.h, applyAngularVelocityCorrection) ---
+
+/// World inverse inertia R diag(I⁻¹) Rᵀ of a turning body, built here from its principal moments.
+Mat3 worldInverseInertiaOf(const Body& body) {
+    const Mat3 r = body.q.toRotationMatrix();
+    return r * body.inertia.cwiseInverse().asDiagonal() * r.transpose();
+}
+
+/// Body pairs of every kind of inertia: a capsule (two equal moments) and a box (three
+/// different), a sphere (three equal) and a rod of square section, turned off the world axes.
+std::vector<std::array<Body, 2>> inertiaPairs() {
+    const Quat tilt0(Eigen::AngleAxisd(0.7, Vec3(1, 2, -1).normalized()));
+    const Quat tilt1(Eigen::AngleAxisd(-1.1, Vec3(0.3, -1, 2).normalized()));
+    std::vector<std::array<Body, 2>> pairs;
+    pairs.push_back({makeBody({.shape = capsuleShape(0.04, 0.04), .mass = 0.47, .orientation = tilt0}),
+                     makeBody({.shape = boxShape(Vec3(0.1, 0.5, 0.9)), .mass = 3.0, .orientation = tilt1})});
+    pairs.push_back({makeBody({.shape = sphereShape(0.2), .mass = 1.0, .orientation = tilt1}),
+                     makeBody({.shape = boxShape(Vec3(1.0, 0.1, 0.1)), .mass = 20.0, .orientation = tilt0})});
+    return pairs;
+}
+
+// The joint damping's velocity form of Eqs. 11-16 (Eq. 33 on ω, Eq. 32's Δω): an angular impulse
+// p = Δω / w along n = Δω/|Δω|, w = nᵀ (I0⁻¹ + I1⁻¹) n (Eq. 11, Eq. 12), so ω0 − ω1 changes by
+// |Δω| along n (across n too where the inertias are uneven: the scalar form), each ω by ± I⁻¹ p,
+// and the angular momentum I0 ω0 + I1 ω1 is kept; for bodies of every kind of inertia, Δω of any
+// direction and of sizes 1e-9 to 1e3 (w is taken on Δω unnormalised: a wrong |Δω|² factor would
+// miss by that factor). Against a static body, ω0 alone takes the change along n.
+TEST(AngularVelocityCorrectionTest, ChangesRelativeSpinByDeltaAndKeepsAngularMomentum) {
+    for (std::array<Body, 2> pair : inertiaPairs()) {
+        for (const double size : {1e-9, 1e-3, 1.0, 1e3}) {
+            for (const Vec3& direction : {Vec3(1, 0, 0), Vec3(0.3, -0.5, 0.8), Vec3(-2, 1, 0.5)}) {
+                Body& b0 = pair[0];
+                Body& b1 = pair[1];
+                b0.omega = Vec3(0.4, -1.0, 2.0);
+                b1.omega = Vec3(-3.0, 0.2, 0.7);
+                const Vec3 delta = size * direction.normalized();
+                const Vec3 relative = b0.omega - b1.omega;
+                const Vec3 momentum = worldInverseInertiaOf(b0).inverse() * b0.omega +
+                                      worldInverseInertiaOf(b1).inverse() * b1.omega;
+                const Vec3 n = delta / size;
+                const double w = n.dot((worldInverseInertiaOf(b0) + worldInverseInertiaOf(b1)) * n);
+                const Vec3 p = applyAngularVelocityCorrection(b0, b1, delta);
+                EXPECT_LT((p - delta / w).norm(), 1e-12 * size / w) << size;
+                // ω of order 1 is read back to 1e-14: the resolution of the smallest Δω.
+                const double tolerance = 1e-12 * size + 1e-14;
+                EXPECT_NEAR(n.dot((b0.omega - b1.omega) - relative), size, tolerance) << size;
+                const Vec3 momentumAfter = worldInverseInertiaOf(b0).inverse() * b0.omega +
+                                           worldInverseInertiaOf(b1).inverse() * b1.omega;
+                EXPECT_LT((momentumAfter - momentum).norm(), 1e-12 * momentum.norm()) << size;
+                // p is the angular impulse given to body 0: ω0 changes by I0⁻¹ p.
+                EXPECT_LT((worldInverseInertiaOf(b0) * p - (b0.omega - Vec3(0.4, -1.0, 2.0))).norm(), tolerance) << size;
+            }
+        }
+        Body fixed;  // static: w = 0
+        pair[0].omega = Vec3(0.4, -1.0, 2.0);
+        const Vec3 delta(0.2, 0.1, -0.3);
+        applyAngularVelocityCorrection(pair[0], fixed, delta);
+        EXPECT_NEAR(delta.normalized().dot(pair[0].omega - Vec3(0.4, -1.0, 2.0)), delta.norm(), 1e-14);
+        EXPECT_EQ(fixed.omega, Vec3::Zero());
+    }
+}
+
+// An angle limit's correction about a unit axis n by θ (axisCorrection: no rotation vector to
+// normalise) is Eqs. 11-16 along n: Δλ = θ / (w0 + w1) with w = nᵀ I⁻¹ n (Eq. 11, Eq. 12), each
+// body turned by ± I⁻¹ n Δλ, so the turn of body 0 relative to body 1 about n is θ, and the
+// angular momentum I0 Δθ0 + I1 Δθ1 is zero. For both kinds of pairs, axes off every principal
+// axis, and angles from 1e-8 to 0.3 rad (beyond the turn's series range).
+TEST(AngularCorrectionTest, AboutAUnitAxisSharesByInverseInertiaAlongIt) {
+    for (const std::array<Body, 2>& start : inertiaPairs()) {
+        for (const double theta : {1e-8, 1e-4, 0.05, 0.3}) {
+            for (const Vec3& direction : {Vec3(0, 0, 1), Vec3(0.3, -0.5, 0.8), Vec3(-2, 1, 0.5)}) {
+                std::array<Body, 2> bodies = start;
+                SolverContext ctx{.bodies = bodies.data(), .h = 0.01, .invH2 = 1e4};
+                const Vec3 n = direction.normalized();
+                const Mat3 inverse0 = worldInverseInertiaOf(bodies[0]);
+                const Mat3 inverse1 = worldInverseInertiaOf(bodies[1]);
+                const double w0 = n.dot(inverse0 * n), w1 = n.dot(inverse1 * n);
+                double lambda = 0.0;
+                const Vec3 p = correction_kernels::axisCorrection(ctx, 0, 1, bodies[0].q.toRotationMatrix(),
+                                                                  bodies[1].q.toRotationMatrix(), n, theta, 0.0, lambda);
+                EXPECT_NEAR(lambda, theta / (w0 + w1), 1e-14 * lambda) << theta;
+                EXPECT_LT((p - lambda * n).norm(), 1e-15 * lambda);
+                // The turns are read back from unit quaternions: 1e-15 rad is their resolution.
+                const Vec3 turn0 = test::turnBetween(start[0].q, bodies[0].q);
+                const Vec3 turn1 = test::turnBetween(start[1].q, bodies[1].q);
+                const double tolerance = 1e-9 * theta + 1e-15;
+                EXPECT_LT((turn0 - inverse0 * n * lambda).norm(), tolerance) << theta;
+                EXPECT_LT((turn1 + inverse1 * n * lambda).norm(), tolerance) << theta;
+                EXPECT_NEAR(n.dot(turn0 - turn1), theta, tolerance) << theta;
+                const Mat3 inertia0 = inverse0.inverse(), inertia1 = inverse1.inverse();
+                EXPECT_LT((inertia0 * turn0 + inertia1 * turn1).norm(), tolerance * (inertia0.norm() + inertia1.norm()))
+                    << theta;
+            }
+        }
+    }
 }
 
 }  // namespace
