@@ -34,9 +34,15 @@ inline Quat worldFrame1(const Joint& joint, const Body* bodies) {
     return bodies[joint.body1].q * joint.frame1;
 }
 
-/// atan(t) / t as a polynomial in t² (the Taylor series through t¹⁵), for t² ≤ 0.01.
+/// atan(t) / t as a polynomial in t² (the Taylor series through t¹⁵), for t² ≤ 0.01. Grouped in
+/// pairs (Estrin's scheme) rather than nested (Horner's): the angle of a joint's part is on the
+/// chain each joint waits for, and the pairs take three products and sums in sequence instead of
+/// seven.
 inline double atanSeries(double t2) {
-    return 1.0 + t2 * (-1.0 / 3 + t2 * (1.0 / 5 + t2 * (-1.0 / 7 + t2 * (1.0 / 9 + t2 * (-1.0 / 11 + t2 * (1.0 / 13 + t2 * (-1.0 / 15)))))));
+    const double t4 = t2 * t2;
+    const double low = (1.0 - t2 * (1.0 / 3)) + t4 * (1.0 / 5 - t2 * (1.0 / 7));
+    const double high = (1.0 / 9 - t2 * (1.0 / 11)) + t4 * (1.0 / 13 - t2 * (1.0 / 15));
+    return low + (t4 * t4) * high;
 }
 
 /// Column 0 of the rotation matrix of the unit quaternion f: a joint frame's axis a, in the
