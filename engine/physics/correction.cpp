@@ -185,26 +185,7 @@ Vec3 applyVelocityCorrection(Body& b0, Body& b1, const Vec3& deltaVelocity, cons
 }
 
 Vec3 applyAngularVelocityCorrection(Body& b0, Body& b1, const Vec3& deltaOmega) {
-    const double magnitude2 = deltaOmega.squaredNorm();
-    if (!(magnitude2 > kDirectionEpsilon * kDirectionEpsilon)) return Vec3::Zero();
-    // Each turning body's inverse inertia, from the columns of its rotation matrix it needs,
-    // serves both w and the change of ω (Body::angularInverseMass and applyInverseInertia
-    // would rotate n and p twice each).
-    const bool turns0 = turns(b0);
-    const bool turns1 = turns(b1);
-    const InverseInertia inverse0 = turns0 ? InverseInertia(b0, b0.q) : InverseInertia();
-    const InverseInertia inverse1 = turns1 ? InverseInertia(b1, b1.q) : InverseInertia();
-    // Eq. 11 and Eq. 12 along n = Δω/|Δω| give w = Δωᵀ (I0⁻¹ + I1⁻¹) Δω / |Δω|²: taken on Δω
-    // itself, n needs no square root and division (the joint damping runs along a chain, each
-    // correction waiting on the previous one's).
-    double wTimesMagnitude2 = 0.0;
-    if (turns0) wTimesMagnitude2 += inverse0.quadratic(deltaOmega);
-    if (turns1) wTimesMagnitude2 += inverse1.quadratic(deltaOmega);
-    if (!(wTimesMagnitude2 > 0.0)) return Vec3::Zero();
-    const Vec3 p = deltaOmega * (magnitude2 / wTimesMagnitude2);  // Eq. 33's angular form: Δω / w
-    if (turns0) b0.omega += inverse0.times(p);
-    if (turns1) b1.omega -= inverse1.times(p);
-    return p;
+    return angularVelocityCorrection(b0, b1, deltaOmega);
 }
 
 void applyJacobiDeltas(Body* bodies, JacobiDelta* deltas, size_t count) {

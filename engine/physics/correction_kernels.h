@@ -355,4 +355,26 @@ private:
     return deltaLambda;
 }
 
+/// applyAngularVelocityCorrection's body (the joint damping of Eq. 32, which runs along a chain).
+[[gnu::always_inline]] inline Vec3 angularVelocityCorrection(Body& b0, Body& b1, const Vec3& deltaOmega) {
+    const double magnitude = deltaOmega.norm();
+    if (!(magnitude > kDirectionEpsilon)) return Vec3::Zero();
+    const Vec3 n = deltaOmega / magnitude;
+    // Each turning body's inverse inertia, from the columns of its rotation matrix it needs,
+    // serves both w and the change of ω (Body::angularInverseMass and applyInverseInertia
+    // would rotate n and p twice each).
+    const bool turns0 = turns(b0);
+    const bool turns1 = turns(b1);
+    const InverseInertia inverse0 = turns0 ? InverseInertia(b0, b0.q) : InverseInertia();
+    const InverseInertia inverse1 = turns1 ? InverseInertia(b1, b1.q) : InverseInertia();
+    double w = 0.0;
+    if (turns0) w += inverse0.quadratic(n);
+    if (turns1) w += inverse1.quadratic(n);
+    if (!(w > 0.0)) return Vec3::Zero();
+    const Vec3 p = deltaOmega / w;  // Eq. 33's angular form, with Eq. 11 and Eq. 12 for w
+    if (turns0) b0.omega += inverse0.times(p);
+    if (turns1) b1.omega -= inverse1.times(p);
+    return p;
+}
+
 }  // namespace substep::correction_kernels

@@ -1,5 +1,6 @@
 #include "physics/joints/joint_solver.h"
 
+#include "physics/correction_kernels.h"
 #include "physics/joints/joint_geometry.h"
 #include "physics/joints/joint_rows.h"
 
@@ -40,7 +41,7 @@ void solveJointVelocities(const Joint& joint, Body* bodies, double h) {
     }
     if (joint.angularDamping > 0.0) {
         const Vec3 relative = b1.omega - b0.omega;  // Eq. 32
-        applyAngularVelocityCorrection(b0, b1, relative * std::min(joint.angularDamping * h, 1.0));
+        correction_kernels::angularVelocityCorrection(b0, b1, relative * std::min(joint.angularDamping * h, 1.0));
     }
 }
 
