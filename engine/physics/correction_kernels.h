@@ -3,8 +3,9 @@
 /// them several times per joint and substep, each waiting on the previous one's turn of a shared
 /// body, and inlined into the joint the matrices, lever arms and turned quaternions stay in
 /// registers instead of going through memory to a call. correction.cpp defines the operations of
-/// correction.h with these; the joint types with the most parts (spherical and hinge joints)
-/// call them directly. One implementation, so both give the same bytes.
+/// correction.h with these; the spherical joint's limits and attachment (a rope's links) and the
+/// joint damping (joint_solver.cpp) call them directly. One implementation, so both give the
+/// same bytes.
 
 #include "physics/correction.h"
 #include "physics/gyroscopic_step.h"

@@ -1,6 +1,6 @@
-// Tests engine/physics/correction.cpp: the two correction operations of paper 3.3 (Eqs. 2-16),
-// their vector forms (the point attachment and the weld), and the velocity correction of
-// Eq. 33, against their closed forms and invariants on hand-made bodies.
+// Tests engine/physics/correction.cpp and correction_kernels.h: the two correction operations of
+// paper 3.3 (Eqs. 2-16), their vector forms (the point attachment and the weld), and the velocity
+// correction of Eq. 33, against their closed forms and invariants on hand-made bodies.
 
 #include "physics/correction.h"
 #include "physics/correction_kernels.h"
