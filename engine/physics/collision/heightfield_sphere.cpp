@@ -93,6 +93,9 @@ void addSphereContacts(const HeightfieldGrid& grid, const Vec3& c, double r, dou
         return;
     const double lowest = c.y() - reach;
     const double clearly = reach * reach * (1.0 + 1e-6);
+    // How far inside a triangle's sides a foot is clearly over its face: far above the rounding
+    // of the foot and of closestOnTriangle's regions, far below any cell.
+    const double inset = 1e-9 * (grid.cellX + grid.cellZ) + 1e-12 * c.cwiseAbs().maxCoeff();
     const int columns = field.columns;
     forEachCell(grid, i0, i1, j0, j1, [&](int i, int j, const CellCorners& cell) {
         if (cell.highest() < lowest) return;
@@ -115,13 +118,34 @@ void addSphereContacts(const HeightfieldGrid& grid, const Vec3& c, double r, dou
                 if (nearby && along > 0.0 && along * along > clearly * cross.squaredNorm()) continue;
                 normal = cross.normalized();
             }
-            if (offset.dot(normal) > reach) continue;  // addSphereTriangleContacts' first test
+            const double height = offset.dot(normal);
+            if (height > reach) continue;  // addSphereTriangleContacts' first test
+            const int index = 2 * (j * (columns - 1) + i) + half;
+            // The sphere over the triangle's interior (its foot on the plane clearly inside
+            // it): addSphereTriangleContacts' face normal, without its search for the nearest
+            // feature, which would find the face.
+            const Vec3 foot = c - height * normal;
+            const double fx = foot.x() - cell.x0, fz = foot.z() - cell.z0;
+            const double across = half == 0 ? fz * grid.cellX - fx * grid.cellZ : fx * grid.cellZ - fz * grid.cellX;
+            const bool inside = half == 0 ? fx > inset && cell.z1 - foot.z() > inset
+                                          : fz > inset && cell.x1 - foot.x() > inset;
+            if (inside && across > inset * (grid.cellX + grid.cellZ)) {
+                const double depth = r - height;
+                if (depth < -margin) continue;
+                ContactPoint contact;
+                contact.normal = normal;
+                contact.depth = depth;
+                contact.point1 = foot;
+                contact.point0 = c - r * normal;
+                contact.feature = static_cast<uint32_t>(index) * 64u;  // featureId(tri, face)
+                buffer.add(contact);
+                continue;
+            }
             ContactTriangle tri;
             tri.v[0] = corner00;
             tri.v[1] = second[half];
             tri.v[2] = third[half];
             tri.normal = normal;
-            const int index = 2 * (j * (columns - 1) + i) + half;
             tri.activeFeatures = field.activeFeatures[index];
             tri.id = static_cast<uint32_t>(index);
             addSphereTriangleContacts(tri, c, r, margin, true, buffer);
@@ -204,6 +228,41 @@ double heightfieldGapBound(const HeightfieldGrid& grid, const Vec3& p, double re
         bound = std::min(bound, std::max(aboveSamples, std::min(above0, above1)));
     });
     return bound - rounding;
+}
+
+HeightfieldClearance heightfieldClearance(const HeightfieldGrid& grid, const Vec3& p, double reach, double roam) {
+    constexpr double kInfinity = std::numeric_limits<double>::infinity();
+    const HeightfieldClearance none{.lowX = kInfinity, .highX = -kInfinity, .lowZ = kInfinity, .highZ = -kInfinity,
+                                    .above = kInfinity};
+    if (!p.allFinite() || !std::isfinite(reach) || !std::isfinite(roam)) return none;
+    const HeightfieldData& field = *grid.field;
+    const double spread = reach + roam;
+    // The narrowphase's cell indices and its height test are rounded by a few ulps of these.
+    const double slack = 1e-9 * (1.0 + p.cwiseAbs().maxCoeff() + std::abs(grid.originX) + std::abs(grid.originZ) +
+                                 grid.cellX + grid.cellZ + spread + std::max(std::abs(field.minHeight),
+                                                                             std::abs(field.maxHeight)));
+    const double a0 = floorOf((p.x() - spread - grid.originX) * grid.inverseCellX);
+    const double a1 = floorOf((p.x() + spread - grid.originX) * grid.inverseCellX);
+    const double b0 = floorOf((p.z() - spread - grid.originZ) * grid.inverseCellZ);
+    const double b1 = floorOf((p.z() + spread - grid.originZ) * grid.inverseCellZ);
+    HeightfieldClearance clearance{.lowX = grid.originX + a0 * grid.cellX + reach + slack,
+                                   .highX = grid.originX + (a1 + 1.0) * grid.cellX - reach - slack,
+                                   .lowZ = grid.originZ + b0 * grid.cellZ + reach + slack,
+                                   .highZ = grid.originZ + (b1 + 1.0) * grid.cellZ - reach - slack,
+                                   .above = -kInfinity};
+    if (!(a1 >= 0.0) || !(a0 <= field.columns - 2) || !(b1 >= 0.0) || !(b0 <= field.rows - 2)) return clearance;
+    const int i0 = static_cast<int>(std::max(a0, 0.0)), i1 = static_cast<int>(std::min(a1, field.columns - 2.0));
+    const int j0 = static_cast<int>(std::max(b0, 0.0)), j1 = static_cast<int>(std::min(b1, field.rows - 2.0));
+    double highest = -kInfinity;
+    if ((i1 - i0 + 1) * (j1 - j0 + 1) > kMostBoundCells) {
+        highest = field.maxHeight;
+    } else {
+        const double* heights = field.heights.data();
+        for (int j = j0; j <= j1 + 1; ++j)
+            for (int i = i0; i <= i1 + 1; ++i) highest = std::max(highest, heights[j * field.columns + i]);
+    }
+    clearance.above = highest + reach + slack;
+    return clearance;
 }
 
 }  // namespace substep

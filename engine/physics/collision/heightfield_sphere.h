@@ -63,4 +63,21 @@ void collideSphereHeightfield(const HeightfieldGrid& grid, const Vec3& centre, d
 /// gives −∞ (no bound).
 double heightfieldGapBound(const HeightfieldGrid& grid, const Vec3& p, double reach);
 
+/// Where a sphere is clear of a field whatever path it took there: while its centre (the
+/// field's frame) lies inside the x–z box (lowX, highX) x (lowZ, highZ) and above `above`, the
+/// sphere–heightfield narrowphase with that reach (radius + margin) visits only cells whose
+/// samples all lie more than the reach below it, so it finds nothing. A vertical bound: a
+/// rolling tread particle moves mostly along the ground, which a bound on its distance takes as
+/// a step toward it.
+struct HeightfieldClearance {
+    double lowX, highX, lowZ, highZ;
+    double above;  ///< −∞ where the box misses the field; +∞ where nothing is bounded
+};
+
+/// The clearance of a sphere with `reach` (radius + margin) that may roam `roam` (x–z) from p
+/// (the field's frame): the box holds the cells within roam + reach of p, `above` is their
+/// highest sample plus the reach, each side moved in by a slack far above the rounding of
+/// the narrowphase's cell indices. A point, reach or roam that is not finite gives an empty box.
+HeightfieldClearance heightfieldClearance(const HeightfieldGrid& grid, const Vec3& p, double reach, double roam);
+
 }  // namespace substep

@@ -397,6 +397,10 @@ void SoftSystem::collectCandidates(std::span<const Body> bodies, double dt, doub
                 }
                 const StaticGap gapOf(b.shape, pose, staticBounds, softBox, soft.radius, grid);
                 const bool decides = gapOf.tight();
+                // A field in the world's axes takes the particle's world coordinates less its
+                // position, exactly (a turn by the identity quaternion adds zeros), so its
+                // clearance moves to the world by that translation.
+                const bool clearance = grid && pose.rotation.w() == 1.0 && pose.rotation.vec().isZero(0.0);
                 for (uint32_t i = first; i < end; ++i) {
                     const double reachOut = margin + 2.0 * dt * v_[i].norm() + fall;
                     const Aabb point = Aabb{x_[i], x_[i]}.inflated(soft.radius + reachOut);
@@ -407,7 +411,12 @@ void SoftSystem::collectCandidates(std::span<const Body> bodies, double dt, doub
                         collide(probe, Pose{x_[i], Quat::Identity()}, b.shape, pose, reachOut, manifold);
                         if (manifold.count == 0) continue;
                     }
-                    candidates_.push_back({.particle = i, .body = bi, .softBody = s, .gap = gap, .origin = x_[i]});
+                    Candidate& candidate = candidates_.emplace_back(
+                        Candidate{.particle = i, .body = bi, .softBody = s, .gap = gap, .origin = x_[i]});
+                    if (clearance) {
+                        candidate.clearAbove = std::numeric_limits<double>::quiet_NaN();  // findContacts'
+                        candidate.roam = reachOut - margin;
+                    }
                 }
                 continue;
             }
@@ -425,6 +434,28 @@ void SoftSystem::collectCandidates(std::span<const Body> bodies, double dt, doub
     }
 }
 
+void SoftSystem::clearanceOf(Candidate& candidate, const Body& field, double margin) const {
+    const HeightfieldGrid* grid = nullptr;
+    for (size_t g = 0; g < fieldGridCount_ && !grid; ++g) {
+        const FieldGrid& slot = fieldGrids_[g];
+        if (slot.softBody == candidate.softBody && slot.body == candidate.body) grid = &slot.grid;
+    }
+    candidate.clearAbove = std::numeric_limits<double>::infinity();
+    if (!grid) return;
+    // The field's frame is the world's shifted by its position (collectCandidates checked
+    // that its turn is the identity), so its clearance moves to the world by that shift, with
+    // a slack for the rounding of the shift.
+    const Vec3 t = field.userPosition();
+    const double shiftSlack = 1e-9 * (1.0 + t.cwiseAbs().maxCoeff());
+    const HeightfieldClearance clear = heightfieldClearance(*grid, x_[candidate.particle] - t,
+                                                            bodies_[candidate.softBody].radius + margin, candidate.roam);
+    candidate.clearAbove = clear.above + t.y() + shiftSlack;
+    candidate.clearLowX = clear.lowX + t.x() + shiftSlack;
+    candidate.clearHighX = clear.highX + t.x() - shiftSlack;
+    candidate.clearLowZ = clear.lowZ + t.z() + shiftSlack;
+    candidate.clearHighZ = clear.highZ + t.z() - shiftSlack;
+}
+
 void SoftSystem::findContacts(std::span<const Body> bodies, double margin) {
     contacts_.clear();
     ContactManifold manifold;
@@ -438,12 +469,20 @@ void SoftSystem::findContacts(std::span<const Body> bodies, double margin) {
     bool still = false;
     // Candidates come grouped by soft body, then rigid body: poses and probes are made once
     // per group.
-    for (const Candidate& candidate : candidates_) {
+    for (Candidate& candidate : candidates_) {
         // The particle's distance to a static shape changes by at most its own displacement:
         // a particle still further than the margin from it cannot touch it in this substep
         // (compared squared: most candidates of a rolling tyre are skipped here).
+        const Vec3& x = x_[candidate.particle];
         const double slack = candidate.gap - margin;
-        if (slack > 0.0 && (x_[candidate.particle] - candidate.origin).squaredNorm() < slack * slack) continue;
+        if (slack > 0.0 && (x - candidate.origin).squaredNorm() < slack * slack) continue;
+        // Or it is above every sample of the cells the narrowphase would visit (a rolling tread
+        // particle moves along the ground more than toward it). Most candidates never get here,
+        // so the clearance is computed the first time one does, from where the particle is.
+        if (std::isnan(candidate.clearAbove)) clearanceOf(candidate, bodies[candidate.body], margin);
+        if (x.y() > candidate.clearAbove && x.x() > candidate.clearLowX && x.x() < candidate.clearHighX &&
+            x.z() > candidate.clearLowZ && x.z() < candidate.clearHighZ)
+            continue;
         const Body& b = bodies[candidate.body];
         const SoftBodyData& soft = bodies_[candidate.softBody];
         if (candidate.body != poseBody || candidate.softBody != probeBody) {

@@ -22,6 +22,7 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <span>
 #include <vector>
@@ -93,6 +94,8 @@ public:
     SoftSurface surface(SoftBodyId id) const;
     /// Contact points that pushed in the last substep.
     int activeContactCount() const;
+    /// Contact points the last findContacts found (touching or within the margin).
+    size_t foundContactCount() const { return contacts_.size(); }
     /// The particle contacts' total force on the particles in the last substep of length h (N):
     /// Σ (λ_n n + the static friction's impulse) / h² (Eq. 10 for contacts).
     Vec3 contactForce(double h) const;
@@ -149,6 +152,14 @@ private:
         /// displacement exceeds the contact margin. −∞ for a moving body (never skipped).
         double gap = 0.0;
         Vec3 origin = Vec3::Zero();
+        /// A heightfield in the world's axes (HeightfieldClearance, in world coordinates): the
+        /// substeps also skip the pair while the particle is above `clearAbove` inside the x–z
+        /// box (clearLowX, clearHighX) x (clearLowZ, clearHighZ), wherever it came from. NaN
+        /// until the first substep the gap does not skip it computes them, with `roam` (m, the
+        /// frame's reach); +∞ for every other pair (never skipped by it).
+        double clearAbove = std::numeric_limits<double>::infinity();
+        double clearLowX = 0.0, clearHighX = 0.0, clearLowZ = 0.0, clearHighZ = 0.0;
+        double roam = 0.0;
     };
     /// A contact point of this substep: the particle's surface point is x − radius n; the
     /// body's is kept in its principal frame (r1); n points from the body to the particle.
@@ -228,6 +239,9 @@ private:
     int liveBodies_ = 0;
     std::vector<Attachment> attachments_;
     std::vector<Candidate> candidates_;
+    /// Fills a heightfield candidate's clearance (Candidate::clearAbove) from where its
+    /// particle is now; `field` is its body.
+    void clearanceOf(Candidate& candidate, const Body& field, double margin) const;
     /// A soft body and a static heightfield it has candidates on this frame: the field's grid
     /// with the normals of the cells under the soft body kept (heightfield_sphere.h), for the
     /// candidates' gap bounds and every substep's contacts.

@@ -1,7 +1,8 @@
 // Tests engine/physics/collision/heightfield_sphere.cpp: the sphere–heightfield narrowphase
 // straight from the heights against the triangle-by-triangle reference (heightfield_reference.h),
 // bit for bit, and the gap bound the soft bodies' candidates use: never above the distance, the
-// distance itself over a plane, and never hiding a contact the narrowphase would find.
+// distance itself over a plane, and never hiding a contact the narrowphase would find; and the
+// clearance over a block's highest sample, which hides none either and is sharp.
 
 #include "physics/collision/heightfield_sphere.h"
 
@@ -231,6 +232,85 @@ TEST(HeightfieldSphere, GapBoundHidesNoContact) {
         }
     }
     EXPECT_GT(skipped, 3000);
+}
+
+TEST(HeightfieldSphere, ClearanceHidesNoContact) {
+    // A sphere whose centre lies inside a clearance's box and above its height finds nothing,
+    // wherever it is in that box: over random fields, reaches and roams, centres anywhere near
+    // the box (its sides, above and below its height) and beyond the field's border.
+    std::mt19937 rng(19);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    int clear = 0, sharp = 0;
+    for (int f = 0; f < 200; ++f) {
+        const auto field = randomField(rng, f % 4);
+        const HeightfieldGrid grid(*field);
+        const double cell = std::min(field->cellX(), field->cellZ());
+        for (int k = 0; k < 100; ++k) {
+            const double r = cell * 0.05 * (0.1 + unit(rng)), margin = 0.2 * r, reach = r + margin;
+            const Vec3 p = pointNear(*field, rng, 4.0 * r);
+            const double roam = cell * unit(rng) * (unit(rng) < 0.2 ? 10.0 : 0.5);
+            const HeightfieldClearance clearance = heightfieldClearance(grid, p, reach, roam);
+            ASSERT_LE(clearance.lowX, p.x() - roam + 1e-9 * (1.0 + cell)) << "field " << f << " case " << k;
+            ASSERT_GE(clearance.highX, p.x() + roam - 1e-9 * (1.0 + cell)) << "field " << f << " case " << k;
+            ASSERT_LE(clearance.lowZ, p.z() - roam + 1e-9 * (1.0 + cell));
+            ASSERT_GE(clearance.highZ, p.z() + roam - 1e-9 * (1.0 + cell));
+            ASSERT_LE(clearance.above, field->maxHeight + reach + 1e-3 * reach);
+            for (int m = 0; m < 10; ++m) {
+                // Near the box's sides (a tenth of the reach either way) or anywhere in it.
+                const auto near = [&](double lo, double hi) {
+                    const double side = unit(rng) < 0.5 ? lo : hi;
+                    return unit(rng) < 0.5 ? side + (unit(rng) - 0.5) * 0.2 * reach : lo + unit(rng) * (hi - lo);
+                };
+                const double top = std::isfinite(clearance.above) ? clearance.above : field->maxHeight + reach;
+                const Vec3 q(near(clearance.lowX, clearance.highX), top + (unit(rng) - 0.3) * 0.1 * reach,
+                             near(clearance.lowZ, clearance.highZ));
+                if (!(q.y() > clearance.above && q.x() > clearance.lowX && q.x() < clearance.highX &&
+                      q.z() > clearance.lowZ && q.z() < clearance.highZ))
+                    continue;
+                ++clear;
+                ContactManifold found;
+                reference::collideSphereHeightfield(*field, q, r, Pose{}, margin, found);
+                EXPECT_EQ(found.count, 0) << "field " << f << " case " << k << " at " << q.transpose();
+            }
+            // The height is sharp: over the highest sample, a thousandth of the reach below it,
+            // the sphere finds that sample.
+            const Vec3 below(p.x(), clearance.above - 1e-3 * reach, p.z());
+            int column = 0, row = 0;
+            double highest = -std::numeric_limits<double>::infinity();
+            for (int j = 0; j < field->rows; ++j)
+                for (int i = 0; i < field->columns; ++i) {
+                    const Vec3 v = field->vertex(i, j);
+                    if (v.x() > clearance.lowX && v.x() < clearance.highX && v.z() > clearance.lowZ &&
+                        v.z() < clearance.highZ && v.y() > highest)
+                        highest = v.y(), column = i, row = j;
+                }
+            if (!(highest + reach > clearance.above - 1e-3 * reach)) continue;  // the top is on the box's rim
+            const Vec3 v = field->vertex(column, row);
+            ContactManifold found;
+            reference::collideSphereHeightfield(*field, Vec3(v.x(), below.y(), v.z()), r, Pose{}, margin, found);
+            EXPECT_GT(found.count, 0) << "field " << f << " case " << k;
+            ++sharp;
+        }
+    }
+    EXPECT_GT(clear, 20000);
+    EXPECT_GT(sharp, 2000);
+}
+
+TEST(HeightfieldSphere, ClearanceOfANonFinitePointIsEmpty) {
+    const auto field = makeHeightfield(2, 2, {0, 0, 0, 0}, 1.0, 1.0);
+    const HeightfieldGrid grid(*field);
+    const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+    for (const HeightfieldClearance& c : {heightfieldClearance(grid, Vec3(nan, 0, 0), 0.1, 0.1),
+                                          heightfieldClearance(grid, Vec3(0, 1, 0), inf, 0.1),
+                                          heightfieldClearance(grid, Vec3(0, 1, 0), 0.1, nan)}) {
+        EXPECT_FALSE(c.lowX < c.highX);  // holds no point
+        EXPECT_FALSE(c.lowZ < c.highZ);
+    }
+    // Off the field: no sample under the box, clear at any height inside it.
+    const HeightfieldClearance off = heightfieldClearance(grid, Vec3(40.0, -5.0, 3.0), 0.1, 0.1);
+    EXPECT_EQ(off.above, -inf);
+    EXPECT_LT(off.lowX, 39.9);
+    EXPECT_GT(off.highX, 40.1);
 }
 
 TEST(HeightfieldSphere, GapBoundOfANonFinitePointIsMinusInfinity) {

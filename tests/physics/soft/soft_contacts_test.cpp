@@ -4,10 +4,12 @@
 // they rest on the surface, a dropped soft box gains no energy, and a soft box on a
 // slope holds below atan(μ_s) and slides above it with the acceleration g (sin θ − μ_d cos θ);
 // on a heightfield (its candidates' gap bounds, heightfield_sphere.h) a loaded box carries its
-// weight and a box thrown across steep bumps never falls into them.
+// weight, a box thrown across steep bumps never falls into them, and the substeps' skipped
+// candidates hide no contact the narrowphase finds.
 #include "soft_test_support.h"
 
 #include "physics/collision/heightfield.h"
+#include "physics/collision/heightfield_sphere.h"
 
 #include "physics_test_support.h"
 
@@ -243,6 +245,59 @@ TEST(SoftContacts, SoftBoxThrownAcrossSteepBumpsNeverFallsIntoThem) {
     EXPECT_TRUE(world.isFinite());
     EXPECT_GT(deepest, -radius);  // it did land
     EXPECT_LT(deepest, 2.0 * radius);  // and no centre got a radius under the surface
+}
+
+/// Every substep of `frames` frames, the contacts findContacts finds for a soft box of 5 mm
+/// particles thrown at `velocity` from `start` (the field's frame) over the field at `pose`,
+/// against the narrowphase run on every particle; nothing solves, so the particles fall
+/// through the field and every one of them crosses the contact band. Returns the contacts
+/// found in all.
+size_t compareFoundContacts(const std::shared_ptr<const HeightfieldData>& field, const Pose& pose, const Vec3& start,
+                            const Vec3& velocity, int frames) {
+    const double radius = 0.005, margin = WorldSettings{}.contactMargin, dt = kDt;
+    const int substeps = 20;
+    const Vec3 gravity(0.0, -kG, 0.0);
+    std::vector<Body> bodies{makeBody({.type = BodyType::Static, .collide = false}),
+                             makeBody({.shape = heightfieldShape(field), .type = BodyType::Static,
+                                       .position = pose.position, .orientation = pose.rotation})};
+    SoftSystem soft;
+    const SoftBodyId box = soft.create({.size = Vec3(0.1, 0.04, 0.1), .cells = {4, 2, 4},
+                                        .position = pose.apply(start), .velocity = pose.rotation * velocity,
+                                        .density = 200.0, .compliance = 1e-5, .particleRadius = radius},
+                                       bodies, 1);
+    const HeightfieldGrid grid(*field);
+    size_t found = 0;
+    for (int frame = 0; frame < frames; ++frame) {
+        soft.collectCandidates(bodies, dt, margin, gravity);
+        for (int substep = 0; substep < substeps; ++substep) {
+            soft.integrate(dt / substeps, gravity);
+            soft.findContacts(bodies, margin);
+            size_t expected = 0;
+            for (const Vec3& x : soft.positions(box)) {
+                ContactManifold manifold;
+                collideSphereHeightfield(grid, x, radius, pose, margin, manifold);
+                expected += static_cast<size_t>(manifold.count);
+            }
+            EXPECT_EQ(soft.foundContactCount(), expected) << "frame " << frame << " substep " << substep;
+            found += expected;
+        }
+    }
+    return found;
+}
+
+TEST(SoftContacts, SkippedCandidatesHideNoContactOnAHeightfield) {
+    // The substeps skip a candidate by its frame-start gap bound, or by the clearance over the
+    // highest sample of its cells (heightfieldClearance), and neither may skip a contact: a box
+    // skimming the bumps along x at 3 m/s (a cell a frame) and one falling at 2 m/s, on the
+    // field in the world's axes, moved far off the origin, and turned (no clearance there).
+    const auto field = bumpyField(0.0, 0.02);
+    const Quat turned(Eigen::AngleAxisd(0.3, Vec3(1.0, 2.0, -0.5).normalized()));
+    for (const Pose& pose : {Pose{}, Pose{Vec3(103.7, -2.9, -41.3), Quat::Identity()}, Pose{Vec3(1, 2, 3), turned}}) {
+        const size_t skimming = compareFoundContacts(field, pose, Vec3(-0.7, 0.045, 0.3), Vec3(3.0, -0.2, 0.0), 30);
+        const size_t falling = compareFoundContacts(field, pose, Vec3(0.4, 0.08, -0.5), Vec3(0.5, -2.0, 0.3), 15);
+        EXPECT_GT(skimming, 1000u);  // the boxes did cross the contact band
+        EXPECT_GT(falling, 1000u);
+    }
 }
 
 TEST(SoftContacts, DroppedSoftBoxGainsNoEnergy) {
