@@ -343,25 +343,16 @@ void SoftSystem::solveVelocities(Body* bodies, double h, double gravity) {
         passedVelocities_.emplace_back(c.particle, v_[c.particle]);
     }
     solveContactVelocities(bodies, h, gravity);
-    // The contacts come grouped by soft body (the candidates' order): the owner of the last
-    // particle is kept, and the bodies are searched only when a particle lies outside its range.
-    SoftBodyData* owner = nullptr;
-    uint32_t ownerFirst = 0, ownerEnd = 0;
     for (const auto& [i, before] : passedVelocities_) {
         passed_[i] = 0;
         const Vec3 change = mass_[i] * (v_[i] - before);
-        if (i < ownerFirst || i >= ownerEnd) {
-            owner = nullptr, ownerFirst = 0, ownerEnd = 0;
-            for (SoftBodyData& body : bodies_)
-                if (body.alive && i >= body.firstParticle && i < body.firstParticle + body.particleCount) {
-                    owner = &body, ownerFirst = body.firstParticle, ownerEnd = body.firstParticle + body.particleCount;
-                    break;
-                }
-            if (owner == nullptr) continue;
+        for (SoftBodyData& body : bodies_) {
+            if (!body.alive || i < body.firstParticle || i >= body.firstParticle + body.particleCount) continue;
+            RigidModeMoments& moments = body.moments;
+            if (moments.mass > 0.0) moments.velocity += change / moments.mass;
+            moments.angularMomentum += (x_[i] - moments.centre).cross(change);
+            break;
         }
-        RigidModeMoments& moments = owner->moments;
-        if (moments.mass > 0.0) moments.velocity += change / moments.mass;
-        moments.angularMomentum += (x_[i] - moments.centre).cross(change);
     }
 }
 
