@@ -190,6 +190,22 @@ private:
     }
 };
 
+/// Both bodies' sides of a correction: whether each turns and, where it does, its world inverse
+/// inertia from its current orientation (a rotation matrix or the quaternion itself). Static
+/// bodies and particles have none.
+struct PairInertia {
+    bool turns0, turns1;
+    InverseInertia inverse0, inverse1;
+
+    template <class Orientation>
+    [[gnu::always_inline]] PairInertia(const Body& b0, const Body& b1, const Orientation& orientation0,
+                                       const Orientation& orientation1)
+        : turns0(turns(b0)),
+          turns1(turns(b1)),
+          inverse0(turns0 ? InverseInertia(b0, orientation0) : InverseInertia()),
+          inverse1(turns1 ? InverseInertia(b1, orientation1) : InverseInertia()) {}
+};
+
 /// applyPointCorrection's body.
 [[gnu::always_inline]] inline Vec3 pointCorrection(SolverContext& ctx, uint32_t i0, uint32_t i1,
                                                    const Mat3& rotation0, const Mat3& rotation1,
@@ -205,11 +221,7 @@ private:
     const double alphaTilde = compliance * ctx.invH2;
     const double diagonal = b0.invMass + b1.invMass + alphaTilde;
     Symmetric3 k{.xx = diagonal, .yy = diagonal, .zz = diagonal};
-    const bool turns0 = turns(b0);
-    const bool turns1 = turns(b1);
-    // Static bodies and particles have none.
-    const InverseInertia inverse0 = turns0 ? InverseInertia(b0, rotation0) : InverseInertia();
-    const InverseInertia inverse1 = turns1 ? InverseInertia(b1, rotation1) : InverseInertia();
+    const auto [turns0, turns1, inverse0, inverse1] = PairInertia(b0, b1, rotation0, rotation1);
     if (turns0) inverse0.addPointTo(k, r0);
     if (turns1) inverse1.addPointTo(k, r1);
     Vec3 deltaLambda;
@@ -266,10 +278,7 @@ private:
     if (skippedByRepair(ctx, theta, ctx.repairAngle, compliance)) return Vec3::Zero();
     const Body& b0 = ctx.bodies[i0];
     const Body& b1 = ctx.bodies[i1];
-    const bool turns0 = turns(b0);
-    const bool turns1 = turns(b1);
-    const InverseInertia inverse0 = turns0 ? InverseInertia(b0, rotation0) : InverseInertia();
-    const InverseInertia inverse1 = turns1 ? InverseInertia(b1, rotation1) : InverseInertia();
+    const auto [turns0, turns1, inverse0, inverse1] = PairInertia(b0, b1, rotation0, rotation1);
     const double alphaTilde = compliance * ctx.invH2;
     double denominator = alphaTilde;
     if (turns0) denominator += inverse0.quadratic(n);  // Eq. 11
@@ -306,10 +315,7 @@ private:
         return Vec3::Zero();
     const Body& b0 = ctx.bodies[i0];
     const Body& b1 = ctx.bodies[i1];
-    const bool turns0 = turns(b0);
-    const bool turns1 = turns(b1);
-    const InverseInertia inverse0 = turns0 ? InverseInertia(b0, rotation0) : InverseInertia();
-    const InverseInertia inverse1 = turns1 ? InverseInertia(b1, rotation1) : InverseInertia();
+    const auto [turns0, turns1, inverse0, inverse1] = PairInertia(b0, b1, rotation0, rotation1);
     const double alphaTilde = compliance * ctx.invH2;
     const Vec3 rhs = rotation - alphaTilde * lambda;  // Eq. 13's numerator, vector form
     // K = I0⁻¹ + I1⁻¹ in world coordinates (nᵀ K n is Eq. 11 plus Eq. 12).
@@ -364,10 +370,7 @@ private:
     // Each turning body's inverse inertia, from the columns of its rotation matrix it needs,
     // serves both w and the change of ω (Body::angularInverseMass and applyInverseInertia
     // would rotate n and p twice each).
-    const bool turns0 = turns(b0);
-    const bool turns1 = turns(b1);
-    const InverseInertia inverse0 = turns0 ? InverseInertia(b0, b0.q) : InverseInertia();
-    const InverseInertia inverse1 = turns1 ? InverseInertia(b1, b1.q) : InverseInertia();
+    const auto [turns0, turns1, inverse0, inverse1] = PairInertia(b0, b1, b0.q, b1.q);
     double w = 0.0;
     if (turns0) w += inverse0.quadratic(n);
     if (turns1) w += inverse1.quadratic(n);
