@@ -130,15 +130,8 @@ void addSphereContacts(const HeightfieldGrid& grid, const Vec3& c, double r, dou
             const bool inside = half == 0 ? fx > inset && cell.z1 - foot.z() > inset
                                           : fz > inset && cell.x1 - foot.x() > inset;
             if (inside && across > inset * (grid.cellX + grid.cellZ)) {
-                const double depth = r - height;
-                if (depth < -margin) continue;
-                ContactPoint contact;
-                contact.normal = normal;
-                contact.depth = depth;
-                contact.point1 = foot;
-                contact.point0 = c - r * normal;
-                contact.feature = static_cast<uint32_t>(index) * 64u;  // featureId(tri, face)
-                buffer.add(contact);
+                addSphereFaceNormalContact(normal, height, c, r, margin,
+                                           triangleFeatureId(static_cast<uint32_t>(index), 0), buffer);
                 continue;
             }
             ContactTriangle tri;

@@ -20,9 +20,9 @@ double ratio(double num, double den) {
 /// nearer ones cover the sliver a slightly convex crease leaves between the two faces.
 constexpr double kInactiveSideways = 0.05;
 
-/// Feature ids: the triangle index times 64 plus a local code.
+/// Feature ids (triangleFeatureId) of this triangle.
 uint32_t featureId(const ContactTriangle& tri, uint32_t local) {
-    return tri.id * 64u + local;
+    return triangleFeatureId(tri.id, local);
 }
 
 uint32_t localCode(const TrianglePoint& p) {
@@ -144,23 +144,22 @@ void addSphereTriangleContacts(const ContactTriangle& tri, const Vec3& c, double
     const TrianglePoint closest = closestOnTriangle(c, tri.v[0], tri.v[1], tri.v[2]);
     const Vec3 offset = c - closest.point;
 
-    ContactPoint contact;
     if (height <= 0.0 || !featureActive(tri, closest)) {
         // Face normal: over the face, behind it, or on an internal edge or vertex.
         if (closest.feature != TriangleFeature::Face) {
             const Vec3 sideways = offset - offset.dot(n) * n;
             if (sideways.squaredNorm() > (kInactiveSideways * r) * (kInactiveSideways * r)) return;
         }
-        contact.normal = n;
-        contact.depth = r - height;
-        contact.point1 = c - height * n;
-    } else {
-        const double d = offset.norm();
-        if (d > r + margin) return;
-        contact.normal = d > kDirectionEpsilon ? Vec3(offset / d) : n;
-        contact.depth = r - d;
-        contact.point1 = closest.point;
+        addSphereFaceNormalContact(n, height, c, r, margin, featureId(tri, localCode(closest)), buffer);
+        return;
     }
+    // An active edge or vertex: along the direction to it.
+    const double d = offset.norm();
+    if (d > r + margin) return;
+    ContactPoint contact;
+    contact.normal = d > kDirectionEpsilon ? Vec3(offset / d) : n;
+    contact.depth = r - d;
+    contact.point1 = closest.point;
     if (contact.depth < -margin) return;
     contact.point0 = c - r * contact.normal;
     contact.feature = featureId(tri, localCode(closest));

@@ -47,6 +47,26 @@ TrianglePoint closestOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, con
 void closestSegmentSegment(const Vec3& p0, const Vec3& p1, const Vec3& q0, const Vec3& q1,
                            double& s, double& t);
 
+/// A contact's feature id: the triangle's index times 64 plus a local code (the face's is 0, a
+/// vertex's 1-3, an edge's 4-6, the capsule and box features' above).
+inline uint32_t triangleFeatureId(uint32_t triangleId, uint32_t local) { return triangleId * 64u + local; }
+
+/// A sphere's contact along a triangle's unit front normal n, its centre c at `height` above the
+/// plane: the foot c − height n, depth r − height; none beyond the margin. The face normal of
+/// addSphereTriangleContacts, which a heightfield also writes directly for a foot clearly
+/// inside a triangle.
+inline void addSphereFaceNormalContact(const Vec3& n, double height, const Vec3& c, double r, double margin,
+                                       uint32_t feature, ContactBuffer& buffer) {
+    ContactPoint contact;
+    contact.normal = n;
+    contact.depth = r - height;
+    if (contact.depth < -margin) return;
+    contact.point1 = c - height * n;
+    contact.point0 = c - r * n;
+    contact.feature = feature;
+    buffer.add(contact);
+}
+
 /// Sphere (centre c, radius r). `solidBelow`: a heightfield pushes up whatever lies under its
 /// surface; a mesh triangle lets go of a shape once that has passed entirely behind its plane.
 void addSphereTriangleContacts(const ContactTriangle& tri, const Vec3& c, double r, double margin,
