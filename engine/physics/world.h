@@ -153,9 +153,13 @@ public:
     /// The body or joint a handle names. A null, destroyed (stale generation) or foreign handle
     /// is an error: it asserts in a debug build and throws std::invalid_argument otherwise,
     /// naming the handle. The solver indexes storage directly and pays nothing for the check.
+    /// A body is read only: its pose, velocity and surface change through setBodyPose,
+    /// setBodyVelocity and setBodySurface, which wake its island, as Box2D's and Jolt's body
+    /// interfaces do (a body written in place stayed asleep).
     const Body& body(BodyId id) const { return bodies_[checked(id)]; }
-    Body& body(BodyId id) { return bodies_[checked(id)]; }
     const Joint& joint(JointId id) const { return joints_[checked(id)]; }
+    /// A live joint's parameters may be set in place (damping, a drive's target); that does not
+    /// wake a sleeping island, which updateJoint does.
     Joint& joint(JointId id) { return joints_[checked(id)]; }
 
     /// Gives a live joint the parameters of `def` (anchors, frames, compliances, limits, drives,

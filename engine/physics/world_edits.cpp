@@ -27,7 +27,7 @@ void World::updateJoint(JointId id, const JointDef& def) {
 }
 
 void World::setBodyPose(BodyId id, const Vec3& position, const Quat& orientation) {
-    Body& body = this->body(id);
+    Body& body = bodies_[checked(id)];
     wakeBody(id);
     // An orientation within rounding of the current one leaves q alone, so moving a body does
     // not perturb its rotation (the user frame's quaternion is q times a fixed rotation,
@@ -42,7 +42,7 @@ void World::setBodyPose(BodyId id, const Vec3& position, const Quat& orientation
 }
 
 void World::setBodyVelocity(BodyId id, const Vec3& velocity, const Vec3& angularVelocity) {
-    Body& body = this->body(id);
+    Body& body = bodies_[checked(id)];
     if (!body.isDynamic()) return;  // a static body has no velocity to set
     wakeBody(id);
     body.v = velocity;
@@ -51,7 +51,7 @@ void World::setBodyVelocity(BodyId id, const Vec3& velocity, const Vec3& angular
 
 void World::setBodySurface(BodyId id, double staticFriction, double dynamicFriction,
                            double restitution, bool collide) {
-    Body& body = this->body(id);
+    Body& body = bodies_[checked(id)];
     wakeBody(id);
     body.staticFriction = staticFriction;
     body.dynamicFriction = dynamicFriction;

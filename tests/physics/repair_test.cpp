@@ -79,10 +79,10 @@ TEST(RepairTest, BodyTurnedByHandIsRepairedOnRequest) {
                            .axis1 = Vec3::UnitZ()});
         world.step(kDt);
         // Turn the bar 90° about world y around the hinge point: its axis now lies along x.
-        Body& body = world.body(bar);
+        const Body& body = world.body(bar);
         const Quat turn(Eigen::AngleAxisd(M_PI / 2, Vec3::UnitY()));
-        body.q = turn * body.q;
-        body.x = Vec3(0, 2, 0) + turn * (body.x - Vec3(0, 2, 0));
+        world.setBodyPose(bar, Vec3(0, 2, 0) + turn * (body.userPosition() - Vec3(0, 2, 0)),
+                          turn * body.userOrientation());
         if (request) world.requestRepair();
         world.step(kDt);
         const double kinetic = world.energies().kinetic;

@@ -2,9 +2,9 @@
 // world_edits.cpp): a stack falls asleep and costs no motion; a body about to hit a sleeping
 // island wakes it before any contact, and the hit follows the closed form of an elastic
 // collision; a pendulum at its turning point never sleeps; edits (a pose, a velocity, a drag
-// joint, a destroyed support, a gravity change, a static body moved into it) wake what they
-// touch; while an island sleeps the others move bit for bit as with sleeping off, at one thread
-// and at two; a ball held by three bodies rests on its surface's speed, not on its turning, so a
+// joint, a destroyed support, a gravity change, a static body moved into it, a joint's
+// parameters, a surface) wake what they touch, and a body cannot be written in place; while an
+// island sleeps the others move bit for bit as with sleeping off, at one thread and at two; a ball held by three bodies rests on its surface's speed, not on its turning, so a
 // settled pile of spheres (spheres1000's layout) sleeps, a sphere dropped on it wakes it before
 // the hit and the woken pile settles and sleeps again, while a ball rolling slowly down a slope,
 // a ball spinning on the ground and a slowly spinning top stay awake.
@@ -17,6 +17,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <type_traits>
+#include <utility>
 
 namespace substep {
 namespace {
@@ -241,6 +243,46 @@ TEST(SleepIslandsTest, EditsWakeTheIsland) {
     const double top = world.body(boxes[2]).x.y();
     for (int frame = 0; frame < 30; ++frame) world.step(kDt);
     EXPECT_LT(world.body(boxes[2]).x.y(), top - 0.1);
+}
+
+// A body is edited through the world's setters, which wake its island; World::body gives no
+// way to write one in place (a body written in place stayed asleep).
+static_assert(std::is_const_v<std::remove_reference_t<decltype(std::declval<World&>().body(BodyId{}))>>,
+              "World::body is read only: edits go through setBodyPose, setBodyVelocity, setBodySurface");
+
+// A joint's parameters changed through updateJoint wake its island, and the body then hangs as
+// the new compliance says: a spring's elongation is compliance x force (Eq. 10's λ = −C/α̃ at
+// rest), α m g = 1e-3 x 30 N = 3 cm. A sleeping box on the ground given a new surface wakes too.
+// The damped spring creeps into place at a few mm/s, under the default rest speed (5 cm/s, as
+// Box2D's): the rest speeds are lowered so that it sleeps only once it is there.
+TEST(SleepIslandsTest, JointAndSurfaceEditsWakeTheIsland) {
+    World world({.gravity = kGravity, .substeps = 20, .sleeping = true, .sleep = {.speed = 1e-4, .angularSpeed = 1e-3}});
+    world.createBody({.shape = planeShape(Vec3::UnitY(), 0.0), .type = BodyType::Static});
+    const BodyId box = world.createBody(
+        {.shape = boxShape(Vec3::Constant(0.1)), .mass = 3.0, .position = Vec3(0.0, 1.45, 0.0)});
+    JointDef rope{.type = JointType::Distance,
+                  .body1 = box,
+                  .anchor0 = Vec3(0.0, 1.5, 0.0),
+                  .anchor1 = Vec3(0.0, 0.05, 0.0),
+                  .linearDamping = 5.0};
+    const JointId joint = world.createJoint(rope);
+    const BodyId resting = world.createBody(
+        {.shape = boxShape(Vec3::Constant(0.2)), .mass = 1.0, .position = Vec3(1.0, 0.1, 0.0)});
+    for (int frame = 0; frame < framesOf(1.5); ++frame) world.step(kDt);
+    ASSERT_TRUE(world.isAsleep(box));
+    ASSERT_TRUE(world.isAsleep(resting));
+    EXPECT_NEAR(world.body(box).x.y(), 1.45, 1e-4);
+
+    const double compliance = 1e-3;
+    rope.compliance = compliance;
+    world.updateJoint(joint, rope);
+    EXPECT_FALSE(world.isAsleep(box));
+    EXPECT_TRUE(world.isAsleep(resting)) << "an island the edit does not touch sleeps on";
+    for (int frame = 0; frame < framesOf(3.0); ++frame) world.step(kDt);
+    EXPECT_NEAR(world.body(box).x.y(), 1.45 - compliance * 3.0 * 10.0, 2e-4);
+
+    world.setBodySurface(resting, 0.9, 0.8, 0.0, true);
+    EXPECT_FALSE(world.isAsleep(resting));
 }
 
 TEST(SleepIslandsTest, MovedStaticBodyWakesWhatIsJointedToIt) {

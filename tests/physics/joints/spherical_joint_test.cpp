@@ -107,7 +107,7 @@ TEST(SphericalJointTest, TwistLimitsStopASpin) {
         Hanging rig(
             Vec3(0.2, 0.6, 0.2), 1.0, Quat::Identity(),
             {.axis0 = -Vec3::UnitY(), .axis1 = -Vec3::UnitY(), .twistLimits = Range{lower, upper}});
-        rig.world.body(rig.rod).omega = Vec3(0.0, spin, 0.0);
+        rig.world.setBodyVelocity(rig.rod, Vec3::Zero(), Vec3(0.0, spin, 0.0));
         const Vec3 n = -Vec3::UnitY();
         const auto twist = [&] {
             const Vec3 z = test::userAxis(rig.body(), Vec3::UnitZ());
@@ -172,7 +172,7 @@ TEST(SphericalJointTest, HangingBoxNudgedSidewaysStaysStill) {
     for (const Vec3& size : {Vec3(0.2, 0.6, 0.2), Vec3(0.2, 0.2, 0.2)}) {
         SCOPED_TRACE(::testing::Message() << "box " << size.transpose());
         Hanging rig(size, 1.0, Quat::Identity(), {});
-        rig.world.body(rig.rod).v = Vec3(1e-6, 0.0, 0.0);
+        rig.world.setBodyVelocity(rig.rod, Vec3(1e-6, 0.0, 0.0), Vec3::Zero());
         double worst = 0.0;
         test::runFor(rig.world, 1.0, [&](double) {
             worst = std::max(worst, rig.body().v.norm() + rig.body().omega.norm());
@@ -228,8 +228,7 @@ struct Lever {
     const Body& body() const { return world.body(box); }
     void settle(double seconds) {
         test::runFor(world, seconds, [&](double) {
-            world.body(box).v *= 0.9;
-            world.body(box).omega *= 0.9;
+            world.setBodyVelocity(box, 0.9 * body().v, 0.9 * body().omega);
         });
     }
 };
