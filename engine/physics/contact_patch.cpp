@@ -9,6 +9,43 @@
 namespace substep::contact_detail {
 namespace {
 
+/// A 3-vector of the patch solve held as three scalars. Eigen builds the Vec3 that a cross
+/// product or a rotation returns with three scalar stores and reads two of them back as one
+/// pair for the next vector operation: a load that two stores cannot forward, a stall at
+/// every lever arm, row and point velocity of a patch. These are Eigen's operations in
+/// Eigen's order (a dot product (x x' + y y') + z z', a rotation u = 2 q⃗ × v, then
+/// v + w u + q⃗ × u), so every result has the same bits. No default member values: a
+/// PatchSystem holds 55 of them, filled as rows are added (Triple{} is zero).
+struct Triple {
+    double x;
+    double y;
+    double z;
+};
+
+inline Triple triple(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
+inline Vec3 vec3(const Triple& t) { return Vec3(t.x, t.y, t.z); }
+inline Triple operator+(const Triple& a, const Triple& b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+inline Triple operator-(const Triple& a, const Triple& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+inline Triple operator*(double s, const Triple& a) { return {s * a.x, s * a.y, s * a.z}; }
+inline Triple& operator+=(Triple& a, const Triple& b) { return a = a + b; }
+inline double dot(const Triple& a, const Triple& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+inline Triple cross(const Triple& a, const Triple& b) {
+    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+inline double norm(const Triple& a) { return std::sqrt(dot(a, a)); }
+inline Triple rotate(const Quat& q, const Triple& v) {
+    const Triple axis{q.x(), q.y(), q.z()};
+    Triple u = cross(axis, v);
+    u += u;
+    return v + q.w() * u + cross(axis, u);
+}
+
+/// Eq. 27: where a body's point was before this substep's integration (previousPoint).
+inline Triple previousTriple(const Body& b, const Triple& local) { return triple(b.xPrev) + rotate(b.qPrev, local); }
+
+/// Velocity of a body's point at world offset r (pointVelocity).
+inline Triple velocityAt(const Vec3& v, const Vec3& omega, const Triple& r) { return triple(v) + cross(triple(omega), r); }
+
 /// A patch of three or more points spans an area: its static friction is anchored (contact.h).
 constexpr int kAreaPoints = 3;
 
@@ -30,37 +67,51 @@ constexpr double kNullResidual = 1e-10;
 /// a dependent row that disagrees (rounding, or points of different triangles) is ignored
 /// rather than blown up. Only the lower triangle of a is read; it is overwritten with L.
 /// Instantiated for every size so that the compiler unrolls the loops and keeps the factor in
-/// registers: the loops over a run-time m took a fifth of pyramid10's step.
+/// registers: the loops over a run-time m took a fifth of pyramid10's step. GCC still kept
+/// the inner loops and paired d[k], x[k] into one load from two separate stores, which the
+/// stores cannot forward (a stall per pair): every loop is unrolled by pragma, and the solution
+/// is built in a local array, which x might alias. A tenth of pyramid10's step, same bits.
 template <int m>
 [[gnu::always_inline]] inline void solveSemidefiniteFixed(double (&a)[kMaxPatchRows][kMaxPatchRows], const double* b,
                                                           double* x, bool* dependent) {
     double d[m];
+    #pragma GCC unroll 11
     for (int j = 0; j < m; ++j) {
         double pivot = a[j][j];
+        #pragma GCC unroll 11
         for (int k = 0; k < j; ++k) pivot -= a[j][k] * a[j][k] * d[k];
         dependent[j] = !(pivot > kDependentPivot * a[j][j]);
         d[j] = dependent[j] ? 0.0 : pivot;
+        #pragma GCC unroll 11
         for (int i = j + 1; i < m; ++i) {
             if (dependent[j]) {
                 a[i][j] = 0.0;
                 continue;
             }
             double value = a[i][j];
+            #pragma GCC unroll 11
             for (int k = 0; k < j; ++k) value -= a[i][k] * a[j][k] * d[k];
             a[i][j] = value / pivot;
         }
     }
     double y[m];
+    #pragma GCC unroll 11
     for (int i = 0; i < m; ++i) {
         double value = b[i];
+        #pragma GCC unroll 11
         for (int k = 0; k < i; ++k) value -= a[i][k] * y[k];
         y[i] = dependent[i] ? 0.0 : value;
     }
+    double solution[m];
+    #pragma GCC unroll 11
     for (int i = m - 1; i >= 0; --i) {
         double value = dependent[i] ? 0.0 : y[i] / d[i];
-        for (int k = i + 1; k < m; ++k) value -= a[k][i] * x[k];
-        x[i] = dependent[i] ? 0.0 : value;
+        #pragma GCC unroll 11
+        for (int k = i + 1; k < m; ++k) value -= a[k][i] * solution[k];
+        solution[i] = dependent[i] ? 0.0 : value;
     }
+    #pragma GCC unroll 11
+    for (int i = 0; i < m; ++i) x[i] = solution[i];
 }
 
 static_assert(kMaxPatchRows == 11, "solveSemidefinite dispatches sizes 1 to 11");
@@ -89,11 +140,11 @@ void solveSemidefinite(int m, double (&a)[kMaxPatchRows][kMaxPatchRows], const d
 /// for a push d at offset r0), body 1 the opposite way. `turn0`, `turn1` are the inverse
 /// inertias applied to the angular parts.
 struct Row {
-    Vec3 linear;
-    Vec3 angular0;
-    Vec3 angular1;
-    Vec3 turn0;
-    Vec3 turn1;
+    Triple linear;
+    Triple angular0;
+    Triple angular1;
+    Triple turn0;
+    Triple turn1;
 };
 
 /// The small system of one pair's patch, K x = rhs, where K_ij = l_i·l_j (1/m0 + 1/m1) +
@@ -116,11 +167,11 @@ public:
     }
 
     /// A positional row: a push along unit d at world offsets r0, r1. Returns its index.
-    int addPush(const Vec3& d, const Vec3& r0, const Vec3& r1) {
-        return addRow(d, r0.cross(d), r1.cross(d));
+    int addPush(const Triple& d, const Triple& r0, const Triple& r1) {
+        return addRow(d, cross(r0, d), cross(r1, d));
     }
     /// An angular row: a turn about unit n.
-    int addTurn(const Vec3& n) { return addRow(Vec3::Zero(), n, n); }
+    int addTurn(const Triple& n) { return addRow(Triple{}, n, n); }
 
     int count() const { return count_; }
     const Row& row(int i) const { return rows_[i]; }
@@ -129,9 +180,9 @@ public:
     void assemble() {
         for (int i = 0; i < count_; ++i)
             for (int j = i; j < count_; ++j) {
-                k_[i][j] = k_[j][i] = rows_[i].linear.dot(rows_[j].linear) * linearInverseMass_ +
-                                      rows_[i].angular0.dot(rows_[j].turn0) +
-                                      rows_[i].angular1.dot(rows_[j].turn1);
+                k_[i][j] = k_[j][i] = dot(rows_[i].linear, rows_[j].linear) * linearInverseMass_ +
+                                      dot(rows_[i].angular0, rows_[j].turn0) +
+                                      dot(rows_[i].angular1, rows_[j].turn1);
             }
     }
 
@@ -141,16 +192,21 @@ public:
     /// it fell.
     void solve(const bool* active, const double* rhs, double* x) {
         int m = 0;
-        for (int i = 0; i < count_; ++i)
+        int held = 0;
+        int heldIndex[kMaxPatchRows];
+        for (int i = 0; i < count_; ++i) {
             if (active[i]) index_[m++] = i;
+            else heldIndex[held++] = i;
+        }
         factorRows_ = m;
         if (m == 0) return;
         double b[kMaxPatchRows];
         for (int r = 0; r < m; ++r) {
             const int i = index_[r];
             double value = rhs[i];
-            for (int j = 0; j < count_; ++j)
-                if (!active[j]) value -= k_[i][j] * x[j];
+            // The held rows in index order, as a list: a test of every row's flag here was
+            // a branch mispredicted with every active set.
+            for (int h = 0; h < held; ++h) value -= k_[i][heldIndex[h]] * x[heldIndex[h]];
             b[r] = value;
             for (int c = 0; c <= r; ++c) factor_[r][c] = k_[i][index_[c]];  // the lower triangle is all it reads
         }
@@ -212,14 +268,15 @@ public:
 
     /// Σ x_i l_i and the angular impulses Σ x_i a_i on each body.
     void impulses(int rows, const double* x, Vec3& linear, Vec3& angular0, Vec3& angular1) const {
-        linear.setZero();
-        angular0.setZero();
-        angular1.setZero();
+        Triple sum{}, sum0{}, sum1{};
         for (int i = 0; i < rows; ++i) {
-            linear += x[i] * rows_[i].linear;
-            angular0 += x[i] * rows_[i].angular0;
-            angular1 += x[i] * rows_[i].angular1;
+            sum += x[i] * rows_[i].linear;
+            sum0 += x[i] * rows_[i].angular0;
+            sum1 += x[i] * rows_[i].angular1;
         }
+        linear = vec3(sum);
+        angular0 = vec3(sum0);
+        angular1 = vec3(sum1);
     }
 
 private:
@@ -231,11 +288,11 @@ private:
         if (!b.rotates() || !(b.invMass > 0.0)) return Turns::No;
         return b.isotropic ? Turns::Scalar : Turns::Rotated;
     }
-    static Vec3 turn(Turns kind, double scalar, const Mat3& rotated, const Vec3& angular) {
+    static Triple turn(Turns kind, double scalar, const Mat3& rotated, const Triple& angular) {
         switch (kind) {
         case Turns::Scalar: return scalar * angular;
-        case Turns::Rotated: return rotated * angular;
-        default: return Vec3::Zero();
+        case Turns::Rotated: return triple(rotated * vec3(angular));
+        default: return Triple{};
         }
     }
 
@@ -244,7 +301,7 @@ private:
         return r * b.invInertia.asDiagonal() * r.transpose();
     }
 
-    int addRow(const Vec3& linear, const Vec3& angular0, const Vec3& angular1) {
+    int addRow(const Triple& linear, const Triple& angular0, const Triple& angular1) {
         Row& row = rows_[count_];
         row.linear = linear;
         row.angular0 = angular0;
@@ -275,9 +332,9 @@ private:
 /// The centre of a patch's points on each body (principal frames), their mean normal and
 /// their mean distance from the centre across it (the lever arm of torsional friction).
 struct Patch {
-    Vec3 centre0 = Vec3::Zero();
-    Vec3 centre1 = Vec3::Zero();
-    Vec3 normal = Vec3::Zero();
+    Triple centre0{};
+    Triple centre1{};
+    Triple normal{};
     double radius = 0.0;
     int points = 0;
 };
@@ -289,8 +346,8 @@ double patchRadius(std::span<const Contact> contacts, const Body& b0, const Patc
     double radius = 0.0;
     for (const Contact& c : contacts) {
         if (!use(c)) continue;
-        const Vec3 offset = b0.q * (c.local0 - patch.centre0);
-        radius += (offset - offset.dot(patch.normal) * patch.normal).norm();
+        const Triple offset = rotate(b0.q, triple(c.local0) - patch.centre0);
+        radius += norm(offset - dot(offset, patch.normal) * patch.normal);
     }
     return radius / patch.points;
 }
@@ -302,30 +359,31 @@ Patch patchOf(std::span<const Contact> contacts, const Body& b0, Use&& use, bool
     Patch patch;
     for (const Contact& c : contacts) {
         if (!use(c)) continue;
-        patch.centre0 += c.local0;
-        patch.centre1 += c.local1;
-        patch.normal += c.normal;
+        patch.centre0 += triple(c.local0);
+        patch.centre1 += triple(c.local1);
+        patch.normal += triple(c.normal);
         ++patch.points;
     }
     if (patch.points == 0) return patch;
-    patch.centre0 /= patch.points;
-    patch.centre1 /= patch.points;
-    const double length = patch.normal.norm();
+    const double points = patch.points;
+    patch.centre0 = {patch.centre0.x / points, patch.centre0.y / points, patch.centre0.z / points};
+    patch.centre1 = {patch.centre1.x / points, patch.centre1.y / points, patch.centre1.z / points};
+    const double length = norm(patch.normal);
     if (!(length > kDirectionEpsilon)) {
         patch.points = 0;  // opposing normals: no common tangent plane to hold
         return patch;
     }
-    patch.normal /= length;
+    patch.normal = {patch.normal.x / length, patch.normal.y / length, patch.normal.z / length};
     if (withRadius && patch.points > 1) patch.radius = patchRadius(contacts, b0, patch, use);
     return patch;
 }
 
 /// The friction rows of a patch: two tangent pushes at its centre and, where it has a lever
 /// arm, a turn about its normal. Returns the index of the first tangent row.
-int addFrictionRows(PatchSystem& system, const Patch& patch, const Vec3& r0, const Vec3& r1,
-                    Vec3& t1, Vec3& t2, int& spinRow) {
-    t1 = anyPerpendicular(patch.normal);
-    t2 = patch.normal.cross(t1);
+int addFrictionRows(PatchSystem& system, const Patch& patch, const Triple& r0, const Triple& r1,
+                    Triple& t1, Triple& t2, int& spinRow) {
+    t1 = triple(anyPerpendicular(vec3(patch.normal)));
+    t2 = cross(patch.normal, t1);
     const int first = system.addPush(t1, r0, r1);
     system.addPush(t2, r0, r1);
     spinRow = patch.radius > 0.0 ? system.addTurn(patch.normal) : -1;
@@ -389,12 +447,15 @@ void solvePatchPositions(ContactPair& pair, std::span<Contact> contacts, SolverC
     PatchSystem system(b0, b1);
     double rhs[kMaxPatchRows] = {};
     bool penetrates = false;
+    const Triple x0 = triple(b0.x);
+    const Triple x1 = triple(b1.x);
     for (int i = 0; i < points; ++i) {
         const Contact& c = contacts[i];
-        const Vec3 r0 = b0.q * c.local0;
-        const Vec3 r1 = b1.q * c.local1;
-        system.addPush(c.normal, r0, r1);
-        rhs[i] = pushOut(((b1.x + r1) - (b0.x + r0)).dot(c.normal), b0, b1, r0, r1, c.normal, ctx);
+        const Triple r0 = rotate(b0.q, triple(c.local0));
+        const Triple r1 = rotate(b1.q, triple(c.local1));
+        const Triple n = triple(c.normal);
+        system.addPush(n, r0, r1);
+        rhs[i] = pushOut(dot((x1 + r1) - (x0 + r0), n), b0, b1, vec3(r0), vec3(r1), c.normal, ctx);
         penetrates = penetrates || rhs[i] > 0.0;
     }
     if (!penetrates) return;
@@ -412,25 +473,25 @@ void solvePatchPositions(ContactPair& pair, std::span<Contact> contacts, SolverC
         const bool area = patch.points >= kAreaPoints;
         if (!area) pair.anchored = false;
         if (area && !pair.anchored) {
-            pair.anchor0 = patch.centre0;
-            pair.anchor1 = b1.qPrev.conjugate() * (previousPoint(b0, patch.centre0) - b1.xPrev);
+            pair.anchor0 = vec3(patch.centre0);
+            pair.anchor1 = b1.qPrev.conjugate() * (previousPoint(b0, pair.anchor0) - b1.xPrev);
             pair.turnAnchor = (b0.qPrev.conjugate() * b1.qPrev).normalized();
             pair.anchored = true;
         }
-        const Vec3 local0 = area ? pair.anchor0 : patch.centre0;
-        const Vec3 r0 = b0.q * local0;
-        const Vec3 r1 = area ? Vec3(b1.q * pair.anchor1) : Vec3(b1.q * patch.centre1);
-        Vec3 t1, t2;
+        const Triple local0 = area ? triple(pair.anchor0) : patch.centre0;
+        const Triple r0 = rotate(b0.q, local0);
+        const Triple r1 = rotate(b1.q, area ? triple(pair.anchor1) : patch.centre1);
+        Triple t1, t2;
         tangentRow = addFrictionRows(system, patch, r0, r1, t1, t2, spinRow);
-        const Vec3 slip = area ? Vec3((b0.x + r0) - (b1.x + r1))
-                               : Vec3((b0.x + r0 - previousPoint(b0, local0)) -
-                                      (b1.x + r1 - previousPoint(b1, patch.centre1)));
-        rhs[tangentRow] = -slip.dot(t1);
-        rhs[tangentRow + 1] = -slip.dot(t2);
+        const Triple slip = area ? (x0 + r0) - (x1 + r1)
+                                 : (x0 + r0 - previousTriple(b0, local0)) -
+                                       (x1 + r1 - previousTriple(b1, patch.centre1));
+        rhs[tangentRow] = -dot(slip, t1);
+        rhs[tangentRow + 1] = -dot(slip, t2);
         if (spinRow >= 0) {
             const Quat turn = area ? Quat(b0.q * pair.turnAnchor * b1.q.conjugate())
                                    : Quat((b0.q * b0.qPrev.conjugate()) * (b1.q * b1.qPrev.conjugate()).conjugate());
-            rhs[spinRow] = -rotationVector(turn.normalized()).dot(patch.normal);
+            rhs[spinRow] = -dot(triple(rotationVector(turn.normalized())), patch.normal);
         }
     }
     system.assemble();
@@ -482,19 +543,19 @@ void solvePatchVelocities(const ContactPair& pair, std::span<const Contact> cont
     // bounce (the paper's jitter guard). The change may pull: it removes a push-out's speed.
     const double restingSpeed = 2.0 * gravity * h;
     double rhs[kMaxPatchRows] = {};
-    Vec3 r0s[kMaxPatchPoints];
-    Vec3 r1s[kMaxPatchPoints];
+    Triple r0s[kMaxPatchPoints];
+    Triple r1s[kMaxPatchPoints];
     int normals[kMaxPatchPoints];
     int rows = 0;
     double largestChange = 0.0;
     for (int i = 0; i < points; ++i) {
         const Contact& c = contacts[i];
         if (!pushed(c)) continue;
-        const Vec3 r0 = b0.q * c.local0;
-        const Vec3 r1 = b1.q * c.local1;
-        const double vn = (pointVelocity(b0.v, b0.omega, r0) - pointVelocity(b1.v, b1.omega, r1)).dot(c.normal);  // Eq. 29
-        const double vnBefore = (pointVelocity(b0.vPrev, b0.omegaPrev, r0) -
-                                 pointVelocity(b1.vPrev, b1.omegaPrev, r1)).dot(c.normal);
+        const Triple r0 = rotate(b0.q, triple(c.local0));
+        const Triple r1 = rotate(b1.q, triple(c.local1));
+        const Triple n = triple(c.normal);
+        const double vn = dot(velocityAt(b0.v, b0.omega, r0) - velocityAt(b1.v, b1.omega, r1), n);  // Eq. 29
+        const double vnBefore = dot(velocityAt(b0.vPrev, b0.omegaPrev, r0) - velocityAt(b1.vPrev, b1.omegaPrev, r1), n);
         const double e = std::abs(vnBefore) <= restingSpeed ? 0.0 : pair.restitution;
         r0s[rows] = r0;
         r1s[rows] = r1;
@@ -508,19 +569,22 @@ void solvePatchVelocities(const ContactPair& pair, std::span<const Contact> cont
     // h μ_d |f_n| = μ_d Σλ_n / h, with f_n = λ_n / h² (Eq. 10) (a disc, so friction is isotropic), and the spin about the
     // normal is slowed by at most that times the lever arm.
     const bool friction = pair.dynamicFriction > 0.0;
-    const Vec3 r0 = b0.q * patch.centre0;
-    const Vec3 r1 = b1.q * patch.centre1;
-    const Vec3 slip = pointVelocity(b0.v, b0.omega, r0) - pointVelocity(b1.v, b1.omega, r1);
-    const Vec3 tangentialSlip = slip - slip.dot(patch.normal) * patch.normal;
-    const double spin = (b0.omega - b1.omega).dot(patch.normal);
+    const Triple r0 = rotate(b0.q, patch.centre0);
+    const Triple r1 = rotate(b1.q, patch.centre1);
+    const Triple slip = velocityAt(b0.v, b0.omega, r0) - velocityAt(b1.v, b1.omega, r1);
+    const Triple tangentialSlip = slip - dot(slip, patch.normal) * patch.normal;
+    const double spin = dot(triple(b0.omega) - triple(b1.omega), patch.normal);
     if (friction) {
-        largestChange = std::max(largestChange, tangentialSlip.norm());
+        largestChange = std::max(largestChange, norm(tangentialSlip));
         // The lever arm only where the rest test or the solve needs it: no point is farther
         // from the centre than `reach`, and a patch that rests with that lever arm rests.
         if (patch.points > 1 && !(largestChange > kRestingSpeed)) {
             double reach2 = 0.0;
             for (const Contact& c : contacts.first(points))
-                if (pushed(c)) reach2 = std::max(reach2, (c.local0 - patch.centre0).squaredNorm());
+                if (pushed(c)) {
+                    const Triple offset = triple(c.local0) - patch.centre0;
+                    reach2 = std::max(reach2, dot(offset, offset));
+                }
             if (!(std::abs(spin) * std::sqrt(reach2) > kRestingSpeed)) return;
         }
         if (patch.points > 1) patch.radius = patchRadius(contacts.first(points), b0, patch, pushed);
@@ -530,14 +594,14 @@ void solvePatchVelocities(const ContactPair& pair, std::span<const Contact> cont
     if (!(largestChange > kRestingSpeed)) return;
 
     PatchSystem system(b0, b1);
-    for (int row = 0; row < rows; ++row) system.addPush(contacts[normals[row]].normal, r0s[row], r1s[row]);
+    for (int row = 0; row < rows; ++row) system.addPush(triple(contacts[normals[row]].normal), r0s[row], r1s[row]);
     int tangentRow = -1;
     int spinRow = -1;
     if (friction) {
-        Vec3 t1, t2;
+        Triple t1, t2;
         tangentRow = addFrictionRows(system, patch, r0, r1, t1, t2, spinRow);
-        rhs[tangentRow] = -slip.dot(t1);
-        rhs[tangentRow + 1] = -slip.dot(t2);
+        rhs[tangentRow] = -dot(slip, t1);
+        rhs[tangentRow + 1] = -dot(slip, t2);
         if (spinRow >= 0) rhs[spinRow] = -spin;
     }
     system.assemble();
