@@ -1,376 +1,27 @@
 #include "physics/soft/element_batch.h"
 
-#include "physics/soft/lanes.h"
-#include "physics/soft/shape_matching.h"
+#include "physics/soft/element_batch_kernel.h"
 
 #include <algorithm>
-#include <cmath>
-#include <cstring>
 
 namespace substep {
 namespace {
 
-using namespace simd;
-static_assert(kLanes == kBatchLanes);
-
-/// A lane's first Newton step turned more than this (rad²): it takes a second step, as
-/// extractRotation would (what is left after a step of 1e-3 rad is about its square, below
-/// rounding after the second); a second step over it goes to extractRotation.
-constexpr double kLaneTurn2 = 1e-6;
-/// A first step over this (rad², 0.1 rad), or a matrix that is not positive definite: the lane
-/// goes to extractRotation, which turns such steps by their exact angle.
-constexpr double kLaneFar2 = 0.01;
-
-/// Square roots in place, lane by lane (vectorised with -fno-math-errno).
-[[gnu::always_inline]] inline void squareRoot(Lanes& v) {
-    for (int l = 0; l < kLanes; ++l)
-        v[l] = std::sqrt(v[l]);
-}
-
-/// Per lane, all bits set or none: the result of comparing Lanes.
-using Mask = decltype(Lanes{} < Lanes{});
-
-[[gnu::always_inline]] inline bool anyLane(const Mask& m) { return (m[0] | m[1] | m[2] | m[3]) != 0; }
-
-/// The rotation matrices of the lanes' unit quaternions.
-[[gnu::always_inline]] inline void rotationMatrix(const Lanes& w, const Lanes& qx, const Lanes& qy,
-                                                  const Lanes& qz, Lanes& r00, Lanes& r01, Lanes& r02,
-                                                  Lanes& r10, Lanes& r11, Lanes& r12, Lanes& r20,
-                                                  Lanes& r21, Lanes& r22) {
-    r00 = 1 - 2 * (qy * qy + qz * qz), r01 = 2 * (qx * qy - w * qz), r02 = 2 * (qx * qz + w * qy);
-    r10 = 2 * (qx * qy + w * qz), r11 = 1 - 2 * (qx * qx + qz * qz), r12 = 2 * (qy * qz - w * qx);
-    r20 = 2 * (qx * qz - w * qy), r21 = 2 * (qy * qz + w * qx), r22 = 1 - 2 * (qx * qx + qy * qy);
-}
-
-/// One Newton step of extractRotation (shape_matching.h) for the lanes' A and rotation R: with
-/// B = Rᵀ A = S + [u]×, the turn t (in R's frame) solving (tr S 1 − S) t = 2u, and where
-/// tr S 1 − S is positive definite (t is 0 where it is not).
-[[gnu::always_inline]] inline void newtonTurn(const Lanes (&am)[3][3], const Lanes& spread, const Lanes& r00,
-                                              const Lanes& r01, const Lanes& r02, const Lanes& r10,
-                                              const Lanes& r11, const Lanes& r12, const Lanes& r20,
-                                              const Lanes& r21, const Lanes& r22, Lanes& tx, Lanes& ty,
-                                              Lanes& tz, Mask& definite) {
-    const Lanes zero = {}, one = zero + 1.0;
-    const Lanes b00 = r00 * am[0][0] + r10 * am[1][0] + r20 * am[2][0];
-    const Lanes b01 = r00 * am[0][1] + r10 * am[1][1] + r20 * am[2][1];
-    const Lanes b02 = r00 * am[0][2] + r10 * am[1][2] + r20 * am[2][2];
-    const Lanes b10 = r01 * am[0][0] + r11 * am[1][0] + r21 * am[2][0];
-    const Lanes b11 = r01 * am[0][1] + r11 * am[1][1] + r21 * am[2][1];
-    const Lanes b12 = r01 * am[0][2] + r11 * am[1][2] + r21 * am[2][2];
-    const Lanes b20 = r02 * am[0][0] + r12 * am[1][0] + r22 * am[2][0];
-    const Lanes b21 = r02 * am[0][1] + r12 * am[1][1] + r22 * am[2][1];
-    const Lanes b22 = r02 * am[0][2] + r12 * am[1][2] + r22 * am[2][2];
-    const Lanes ux = b21 - b12, uy = b02 - b20, uz = b10 - b01;  // 2u
-    const Lanes trace = b00 + b11 + b22;
-    const Lanes m00 = trace - b00, m11 = trace - b11, m22 = trace - b22;
-    const Lanes m01 = -0.5 * (b01 + b10), m02 = -0.5 * (b02 + b20), m12 = -0.5 * (b12 + b21);
-    const Lanes c00 = m11 * m22 - m12 * m12, c01 = m02 * m12 - m01 * m22, c02 = m01 * m12 - m02 * m11;
-    const Lanes c11 = m00 * m22 - m02 * m02, c12 = m01 * m02 - m00 * m12, c22 = m00 * m11 - m01 * m01;
-    const Lanes det = m00 * c00 + m01 * c01 + m02 * c02;
-    const Lanes floor = 1e-6 * (trace < 0 ? -trace : trace) + 1e-9 * spread;
-    definite = (m00 > floor) & (c22 > floor * floor) & (det > floor * floor * floor);
-    const Lanes inverse = definite ? one / det : zero;
-    tx = (c00 * ux + c01 * uy + c02 * uz) * inverse;
-    ty = (c01 * ux + c11 * uy + c12 * uz) * inverse;
-    tz = (c02 * ux + c12 * uy + c22 * uz) * inverse;
-}
-
-/// Turns the lanes' quaternions q by ω = R t (world) as integrateRotation does, q + ½ (0, s ω) q
-/// renormalised, with `halfScale` = ½ s (s its tan(|θ|/2)/(|θ|/2) series). The new norm is
-/// 1 + ε, ε ≤ |½ s ω|² plus the rounding of |q|: lanes in `exact` divide by its square root,
-/// the others (ε below 1e-6) take 1/sqrt(1 + ε) by its series, whose ε³ terms are under 1e-18.
-/// Lanes in `still` keep their quaternion bit for bit.
-[[gnu::always_inline]] inline void turnLanes(const Lanes& r00, const Lanes& r01, const Lanes& r02,
-                                             const Lanes& r10, const Lanes& r11, const Lanes& r12,
-                                             const Lanes& r20, const Lanes& r21, const Lanes& r22,
-                                             const Lanes& tx, const Lanes& ty, const Lanes& tz,
-                                             const Lanes& halfScale, const Mask& still, const Mask& exact,
-                                             Lanes& w, Lanes& qx, Lanes& qy, Lanes& qz) {
-    const Lanes ox = (r00 * tx + r01 * ty + r02 * tz) * halfScale;  // ½ s ω
-    const Lanes oy = (r10 * tx + r11 * ty + r12 * tz) * halfScale;
-    const Lanes oz = (r20 * tx + r21 * ty + r22 * tz) * halfScale;
-    const Lanes nw = w - ox * qx - oy * qy - oz * qz;
-    const Lanes nx = qx + ox * w + oy * qz - oz * qy;
-    const Lanes ny = qy - ox * qz + oy * w + oz * qx;
-    const Lanes nz = qz + ox * qy - oy * qx + oz * w;
-    const Lanes squared = nw * nw + nx * nx + ny * ny + nz * nz;
-    const Lanes epsilon = squared - 1.0;
-    Lanes norm = 1.0 - epsilon * (0.5 - 0.375 * epsilon);
-    if (anyLane(exact)) {
-        Lanes root = squared;
-        squareRoot(root);
-        norm = exact ? 1.0 / root : norm;
-    }
-    w = still ? w : nw * norm, qx = still ? qx : nx * norm;
-    qy = still ? qy : ny * norm, qz = still ? qz : nz * norm;
-}
-
-static_assert(sizeof(Quat) == 4 * sizeof(double), "rotations are read as packed (x, y, z, w)");
-
-/// Four consecutive quaternions, stored (x, y, z, w) each, into lanes: a 4 x 4 transpose.
-[[gnu::always_inline]] inline void loadRotations(const double* p, Lanes& w, Lanes& x, Lanes& y, Lanes& z) {
-    Lanes q0, q1, q2, q3;
-    load(q0, p), load(q1, p + 4), load(q2, p + 8), load(q3, p + 12);
-    const Lanes lo01 = __builtin_shufflevector(q0, q1, 0, 4, 1, 5);  // x0 x1 y0 y1
-    const Lanes lo23 = __builtin_shufflevector(q2, q3, 0, 4, 1, 5);
-    const Lanes hi01 = __builtin_shufflevector(q0, q1, 2, 6, 3, 7);  // z0 z1 w0 w1
-    const Lanes hi23 = __builtin_shufflevector(q2, q3, 2, 6, 3, 7);
-    x = __builtin_shufflevector(lo01, lo23, 0, 1, 4, 5);
-    y = __builtin_shufflevector(lo01, lo23, 2, 3, 6, 7);
-    z = __builtin_shufflevector(hi01, hi23, 0, 1, 4, 5);
-    w = __builtin_shufflevector(hi01, hi23, 2, 3, 6, 7);
-}
-
-/// The inverse of loadRotations.
-[[gnu::always_inline]] inline void storeRotations(double* p, const Lanes& w, const Lanes& x, const Lanes& y,
-                                                  const Lanes& z) {
-    const Lanes xy01 = __builtin_shufflevector(x, y, 0, 4, 1, 5);  // x0 y0 x1 y1
-    const Lanes xy23 = __builtin_shufflevector(x, y, 2, 6, 3, 7);
-    const Lanes zw01 = __builtin_shufflevector(z, w, 0, 4, 1, 5);
-    const Lanes zw23 = __builtin_shufflevector(z, w, 2, 6, 3, 7);
-    const Lanes q0 = __builtin_shufflevector(xy01, zw01, 0, 1, 4, 5);
-    const Lanes q1 = __builtin_shufflevector(xy01, zw01, 2, 3, 6, 7);
-    const Lanes q2 = __builtin_shufflevector(xy23, zw23, 0, 1, 4, 5);
-    const Lanes q3 = __builtin_shufflevector(xy23, zw23, 2, 3, 6, 7);
-    std::memcpy(p, &q0, sizeof q0), std::memcpy(p + 4, &q1, sizeof q1);
-    std::memcpy(p + 8, &q2, sizeof q2), std::memcpy(p + 12, &q3, sizeof q3);
-}
-
-/// Projects one batch, every lane's arithmetic in vector registers: the corners gathered once
-/// from the particle array into lanes (the batch holds their indices; a contiguous batch loads
-/// them as rows and transposes them), the rest offsets,
-/// inverse masses, ℓ² and α_e read from the batch, one warm-started Newton step of the rotation
-/// extraction, the deviations and the XPBD update (Eq. 4), and the corners scattered back.
-template <bool Contiguous, bool Held>
-[[gnu::always_inline]] inline uint32_t solveBatch(const ElementBatch& batch,
-                                                  const ElementArrays& arrays, double invH2) {
+/// One sweep four lanes at a time (AVX2, or SSE2 on the base ISA).
+[[gnu::target_clones("arch=x86-64-v3", "default")]] uint32_t sweepFourLanes(std::span<const ElementBatch> batches,
+                                                                          const ElementArrays& arrays,
+                                                                          double invH2) {
+    using Kernel = BatchKernel<simd::Lanes>;
     uint32_t handedOver = 0;
-    const uint32_t first = batch.firstElement;
-    const int lanes = static_cast<int>(batch.lanes);
-    double* const pos = arrays.positions.data()->data();
-
-    Lanes px[8], py[8], pz[8];
-    Lanes w, qx, qy, qz, lambda, spread, alpha;
-    if constexpr (Contiguous) {
-        for (int j = 0; j < 8; ++j)
-            loadPoints(pos + 3 * size_t(batch.particle[j][0]), px[j], py[j], pz[j]);
-        loadRotations(arrays.rotations[first].coeffs().data(), w, qx, qy, qz);
-        load(lambda, &arrays.lambda[first]);
-    } else {
-        int lane[kLanes];  // the element of each lane; lanes past `lanes` repeat lane 0
-        for (int l = 0; l < kLanes; ++l)
-            lane[l] = l < lanes ? l : 0;
-        for (int j = 0; j < 8; ++j)
-            for (int l = 0; l < kLanes; ++l) {
-                const double* p = pos + 3 * size_t(batch.particle[j][l]);
-                px[j][l] = p[0], py[j][l] = p[1], pz[j][l] = p[2];
-            }
-        const Quat* rotations = arrays.rotations.data() + first;
-        for (int l = 0; l < kLanes; ++l) {
-            const Quat& rotation = rotations[lane[l]];
-            w[l] = rotation.w(), qx[l] = rotation.x(), qy[l] = rotation.y(), qz[l] = rotation.z();
-            lambda[l] = arrays.lambda[first + static_cast<uint32_t>(lane[l])];
-        }
-    }
-    load(spread, batch.scale2), load(alpha, batch.compliance);
-    alpha *= invH2;
-
-    // A = Σ ⅛ x_j q_jᵀ (Σ q_j = 0 removes the centroid).
-    Lanes am[3][3] = {};
-    for (int j = 0; j < 8; ++j) {
-        Lanes rx, ry, rz;
-        load(rx, batch.rest[0][j]), load(ry, batch.rest[1][j]), load(rz, batch.rest[2][j]);
-        am[0][0] += px[j] * rx, am[0][1] += px[j] * ry, am[0][2] += px[j] * rz;
-        am[1][0] += py[j] * rx, am[1][1] += py[j] * ry, am[1][2] += py[j] * rz;
-        am[2][0] += pz[j] * rx, am[2][1] += pz[j] * ry, am[2][2] += pz[j] * rz;
-    }
-    for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 3; ++c)
-            am[r][c] *= 0.125;
-
-    // Newton steps of extractRotation from the warm start (selects instead of branches): one,
-    // and a second for the lanes whose first turned more than 1e-3 rad; the rest (a turn over
-    // 0.1 rad, an inverted or collapsed shape, a second step still over 1e-3 rad) go to
-    // extractRotation itself.
-    const Lanes zero = {}, one = zero + 1.0;
-    Lanes r00, r01, r02, r10, r11, r12, r20, r21, r22;
-    rotationMatrix(w, qx, qy, qz, r00, r01, r02, r10, r11, r12, r20, r21, r22);
-    Lanes tx, ty, tz;
-    Mask definite;
-    newtonTurn(am, spread, r00, r01, r02, r10, r11, r12, r20, r21, r22, tx, ty, tz, definite);
-    Lanes angle2 = tx * tx + ty * ty + tz * tz;
-    // Not definite, a turn over 0.1 rad or NaN: extractRotation from the warm start.
-    Mask handOver = ~definite | (angle2 > kLaneFar2) | (angle2 != angle2);
-    // A turn over 1e-3 rad: a second step follows (what is left after a step is about its square).
-    const Mask again = ~handOver & (angle2 > kLaneTurn2);
-    {
-        // integrateRotation's small-angle series (|θ|/2 below 5e-4 here, 0.05 in the lanes that
-        // step again, which take its next term too); a converged lane (angle2 ≤ 1e-24) stays
-        // put, as in extractRotation.
-        const Lanes half2 = 0.25 * angle2;
-        const Lanes series = 0.5 * (1.0 + half2 * (1.0 / 3.0 + half2 * (2.0 / 15.0)));
-        const Lanes longSeries = 0.5 * (1.0 + half2 * (1.0 / 3.0 + half2 * (2.0 / 15.0 + half2 * (17.0 / 315.0))));
-        const Mask still = handOver | (angle2 <= 1e-24);
-        const Lanes scale = still ? zero : again ? longSeries : series;
-        turnLanes(r00, r01, r02, r10, r11, r12, r20, r21, r22, tx, ty, tz, scale, still, again, w, qx, qy, qz);
-        rotationMatrix(w, qx, qy, qz, r00, r01, r02, r10, r11, r12, r20, r21, r22);
-    }
-    if (anyLane(again)) {
-        newtonTurn(am, spread, r00, r01, r02, r10, r11, r12, r20, r21, r22, tx, ty, tz, definite);
-        angle2 = tx * tx + ty * ty + tz * tz;
-        // Still over 1e-3 rad (or no longer definite): extractRotation goes on from the first step.
-        handOver |= again & (~definite | (angle2 > kLaneTurn2) | (angle2 != angle2));
-        const Lanes half2 = 0.25 * angle2;
-        const Lanes series = 0.5 * (1.0 + half2 * (1.0 / 3.0 + half2 * (2.0 / 15.0)));
-        const Mask still = ~again | handOver | (angle2 <= 1e-24);
-        const Lanes scale = still ? zero : series;
-        turnLanes(r00, r01, r02, r10, r11, r12, r20, r21, r22, tx, ty, tz, scale, still, Mask{}, w, qx, qy, qz);
-        rotationMatrix(w, qx, qy, qz, r00, r01, r02, r10, r11, r12, r20, r21, r22);
-    }
-    // A lane handed over kept its warm start (or its first step) in (w, qx, qy, qz):
-    // extractRotation starts from it.
-    if constexpr (Contiguous) storeRotations(arrays.rotations[first].coeffs().data(), w, qx, qy, qz);
-    for (int l = 0; l < lanes; ++l) {
-        const uint32_t e = first + static_cast<uint32_t>(l);
-        if (handOver[l] == 0) {
-            if constexpr (!Contiguous) arrays.rotations[e] = Quat(w[l], qx[l], qy[l], qz[l]);
-            continue;
-        }
-        // The rare lane: the extraction from there, as the scalar sweep does it.
-        if constexpr (!Contiguous) arrays.rotations[e] = Quat(w[l], qx[l], qy[l], qz[l]);
-        ++handedOver;
-        Mat3 matrix;
-        for (int r = 0; r < 3; ++r)
-            for (int c = 0; c < 3; ++c)
-                matrix(r, c) = am[r][c][l];
-        const Mat3 r = extractRotation(matrix, spread[l], arrays.rotations[e]);
-        r00[l] = r(0, 0), r01[l] = r(0, 1), r02[l] = r(0, 2);
-        r10[l] = r(1, 0), r11[l] = r(1, 1), r12[l] = r(1, 2);
-        r20[l] = r(2, 0), r21[l] = r(2, 1), r22[l] = r(2, 2);
-    }
-
-    // Deviations d_j = x_j − c − R q_j, C and the update (Eq. 4, shape_matching.h).
-    Lanes cx = zero, cy = zero, cz = zero;
-    for (int j = 0; j < 8; ++j)
-        cx += px[j], cy += py[j], cz += pz[j];
-    cx *= 0.125, cy *= 0.125, cz *= 0.125;
-    Lanes dx[8], dy[8], dz[8];
-    Lanes sum = zero, weighted = zero;  // Σ |d_j|², Σ w_j |d_j|²
-    for (int j = 0; j < 8; ++j) {
-        Lanes rx, ry, rz, wj;
-        load(rx, batch.rest[0][j]), load(ry, batch.rest[1][j]), load(rz, batch.rest[2][j]);
-        dx[j] = px[j] - cx - (r00 * rx + r01 * ry + r02 * rz);
-        dy[j] = py[j] - cy - (r10 * rx + r11 * ry + r12 * rz);
-        dz[j] = pz[j] - cz - (r20 * rx + r21 * ry + r22 * rz);
-        const Lanes squared = dx[j] * dx[j] + dy[j] * dy[j] + dz[j] * dz[j];
-        sum += squared;
-        if constexpr (!Held) {
-            load(wj, batch.invMass[j]);
-            weighted += wj * squared;  // Σ w_j |∇_j C|² = weighted / (64 C²)
-        }
-    }
-    Lanes c = 0.125 * sum;
-    squareRoot(c);
-    // Held corners (a contact holds them, element_batch.h): where the correction
-    // Δx_j = w_j ∇_j C Δλ would push one into its contact (Δλ (n·d_j) < 0; Δλ has the sign of
-    // −C − α̃ λ), its inverse mass along n is 0: d_j loses its normal part, both in the update
-    // and in Σ w_j |∇_j C|² (W_j = w_j (1 − n nᵀ)). The part taken out, Δλ (n·d_j) / (8 C),
-    // goes to the contact (heldImpulse).
-    Lanes blocked[8];
-    if constexpr (Held) {
-        const Lanes numerator = -c - alpha * lambda;
-        for (int j = 0; j < 8; ++j) {
-            Lanes nx, ny, nz, wj;
-            for (int l = 0; l < kLanes; ++l) {
-                const Vec3& n = arrays.holdNormals[batch.particle[j][l]];
-                nx[l] = n.x(), ny[l] = n.y(), nz[l] = n.z();
-            }
-            const Lanes along = nx * dx[j] + ny * dy[j] + nz * dz[j];
-            blocked[j] = numerator * along < 0.0 ? along : zero;
-            dx[j] -= blocked[j] * nx, dy[j] -= blocked[j] * ny, dz[j] -= blocked[j] * nz;
-            load(wj, batch.invMass[j]);
-            weighted += wj * (dx[j] * dx[j] + dy[j] * dy[j] + dz[j] * dz[j]);
-        }
-    }
-    Lanes step;
-    {
-        // C ≤ 1e-12 ℓ (C² ≤ 1e-24 ℓ²): already at the goal.
-        const auto active = (sum > 8e-24 * spread) & (weighted > 0.0);
-        // Δλ = (−C − α̃ λ) / (weighted / (64 C²) + α̃) and the step Δλ / (8 C): with
-        // 64 C² = 8 Σ|d_j|², the step is (−Σ|d_j|² − 8 α̃ λ C) / (weighted + 8 α̃ Σ|d_j|²), one
-        // division that does not wait for the square root (C only meets λ, 0 in a substep's
-        // first iteration).
-        const Lanes cc = active ? c : one;
-        const Lanes inverse = one / (weighted + 8.0 * alpha * sum);  // inf or NaN when inactive
-        const Lanes solved = (-sum - 8.0 * alpha * lambda * cc) * inverse;
-        step = active ? solved : zero;
-        lambda += step * (8.0 * cc);
-    }
-    for (int j = 0; j < 8; ++j) {
-        Lanes wj;
-        load(wj, batch.invMass[j]);
-        const Lanes move = step * wj;
-        px[j] += move * dx[j], py[j] += move * dy[j], pz[j] += move * dz[j];
-    }
-    if constexpr (Held) {
-        for (int j = 0; j < 8; ++j) {
-            const Lanes pushed = step * blocked[j];  // ≤ 0: the impulse along n it did not take
-            for (int l = 0; l < lanes; ++l)
-                if (pushed[l] != 0.0) arrays.heldImpulse[batch.particle[j][l]] -= pushed[l];
-        }
-    }
-
-    if constexpr (Contiguous) {
-        std::memcpy(&arrays.lambda[first], &lambda, sizeof lambda);
-        for (int j = 0; j < 8; ++j)
-            storePoints(pos + 3 * size_t(batch.particle[j][0]), px[j], py[j], pz[j]);
-        return handedOver;
-    }
-    for (int l = 0; l < lanes; ++l)
-        arrays.lambda[first + static_cast<uint32_t>(l)] = lambda[l];
-    if (!batch.volume) {
-        for (int l = 0; l < lanes; ++l)
-            for (int j = 0; j < 8; ++j) {
-                double* p = pos + 3 * size_t(batch.particle[j][l]);
-                p[0] = px[j][l], p[1] = py[j][l], p[2] = pz[j][l];
-            }
-        return handedOver;
-    }
-    for (int l = 0; l < lanes; ++l) {
-        const uint32_t e = first + static_cast<uint32_t>(l);
-        const HexElement& element = arrays.elements[e];
-        std::array<Vec3, 8> corners;
-        for (int j = 0; j < 8; ++j)
-            corners[j] = Vec3(px[j][l], py[j][l], pz[j][l]);
-        if (arrays.volumeCompliance[e] >= 0.0) {
-            // The optional volume constraint, after the element's shape matching.
-            std::array<Vec3, 8> gradient;
-            const double cv = volumeError(corners, arrays.volumeGradients[e], gradient);
-            const double alphaV = arrays.volumeCompliance[e] * invH2;
-            std::array<double, 8> volumeBlocked{};  // held corners: as the shape matching's, above
-            if constexpr (Held) {
-                const double numerator = -cv - alphaV * arrays.volumeLambda[e];
-                for (int j = 0; j < 8; ++j) {
-                    const Vec3& n = arrays.holdNormals[element[j]];
-                    const double along = n.dot(gradient[j]);
-                    if (numerator * along < 0.0) volumeBlocked[j] = along, gradient[j] -= along * n;
-                }
-            }
-            double wv = 0.0;
-            for (int j = 0; j < 8; ++j)
-                wv += arrays.invMass[element[j]] * gradient[j].squaredNorm();
-            if (wv + alphaV > 1e-30 && std::isfinite(cv)) {
-                const double deltaLambda = (-cv - alphaV * arrays.volumeLambda[e]) / (wv + alphaV);
-                arrays.volumeLambda[e] += deltaLambda;
-                for (int j = 0; j < 8; ++j)
-                    corners[j] += (arrays.invMass[element[j]] * deltaLambda) * gradient[j];
-                if constexpr (Held)
-                    for (int j = 0; j < 8; ++j)
-                        if (volumeBlocked[j] != 0.0) arrays.heldImpulse[element[j]] -= deltaLambda * volumeBlocked[j];
-            }
-        }
-        for (int j = 0; j < 8; ++j)
-            arrays.positions[element[j]] = corners[j];
+    const bool anyHeld = !arrays.heldBatches.empty();
+    for (size_t b = 0; b < batches.size(); ++b) {
+        const ElementBatch* const batch[1] = {&batches[b]};
+        if (anyHeld && arrays.heldBatches[b] != 0) [[unlikely]]
+            handedOver += batches[b].contiguous ? Kernel::solve<true, true>(batch, arrays, invH2)
+                                                : Kernel::solve<false, true>(batch, arrays, invH2);
+        else
+            handedOver += batches[b].contiguous ? Kernel::solve<true, false>(batch, arrays, invH2)
+                                                : Kernel::solve<false, false>(batch, arrays, invH2);
     }
     return handedOver;
 }
@@ -394,6 +45,7 @@ std::vector<uint32_t> elementWaves(std::span<const HexElement> elements, size_t 
 void appendBatches(const ElementArrays& arrays, std::span<const uint32_t> wave, uint32_t first,
                    uint32_t count, std::vector<ElementBatch>& batches) {
     const uint32_t end = first + count;
+    const size_t start = batches.size();  // this body's first batch
     const auto shares = [&](uint32_t e, uint32_t from, uint32_t to) {
         for (uint32_t other = from; other < to; ++other)
             for (uint32_t p : arrays.elements[e])
@@ -405,11 +57,11 @@ void appendBatches(const ElementArrays& arrays, std::span<const uint32_t> wave, 
         ElementBatch batch{};
         batch.firstElement = e;
         batch.lanes = 1;
-        while (batch.lanes < kLanes && e + batch.lanes < end &&
+        while (batch.lanes < kBatchLanes && e + batch.lanes < end &&
                wave[e + batch.lanes - first] == wave[e - first] &&
                !shares(e + batch.lanes, e, e + batch.lanes))
             ++batch.lanes;
-        for (int l = 0; l < kLanes; ++l) {
+        for (int l = 0; l < kBatchLanes; ++l) {
             const uint32_t element =
                 e + static_cast<uint32_t>(l < static_cast<int>(batch.lanes) ? l : 0);
             for (int j = 0; j < 8; ++j) {
@@ -422,29 +74,36 @@ void appendBatches(const ElementArrays& arrays, std::span<const uint32_t> wave, 
             batch.compliance[l] = arrays.compliance[element];
             batch.volume = batch.volume || arrays.volumeCompliance[element] >= 0.0;
         }
-        batch.contiguous = batch.lanes == kLanes && !batch.volume;
+        batch.contiguous = batch.lanes == kBatchLanes && !batch.volume;
         for (int j = 0; j < 8; ++j)
-            for (int l = 1; l < kLanes; ++l)
+            for (int l = 1; l < kBatchLanes; ++l)
                 batch.contiguous = batch.contiguous && batch.particle[j][l] == batch.particle[j][0] + l;
         batches.push_back(batch);
         e += batch.lanes;
     }
+    // Each contiguous batch paired with the next unpaired contiguous one of its wave.
+    for (size_t b = start; b < batches.size(); ++b) {
+        if (!batches[b].contiguous || batches[b].partnerAhead != 0 || batches[b].partnerBehind != 0) continue;
+        const uint32_t ownWave = wave[batches[b].firstElement - first];
+        for (size_t next = b + 1; next < batches.size() && wave[batches[next].firstElement - first] == ownWave; ++next) {
+            if (!batches[next].contiguous || batches[next].partnerBehind != 0) continue;
+            batches[b].partnerAhead = batches[next].partnerBehind = static_cast<uint32_t>(next - b);
+            break;
+        }
+    }
 }
 
-[[gnu::target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")]] uint32_t solveElementBatches(
-    std::span<const ElementBatch> batches, const ElementArrays& arrays, double invH2) {
-    uint32_t handedOver = 0;
-    const bool anyHeld = !arrays.heldBatches.empty();
-    for (size_t b = 0; b < batches.size(); ++b) {
-        const ElementBatch& batch = batches[b];
-        if (anyHeld && arrays.heldBatches[b] != 0) [[unlikely]]
-            handedOver += batch.contiguous ? solveBatch<true, true>(batch, arrays, invH2)
-                                           : solveBatch<false, true>(batch, arrays, invH2);
-        else
-            handedOver += batch.contiguous ? solveBatch<true, false>(batch, arrays, invH2)
-                                           : solveBatch<false, false>(batch, arrays, invH2);
-    }
-    return handedOver;
+bool wideElementLanes() {
+    // x86-64-v4's AVX-512 subsets (every CPU with them has the rest of x86-64-v4 and -v3).
+    static const bool wide = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
+                             __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512bw");
+    return wide;
+}
+
+uint32_t solveElementBatches(std::span<const ElementBatch> batches, const ElementArrays& arrays, double invH2,
+                             ElementLanes lanes) {
+    if (lanes == ElementLanes::Widest && wideElementLanes()) return solveElementBatchesWide(batches, arrays, invH2);
+    return sweepFourLanes(batches, arrays, invH2);
 }
 
 }  // namespace substep

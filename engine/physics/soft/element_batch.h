@@ -1,5 +1,5 @@
 #pragma once
-/// Shape-matching projections four elements at a time.
+/// Shape-matching projections four elements at a time (eight with AVX-512).
 ///
 /// A soft body's elements get a wave at creation (elementWaves): one more than the latest wave
 /// of the elements before them in the lattice's order that share a particle with them. Stored
@@ -43,6 +43,11 @@ struct ElementBatch {
     /// is lane 0's + l, as a tyre's are): the kernel loads corners and rotations as rows and
     /// transposes them in registers instead of gathering them value by value.
     bool contiguous = false;
+    /// A contiguous batch of the same wave and body this many batches ahead (0: none) is
+    /// projected with this one, side by side in eight lanes, on a CPU with AVX-512 (elements of
+    /// one wave share no particle: projecting a later one early gives the same bits); the
+    /// partner records the distance back.
+    uint32_t partnerAhead = 0, partnerBehind = 0;
 };
 
 /// The state the kernel reads and writes, the SoftSystem's arrays.
@@ -80,10 +85,23 @@ std::vector<uint32_t> elementWaves(std::span<const HexElement> elements, size_t 
 void appendBatches(const ElementArrays& arrays, std::span<const uint32_t> wave, uint32_t first,
                    uint32_t count, std::vector<ElementBatch>& batches);
 
+/// The vector width of a sweep: eight lanes (pairs of batches) where the CPU has x86-64-v4
+/// (AVX-512), else four; or four lanes whatever the CPU. Both give the same bits: elements of
+/// one wave share no particle, and each lane's arithmetic is the same.
+enum class ElementLanes { Widest, Four };
+
 /// One Gauss-Seidel sweep of the shape-matching (and volume) constraints over the batches, with
 /// α̃ = α_e invH2; batches with a held corner (arrays.heldBatches) project it with zero inverse
-/// mass along its contact normal where the correction would push it into the contact. Returns how many elements' rotations the lanes handed to extractRotation.
+/// mass along its contact normal where the correction would push it into the contact. Returns
+/// how many elements' rotations the lanes handed to extractRotation.
 uint32_t solveElementBatches(std::span<const ElementBatch> batches, const ElementArrays& arrays,
-                         double invH2);
+                             double invH2, ElementLanes lanes = ElementLanes::Widest);
+
+/// Whether this CPU runs the eight-lane sweep (x86-64-v4: AVX-512F, VL, DQ and BW).
+bool wideElementLanes();
+
+/// The eight-lane sweep (element_batch_wide.cpp); only on a CPU where wideElementLanes().
+[[gnu::target("arch=x86-64-v4")]] uint32_t solveElementBatchesWide(std::span<const ElementBatch> batches,
+                                                                   const ElementArrays& arrays, double invH2);
 
 }  // namespace substep

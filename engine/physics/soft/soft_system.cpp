@@ -296,8 +296,8 @@ void SoftSystem::solvePositions(SolverContext& ctx) {
     solveContacts(ctx);
 }
 
-void SoftSystem::solveElements(double invH2) {
-    solveElementBatches(batches_, elementArrays(), invH2);
+void SoftSystem::solveElements(double invH2, ElementLanes lanes) {
+    solveElementBatches(batches_, elementArrays(), invH2, lanes);
 }
 
 void SoftSystem::deriveVelocities(double h) {

@@ -109,8 +109,8 @@ public:
     size_t elementCount() const { return elements_.size(); }
 
     /// One Gauss-Seidel sweep over every element's shape-matching (and volume) constraint;
-    /// public for the benchmark of the projection cost.
-    void solveElements(double invH2);
+    /// public for the benchmarks of the projection cost (`lanes`: element_batch.h).
+    void solveElements(double invH2, ElementLanes lanes = ElementLanes::Widest);
 
 private:
     struct SoftBodyData {
