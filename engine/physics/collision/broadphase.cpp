@@ -353,12 +353,23 @@ void Broadphase::sweepOverlaps(size_t first, size_t last, std::vector<BodyPair>&
     for (size_t i = first; i < last; ++i) {
         const double maxA = sweepMax_[i];
         const CrossExtent p = sweepCross_[i];
-        for (size_t j = i + 1; sweepMin_[j] <= maxA; ++j) {
+        // The boxes that overlap box i along the sweep axis (the sentinel ends the scan).
+        size_t end = i + 1;
+        while (sweepMin_[end] <= maxA) ++end;
+        // Each of them is written as a pair and kept when the cross axes overlap too: the four
+        // tests and the keep without a branch. In a pile one in ten or twenty overlaps, and the
+        // short-circuit branches of each test were mispredicted (4 % of spheres1000's step).
+        const size_t start = out.size();
+        out.resize(start + (end - i - 1));
+        BodyPair* next = out.data() + start;
+        const uint32_t body = sweep_[i].body;
+        for (size_t j = i + 1; j < end; ++j) {
             const CrossExtent& q = sweepCross_[j];
-            if (q.minB <= p.maxB && p.minB <= q.maxB && q.minC <= p.maxC && p.minC <= q.maxC) {
-                out.push_back(orderedPair(sweep_[i].body, sweep_[j].body));
-            }
+            *next = orderedPair(body, sweep_[j].body);
+            next += static_cast<int>(q.minB <= p.maxB) & static_cast<int>(p.minB <= q.maxB) &
+                    static_cast<int>(q.minC <= p.maxC) & static_cast<int>(p.minC <= q.maxC);
         }
+        out.resize(static_cast<size_t>(next - out.data()));
     }
 }
 
