@@ -31,6 +31,9 @@ struct PointResponse {
     return {b.invMass + rnBody.dot(scaled), b.q * scaled};
 }
 
+/// Whether movePoint turns the body (its orientation, and so its lever arms, change).
+inline bool turnsWhenMoved(const Body& b) { return b.invMass != 0.0 && b.rotates(); }
+
 /// Eq. 6 to Eq. 9 for one body: moved by Δλ n / m and turned by Δλ I⁻¹ (r × n) (exactly, as
 /// the correction operations turn). Gauss-Seidel only: Jacobi gathers through correction.cpp.
 inline void movePoint(Body& b, const PointResponse& s, const Vec3& p, double deltaLambda) {
@@ -43,69 +46,137 @@ inline void movePoint(Body& b, const PointResponse& s, const Vec3& p, double del
 /// (Eq. 26), then static friction from the motion during the substep (Eq. 27, Eq. 28), each
 /// the scalar update of Eq. 2 to Eq. 9. Fused: the normal is already unit, so the push skips
 /// the general correction's normalisation, and both corrections move the bodies in place.
-/// Jacobi takes applyPositionalCorrection, which gathers the motions instead. The one-point
-/// functions are flattened: GCC kept Eigen's quaternion rotation out of line in them, a call
-/// per lever arm (8 % of spheres1000).
-[[gnu::flatten]] void solveSinglePointPositions(ContactPair& pair, Contact& c, SolverContext& ctx) {
-    Body& b0 = ctx.bodies[pair.body0];
-    Body& b1 = ctx.bodies[pair.body1];
-    const Vec3& n = c.normal;
-    Vec3 r0 = b0.q * c.local0;
-    Vec3 r1 = b1.q * c.local1;
-    // Eq. 26: the points p1, p2 on the current poses and the depth d along n (with this
-    // file's normal, from body 1 towards body 0), pushed out as Δx = d n with α = 0 and λ_n.
-    const double depth = pushOut(((b1.x + r1) - (b0.x + r0)).dot(n), b0, b1, r0, r1, n, ctx);
-    if (!(depth > kDirectionEpsilon)) {
-        pair.lambdaNormal = c.lambdaNormal;
-        return;
-    }
-    const bool gaussSeidel = ctx.solver == SolverType::GaussSeidel;
-    if (gaussSeidel) {
-        const PointResponse s0 = pointResponse(b0, r0, n);  // Eq. 2
-        const PointResponse s1 = pointResponse(b1, r1, n);  // Eq. 3
-        const double w = s0.w + s1.w;
-        if (!(w > 0.0)) {
+/// Jacobi takes applyPositionalCorrection, which gathers the motions instead.
+///
+/// Cut into its four dependent steps (measure, push, measure the slip, hold it), so that two
+/// points without a common moving body can be solved step by step side by side
+/// (solveTouchingPositions): each step ends in a chain of square roots and divisions the
+/// next one waits for, and a step of the other point fills that wait. Either way each point
+/// takes the same operations on the same numbers. The steps are flattened: GCC kept Eigen's
+/// quaternion rotation out of line in them, a call per lever arm (8 % of spheres1000).
+struct OnePointSolve {
+    ContactPair& pair;
+    Contact& c;
+    Body& b0;
+    Body& b1;
+    SolverContext& ctx;
+    bool active = true;  ///< steps are left to take
+    Vec3 r0, r1;
+    double depth = 0.0;
+    Vec3 slip;
+    double slipLength = 0.0;
+    double lambdaTangent = 0.0;
+    double limit = 0.0;
+
+    OnePointSolve(ContactPair& p, Contact& contact, SolverContext& context)
+        : pair(p), c(contact), b0(context.bodies[p.body0]), b1(context.bodies[p.body1]), ctx(context) {}
+
+    bool gaussSeidel() const { return ctx.solver == SolverType::GaussSeidel; }
+
+    /// Eq. 26: the points p1, p2 on the current poses and the depth d along n (with this
+    /// file's normal, from body 1 towards body 0), to be pushed out as Δx = d n with α = 0.
+    [[gnu::flatten]] void measure() {
+        const Vec3& n = c.normal;
+        r0 = b0.q * c.local0;
+        r1 = b1.q * c.local1;
+        depth = pushOut(((b1.x + r1) - (b0.x + r0)).dot(n), b0, b1, r0, r1, n, ctx);
+        if (!(depth > kDirectionEpsilon)) {
             pair.lambdaNormal = c.lambdaNormal;
-            return;  // two static bodies
+            active = false;
         }
-        const double deltaLambda = depth / w;  // Eq. 4 with α = 0
-        c.lambdaNormal += deltaLambda;          // Eq. 5
-        const Vec3 p = deltaLambda * n;
-        movePoint(b0, s0, p, deltaLambda);      // Eq. 6, Eq. 8
-        movePoint(b1, s1, -p, -deltaLambda);    // Eq. 7, Eq. 9
-    } else {
-        applyPositionalCorrection(ctx, pair.body0, pair.body1, depth * n, r0, r1, 0.0, c.lambdaNormal);
     }
-    pair.lambdaNormal = c.lambdaNormal;
-    pair.anchored = false;
-    if (!(pair.staticFriction > 0.0)) return;
-    r0 = b0.q * c.local0;
-    r1 = b1.q * c.local1;
-    const Vec3 motion = (b0.x + r0 - previousPoint(b0, c.local0)) - (b1.x + r1 - previousPoint(b1, c.local1));  // Eq. 27
-    const Vec3 slip = motion - motion.dot(n) * n;  // Eq. 28
-    // Static friction: Δx = Δp_t with α = 0, only while λ_t stays within μ_s λ_n (paper 3.5).
-    double lambdaTangent = pair.lambdaTangent();
-    const double limit = pair.staticFriction * pair.lambdaNormal;
-    if (gaussSeidel) {
-        const double slipLength = slip.norm();
-        if (slipLength > kDirectionEpsilon) {
-            const Vec3 t = slip / -slipLength;  // the correction's direction, −Δp_t / |Δp_t|
-            const PointResponse s0 = pointResponse(b0, r0, t);
-            const PointResponse s1 = pointResponse(b1, r1, t);
+
+    /// The push, Eq. 2 to Eq. 9 with λ_n.
+    [[gnu::flatten]] void push() {
+        if (!active) return;
+        const Vec3& n = c.normal;
+        if (gaussSeidel()) {
+            const PointResponse s0 = pointResponse(b0, r0, n);  // Eq. 2
+            const PointResponse s1 = pointResponse(b1, r1, n);  // Eq. 3
             const double w = s0.w + s1.w;
-            const double deltaLambda = slipLength / w;
-            if (w > 0.0 && lambdaTangent + deltaLambda <= limit) {
-                lambdaTangent += deltaLambda;
-                const Vec3 p = deltaLambda * t;
-                movePoint(b0, s0, p, deltaLambda);
-                movePoint(b1, s1, -p, -deltaLambda);
+            if (!(w > 0.0)) {
+                pair.lambdaNormal = c.lambdaNormal;
+                active = false;
+                return;  // two static bodies
             }
+            const double deltaLambda = depth / w;  // Eq. 4 with α = 0
+            c.lambdaNormal += deltaLambda;          // Eq. 5
+            const Vec3 p = deltaLambda * n;
+            movePoint(b0, s0, p, deltaLambda);      // Eq. 6, Eq. 8
+            movePoint(b1, s1, -p, -deltaLambda);    // Eq. 7, Eq. 9
+        } else {
+            applyPositionalCorrection(ctx, pair.body0, pair.body1, depth * n, r0, r1, 0.0, c.lambdaNormal);
         }
-    } else {
-        applyPositionalCorrection(ctx, pair.body0, pair.body1, -slip, r0, r1, 0.0, lambdaTangent, limit);
+        pair.lambdaNormal = c.lambdaNormal;
+        pair.anchored = false;
+        if (!(pair.staticFriction > 0.0)) active = false;
     }
-    pair.lambdaTangent1 = lambdaTangent;  // one point: the magnitude is all the readout needs
-    pair.lambdaTangent2 = 0.0;
+
+    /// Eq. 27 and Eq. 28: the slip, the motion of the contact during the substep across n.
+    [[gnu::flatten]] void measureSlip() {
+        if (!active) return;
+        const Vec3& n = c.normal;
+        // The lever arms on the pushed poses: only a body the push turned has a new one (a
+        // static floor or wall keeps its own, and Jacobi turns no body before the gather).
+        if (gaussSeidel() && turnsWhenMoved(b0)) r0 = b0.q * c.local0;
+        if (gaussSeidel() && turnsWhenMoved(b1)) r1 = b1.q * c.local1;
+        const Vec3 motion = (b0.x + r0 - previousPoint(b0, c.local0)) - (b1.x + r1 - previousPoint(b1, c.local1));  // Eq. 27
+        slip = motion - motion.dot(n) * n;  // Eq. 28
+        // A one-point pair keeps its λ_t in lambdaTangent1 alone (below), and hypot(x, 0) is
+        // |x| exactly: no call to libm's hypot per pushing point (1 % of spheres1000's
+        // instructions).
+        lambdaTangent = pair.lambdaTangent2 == 0.0 ? std::abs(pair.lambdaTangent1) : pair.lambdaTangent();
+        limit = pair.staticFriction * pair.lambdaNormal;
+        if (gaussSeidel()) slipLength = slip.norm();
+    }
+
+    /// Static friction: Δx = Δp_t with α = 0, only while λ_t stays within μ_s λ_n (paper 3.5).
+    [[gnu::flatten]] void holdSlip() {
+        if (!active) return;
+        if (gaussSeidel()) {
+            if (slipLength > kDirectionEpsilon) {
+                const Vec3 t = slip / -slipLength;  // the correction's direction, −Δp_t / |Δp_t|
+                const PointResponse s0 = pointResponse(b0, r0, t);
+                const PointResponse s1 = pointResponse(b1, r1, t);
+                const double w = s0.w + s1.w;
+                const double deltaLambda = slipLength / w;
+                if (w > 0.0 && lambdaTangent + deltaLambda <= limit) {
+                    lambdaTangent += deltaLambda;
+                    const Vec3 p = deltaLambda * t;
+                    movePoint(b0, s0, p, deltaLambda);
+                    movePoint(b1, s1, -p, -deltaLambda);
+                }
+            }
+        } else {
+            applyPositionalCorrection(ctx, pair.body0, pair.body1, -slip, r0, r1, 0.0, lambdaTangent, limit);
+        }
+        pair.lambdaTangent1 = lambdaTangent;  // one point: the magnitude is all the readout needs
+        pair.lambdaTangent2 = 0.0;
+    }
+};
+
+void solveSinglePointPositions(ContactPair& pair, Contact& c, SolverContext& ctx) {
+    OnePointSolve solve(pair, c, ctx);
+    solve.measure();
+    solve.push();
+    solve.measureSlip();
+    solve.holdSlip();
+}
+
+/// Two one-point pairs with no moving body in common, step by step side by side: the same
+/// bytes as a then b, since neither reads what the other writes.
+void solveSinglePointPositionsSideBySide(ContactPair& a, Contact& ca, ContactPair& b, Contact& cb,
+                                         SolverContext& ctx) {
+    OnePointSolve first(a, ca, ctx);
+    OnePointSolve second(b, cb, ctx);
+    first.measure();
+    second.measure();
+    first.push();
+    second.push();
+    first.measureSlip();
+    second.measureSlip();
+    first.holdSlip();
+    second.holdSlip();
 }
 
 /// Eq. 33 along unit n for a velocity change of `change` along it, given both bodies' responses
@@ -177,6 +248,65 @@ void solveContactPositions(ContactPair& pair, std::span<Contact> contacts, Solve
     const int points = static_cast<int>(std::min<size_t>(contacts.size(), kMaxPatchPoints));
     if (points == 1) return solveSinglePointPositions(pair, contacts[0], ctx);
     solvePatchPositions(pair, contacts.first(points), ctx);
+}
+
+void solveTouchingPositions(std::span<const uint32_t> touching, std::span<ContactPair> pairs,
+                            std::span<Contact> contacts, SolverContext& ctx) {
+    const auto solveAlone = [&](ContactPair& pair) {
+        solveContactPositions(pair, contacts.subspan(pair.first, pair.count), ctx);
+    };
+    if (ctx.solver != SolverType::GaussSeidel) {
+        for (const uint32_t p : touching) solveAlone(pairs[p]);
+        return;
+    }
+    // Gauss-Seidel's order binds only points that share a moving body: each one-point pair is
+    // solved side by side with the first of the next kWindow − 1 one-point pairs that shares no
+    // moving body with it nor with any pair between them still to be solved (those keep their
+    // place). Every body then sees its corrections in the listed order: the same bytes.
+    constexpr size_t kWindow = 4;
+    const Body* bodies = ctx.bodies;
+    const auto moves = [&](uint32_t body) { return bodies[body].invMass != 0.0; };
+    uint32_t early = 0;  // bit i: touching[k + i] was already solved as a partner
+    for (size_t k = 0; k < touching.size(); ++k, early >>= 1) {
+        if (early & 1u) continue;
+        ContactPair& pair = pairs[touching[k]];
+        if (pair.count != 1) {
+            solveAlone(pair);
+            continue;
+        }
+        // The moving bodies the partner must not touch: this pair's and those of the pairs
+        // it passes.
+        uint32_t blocked[2 * kWindow];
+        size_t blockedCount = 0;
+        const auto block = [&](const ContactPair& p) {
+            if (moves(p.body0)) blocked[blockedCount++] = p.body0;
+            if (moves(p.body1)) blocked[blockedCount++] = p.body1;
+        };
+        const auto isBlocked = [&](uint32_t body) {
+            for (size_t i = 0; i < blockedCount; ++i)
+                if (blocked[i] == body) return true;
+            return false;
+        };
+        block(pair);
+        size_t partner = 0;
+        for (size_t i = 1; i < kWindow && k + i < touching.size(); ++i) {
+            if (early >> i & 1u) continue;
+            const ContactPair& candidate = pairs[touching[k + i]];
+            if (candidate.count == 1 && !(moves(candidate.body0) && isBlocked(candidate.body0)) &&
+                !(moves(candidate.body1) && isBlocked(candidate.body1))) {
+                partner = i;
+                break;
+            }
+            block(candidate);
+        }
+        if (partner == 0) {
+            solveSinglePointPositions(pair, contacts[pair.first], ctx);
+            continue;
+        }
+        ContactPair& other = pairs[touching[k + partner]];
+        solveSinglePointPositionsSideBySide(pair, contacts[pair.first], other, contacts[other.first], ctx);
+        early |= 1u << partner;
+    }
 }
 
 void solveCollisionVelocities(const ContactPair& pair, const Contact& c, Body* bodies, double h) {

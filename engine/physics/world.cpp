@@ -417,10 +417,7 @@ void World::solvePositions(double h) {
         solveColouredPositions(ctx, clusters);  // by colour, in parallel (world_parallel.cpp)
     } else {
         solveJointsInOrder(ctx, clusters);
-        for (const uint32_t p : touchingPairs_) {
-            ContactPair& pair = contactPairs_[p];
-            solveContactPositions(pair, std::span(contacts_).subspan(pair.first, pair.count), ctx);
-        }
+        solveTouchingPositions(touchingPairs_, contactPairs_, contacts_, ctx);
     }
     // Soft bodies after the rigid ones: elements, attachments, then their contacts.
     if (hasSoftBodies()) {

@@ -358,7 +358,6 @@ private:
     /// This substep's pairs with contact points (indices into contactPairs_, in pair order):
     /// the solve and the velocity pass visit these alone.
     std::vector<uint32_t> touchingPairs_;
-    void listTouchingPairs();
     RestitutionScratch restitutionScratch_;  ///< reused by the restitution sweeps
     std::size_t droppedContactPairs_ = 0;
     /// Body pairs joined by a joint that does not let them collide, sorted; rebuilt when the
@@ -381,8 +380,9 @@ private:
     std::vector<uint32_t> chunkTouchingOffsets_;
     /// The contacts of pairs [first, last) into `out` (first-relative offsets in pair.first):
     /// of contactPairs_[order[k]] for k in [first, last), or contactPairs_[k] when order is null.
+    /// The pairs that have a point are appended to `touching` in that order.
     void findPairContacts(const uint32_t* order, size_t first, size_t last, bool sleeping,
-                          std::vector<Contact>& out);
+                          std::vector<Contact>& out, std::vector<uint32_t>& touching);
     /// Sleep state per body and the islands (WorldSettings::sleeping).
     SleepIslands sleep_;
     /// Pairs with a contact point in some substep of the frame (the islands' contact links).

@@ -117,9 +117,13 @@ void World::collectContactPairs(double dt) {
 void World::findContacts(bool sleeping) {
     // Each colliding body's shape pose, once per substep rather than once per pair; while some
     // sleep, the awake bodies' and pairs' lists alone are visited (in chunks with more threads).
+    // A sphere's orientation is left out: the fast path (contact_spheres.h) reads its position
+    // alone, and findPairContacts gives the general path its orientation when a pair needs it.
     const auto pose = [&](Body& body) {
         const auto i = static_cast<size_t>(&body - bodies_.data());
-        if (reaches_[i] > 0.0) poses_[i] = {body.userPosition(), body.userOrientation()};
+        if (!(reaches_[i] > 0.0)) return;
+        poses_[i].position = body.userPosition();
+        if (body.shape.type != ShapeType::Sphere) poses_[i].rotation = body.userOrientation();
     };
     forEachMovingBody(pose);
     const uint32_t* order = sleepFlags_ ? awakePairs_.data() : nullptr;
@@ -127,8 +131,8 @@ void World::findContacts(bool sleeping) {
     WorkerPool* const pool = workerPool();
     if (pool == nullptr || pairs < 2 * kPairsPerChunk) {
         contacts_.clear();
-        findPairContacts(order, 0, pairs, sleeping, contacts_);
-        listTouchingPairs();
+        touchingPairs_.clear();
+        findPairContacts(order, 0, pairs, sleeping, contacts_, touchingPairs_);
         return;
     }
     // In parallel: each block of pairs finds its contacts and its touching pairs into its own
@@ -149,11 +153,9 @@ void World::findContacts(bool sleeping) {
         const size_t first = chunkStart(static_cast<size_t>(chunk));
         const size_t last = chunkStart(static_cast<size_t>(chunk) + 1);
         chunkContacts_[chunk].clear();
-        findPairContacts(order, first, last, sleeping, chunkContacts_[chunk]);
         std::vector<uint32_t>& touching = chunkTouching_[chunk];
         touching.clear();
-        for (size_t k = first; k < last; ++k)
-            if (contactPairs_[pairIndex(k)].count > 0) touching.push_back(pairIndex(k));
+        findPairContacts(order, first, last, sleeping, chunkContacts_[chunk], touching);
         if (grouping) ColourGroups::count(touching, coloured_->pairColours.data(), coloured_->blockCounts[chunk]);
     });
     chunkContactOffsets_.resize(chunks + 1);
@@ -185,21 +187,11 @@ void World::findContacts(bool sleeping) {
     });
 }
 
-void World::listTouchingPairs() {
-    // Most of a frame's pairs have no point in a given substep (a pile's: half of them): the
-    // solve and the velocity pass visit only those that have, in pair order.
-    touchingPairs_.clear();
-    if (sleepFlags_) {
-        for (const uint32_t p : awakePairs_)
-            if (contactPairs_[p].count > 0) touchingPairs_.push_back(p);
-    } else {
-        for (uint32_t p = 0; p < contactPairs_.size(); ++p)
-            if (contactPairs_[p].count > 0) touchingPairs_.push_back(p);
-    }
-}
-
 void World::findPairContacts(const uint32_t* order, size_t first, size_t last, bool sleeping,
-                             std::vector<Contact>& out) {
+                             std::vector<Contact>& out, std::vector<uint32_t>& touching) {
+    // Most of a frame's pairs have no point in a given substep (a pile's: half of them): the
+    // solve and the velocity pass visit only those that have, in pair order. Listed here, as
+    // each pair's point is found, rather than in a second pass over every pair.
     ContactManifold manifold;
     for (size_t k = first; k < last; ++k) {
         const size_t p = order ? order[k] : k;
@@ -224,13 +216,22 @@ void World::findPairContacts(const uint32_t* order, size_t first, size_t last, b
             apart ? 0 : appendSpherePairContacts(b0, pose0, b1, pose1, settings_.contactMargin, out);
         if (spherePoints >= 0) {
             pair.count = static_cast<uint32_t>(spherePoints);
-            if (spherePoints == 0) pair.anchored = false;  // apart: the next touch anchors anew
-            if (sleeping && spherePoints > 0) pairTouched_[p] = 1;
+            if (spherePoints == 0) {
+                pair.anchored = false;  // apart: the next touch anchors anew
+                continue;
+            }
+            touching.push_back(static_cast<uint32_t>(p));
+            if (sleeping) pairTouched_[p] = 1;
             continue;
         }
-        collide(b0.shape, pose0, b1.shape, pose1, settings_.contactMargin, manifold);
+        // The general path's poses, a sphere's with the orientation the pose loop left out.
+        const auto fullPose = [](const Body& body, const Pose& pose) {
+            return body.shape.type == ShapeType::Sphere ? Pose{pose.position, body.userOrientation()} : pose;
+        };
+        collide(b0.shape, fullPose(b0, pose0), b1.shape, fullPose(b1, pose1), settings_.contactMargin, manifold);
         pair.count = static_cast<uint32_t>(manifold.count);
         if (manifold.count == 0) pair.anchored = false;  // apart: the next touch anchors anew
+        if (manifold.count > 0) touching.push_back(static_cast<uint32_t>(p));
         if (sleeping && manifold.count > 0) pairTouched_[p] = 1;
         // Paper 3.5: the points are kept in the bodies' frames (r1, r2), so the position solve
         // measures the depth on the poses as other corrections leave them.

@@ -3,7 +3,8 @@
 // against what every update must satisfy whatever the rounding, over random pairs the pile
 // tests never meet: the velocity pass only removes kinetic energy (Eq. 34 with e = 0 and the
 // clamped Eq. 30 are dissipative), and static friction removes the substep's tangential motion
-// (Eq. 27, Eq. 28) to first order without overshooting it.
+// (Eq. 27, Eq. 28) to first order without overshooting it. And solveTouchingPositions, which
+// solves one-point pairs two at a time, against the list solved in order, bit for bit.
 
 #include "physics/contact.h"
 #include "physics_test_support.h"
@@ -13,6 +14,7 @@
 #include <cmath>
 #include <random>
 #include <span>
+#include <vector>
 
 namespace substep {
 namespace {
@@ -156,6 +158,86 @@ TEST(ContactOnePointTest, StaticFrictionRemovesTheTangentialMotion) {
         ++checked;
     }
     EXPECT_EQ(checked, 6000);
+}
+
+}  // namespace
+}  // namespace substep
+
+namespace substep {
+namespace {
+
+// solveTouchingPositions solves one-point pairs two at a time where Gauss-Seidel's order allows
+// (no moving body in common with each other or with the pairs the second passes): the bodies and
+// multipliers must come out bit for bit as solving the list in order one pair at a time. Few
+// bodies and many pairs, so that most neighbours in the list share a body, a static plane and a
+// static box shared by many, and two-point patches among them that keep their place.
+TEST(ContactOnePointTest, TouchingPairsSolvedSideBySideGiveTheBytesOfTheListedOrder) {
+    std::mt19937 random(18);
+    std::uniform_real_distribution<double> unit(-1.0, 1.0);
+    const auto randomTurn = [&] { return Quat(unit(random), unit(random), unit(random), unit(random)).normalized(); };
+    for (int round = 0; round < 200; ++round) {
+        const int bodyCount = 6 + round % 10;
+        std::vector<Body> bodies;
+        bodies.push_back(makeBody({.shape = planeShape(Vec3::UnitY(), -1.0), .type = BodyType::Static}));
+        bodies.push_back(makeBody({.shape = boxShape(Vec3(2.0, 0.2, 2.0)), .type = BodyType::Static,
+                                   .position = Vec3(0.0, 1.2, 0.0), .orientation = randomTurn()}));
+        while (static_cast<int>(bodies.size()) < bodyCount) {
+            bodies.push_back(makeBody({.shape = round % 3 == 0 ? boxShape(Vec3(0.1, 0.2, 0.3)) : sphereShape(0.1),
+                                       .mass = 0.5 + unit(random) * 0.4,
+                                       .position = Vec3(unit(random), unit(random), unit(random)),
+                                       .orientation = randomTurn()}));
+            Body& b = bodies.back();
+            b.xPrev = b.x - 0.01 * Vec3(unit(random), unit(random), unit(random));
+            b.qPrev = (b.q * Quat(1.0, 0.01 * unit(random), 0.01 * unit(random), 0.01 * unit(random))).normalized();
+        }
+        std::vector<ContactPair> pairs;
+        std::vector<Contact> contacts;
+        std::uniform_int_distribution<int> pick(0, bodyCount - 1);
+        const int pairCount = 5 + round % 40;
+        while (static_cast<int>(pairs.size()) < pairCount) {
+            const int i = pick(random), j = pick(random);
+            if (i == j || (i < 2 && j < 2)) continue;
+            const Body& b0 = bodies[i];
+            const Body& b1 = bodies[j];
+            const int points = round % 4 == 1 && pairs.size() % 5 == 2 ? 2 : 1;
+            pairs.push_back({.body0 = static_cast<uint32_t>(i), .body1 = static_cast<uint32_t>(j),
+                             .staticFriction = pairs.size() % 7 == 3 ? 0.0 : 0.6, .dynamicFriction = 0.4,
+                             .first = static_cast<uint32_t>(contacts.size()), .count = static_cast<uint32_t>(points)});
+            const Vec3 n = Vec3(unit(random), unit(random), unit(random)).normalized();
+            for (int k = 0; k < points; ++k) {
+                // Overlapping by up to 5 mm (some not at all), anywhere between the bodies.
+                const Vec3 centre = 0.5 * (b0.x + b1.x) + 0.05 * Vec3(unit(random), unit(random), unit(random));
+                const double depth = 0.005 * unit(random);
+                const Vec3 p0 = centre - 0.5 * depth * n, p1 = centre + 0.5 * depth * n;
+                contacts.push_back({.local0 = b0.q.conjugate() * (p0 - b0.x),
+                                    .local1 = b1.q.conjugate() * (p1 - b1.x),
+                                    .normal = n});
+            }
+        }
+        std::vector<uint32_t> touching(pairs.size());
+        for (uint32_t p = 0; p < touching.size(); ++p) touching[p] = p;
+
+        std::vector<Body> inOrderBodies = bodies;
+        std::vector<ContactPair> inOrderPairs = pairs;
+        std::vector<Contact> inOrderContacts = contacts;
+        const double h = 1.0 / 1200.0;
+        SolverContext inOrder{.bodies = inOrderBodies.data(), .h = h, .invH2 = 1.0 / (h * h)};
+        for (const uint32_t p : touching)
+            solveContactPositions(inOrderPairs[p], std::span(inOrderContacts).subspan(inOrderPairs[p].first, inOrderPairs[p].count),
+                                  inOrder);
+        SolverContext sideBySide{.bodies = bodies.data(), .h = h, .invH2 = 1.0 / (h * h)};
+        solveTouchingPositions(touching, pairs, contacts, sideBySide);
+
+        for (size_t b = 0; b < bodies.size(); ++b) {
+            for (int k = 0; k < 3; ++k) ASSERT_EQ(bodies[b].x[k], inOrderBodies[b].x[k]) << "round " << round << " body " << b;
+            for (int k = 0; k < 4; ++k)
+                ASSERT_EQ(bodies[b].q.coeffs()[k], inOrderBodies[b].q.coeffs()[k]) << "round " << round << " body " << b;
+        }
+        for (size_t p = 0; p < pairs.size(); ++p) {
+            ASSERT_EQ(pairs[p].lambdaNormal, inOrderPairs[p].lambdaNormal) << "round " << round << " pair " << p;
+            ASSERT_EQ(pairs[p].lambdaTangent1, inOrderPairs[p].lambdaTangent1) << "round " << round << " pair " << p;
+        }
+    }
 }
 
 }  // namespace
