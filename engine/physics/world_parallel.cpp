@@ -143,12 +143,11 @@ void World::solveColouredPositions(SolverContext& ctx, JointBlockSolver* cluster
     }
     for (int g = 0; g < ColourGroups::kGroups; ++g) {
         const std::span<const uint32_t> pairs = state.touching[g];
+        // A colour's pairs share no moving body, so solveTouchingPositions takes its one-point
+        // pairs two at a time, side by side (the same bytes as one by one).
         forChunks(pool, pairs.size(), g == kOverflow, [&](size_t first, size_t last) {
             SolverContext local = ctx;
-            for (size_t k = first; k < last; ++k) {
-                ContactPair& pair = contactPairs_[pairs[k]];
-                solveContactPositions(pair, std::span(contacts_).subspan(pair.first, pair.count), local);
-            }
+            solveTouchingPositions(pairs.subspan(first, last - first), contactPairs_, contacts_, local);
         }, kMinParallelPairs);
     }
 }
