@@ -40,8 +40,8 @@ double cellIndex(double t, double cell, double inverseCell) {
 /// The cells [first, last] along one axis that the interval [lo, hi] reaches, as
 /// HeightfieldData::forTrianglesIn finds them; false where it misses the field's `cells` (or is
 /// NaN).
-bool cellRange(double lo, double hi, double origin, double cell, double inverseCell, int cells, int& first,
-               int& last) {
+[[gnu::always_inline]] inline bool cellRange(double lo, double hi, double origin, double cell, double inverseCell,
+                                             int cells, int& first, int& last) {
     const double a = cellIndex(lo - origin, cell, inverseCell);
     const double b = cellIndex(hi - origin, cell, inverseCell);
     if (!(b >= 0.0) || !(a <= cells - 1)) return false;
@@ -78,6 +78,26 @@ void forEachCell(const HeightfieldGrid& grid, int i0, int i1, int j0, int j1, Vi
     }
 }
 
+/// Whether addSphereTriangleContacts adds nothing for a sphere whose foot on a triangle's plane
+/// lies beside the triangle. Its closest point then lies on an edge whose line the foot is
+/// beyond, or on an end of one, at least the foot's distance past that line away (measured in
+/// x–z, which only shortens distances); where those features are inactive, or the centre is
+/// behind the plane, the function keeps a face-normal point only within kInactiveSideways r
+/// sideways of the foot. `inside`: the foot's signed x–z distances inside the triangle's edge
+/// lines (edge k from corner k to corner k + 1), none above the true one where negative;
+/// `slack`: far above their rounding and closestOnTriangle's.
+bool addsNothingBeside(const double (&inside)[3], uint8_t activeFeatures, double height, double r, double slack) {
+    const double limit = kInactiveSideways * r * (1.0 + 1e-6) + slack;
+    unsigned features = 0;
+    bool beyondLimit = false;
+    for (int k = 0; k < 3; ++k) {
+        if (inside[k] > slack) continue;  // clearly inside this line: its edge is not the closest
+        beyondLimit = beyondLimit || -inside[k] > limit;
+        features |= (kEdgeActive0 << k) | (kVertexActive0 << k) | (kVertexActive0 << (k + 1) % 3);
+    }
+    return beyondLimit && (height <= 0.0 || (activeFeatures & features) == 0);
+}
+
 /// addSphereTriangleContacts for every triangle forTrianglesIn visits under c ± (r + margin), c
 /// in the field's frame. The corners, normals and that function's first test (the height over
 /// the plane) are computed as HeightfieldData::triangle and the function compute them, so the
@@ -96,6 +116,8 @@ void addSphereContacts(const HeightfieldGrid& grid, const Vec3& c, double r, dou
     // How far inside a triangle's sides a foot is clearly over its face: far above the rounding
     // of the foot and of closestOnTriangle's regions, far below any cell.
     const double inset = 1e-9 * (grid.cellX + grid.cellZ) + 1e-12 * c.cwiseAbs().maxCoeff();
+    // The diagonal's signed x–z distance is across / √(cellX² + cellZ²): this is at most that.
+    const double inverseSpan = 1.0 / (grid.cellX + grid.cellZ);
     const int columns = field.columns;
     forEachCell(grid, i0, i1, j0, j1, [&](int i, int j, const CellCorners& cell) {
         if (cell.highest() < lowest) return;
@@ -134,12 +156,20 @@ void addSphereContacts(const HeightfieldGrid& grid, const Vec3& c, double r, dou
                                            triangleFeatureId(static_cast<uint32_t>(index), 0), buffer);
                 continue;
             }
+            // The sphere beside the triangle (over its neighbour, mostly): nothing to add where
+            // the features it would meet are internal and beyond the sideways limit.
+            const uint8_t activeFeatures = field.activeFeatures[index];
+            const double diagonal = across * inverseSpan;
+            const double insideEdges[3] = {half == 0 ? fx : diagonal,
+                                           half == 0 ? cell.z1 - foot.z() : cell.x1 - foot.x(),
+                                           half == 0 ? diagonal : fz};
+            if (addsNothingBeside(insideEdges, activeFeatures, height, r, inset)) continue;
             ContactTriangle tri;
             tri.v[0] = corner00;
             tri.v[1] = second[half];
             tri.v[2] = third[half];
             tri.normal = normal;
-            tri.activeFeatures = field.activeFeatures[index];
+            tri.activeFeatures = activeFeatures;
             tri.id = static_cast<uint32_t>(index);
             addSphereTriangleContacts(tri, c, r, margin, true, buffer);
         }

@@ -15,11 +15,6 @@ double ratio(double num, double den) {
     return den > 0.0 ? num / den : 0.0;
 }
 
-/// Inactive features whose closest point sits farther than this (in sphere radii) sideways from
-/// the sphere's foot on the plane are left to the neighbour triangle, which holds that foot;
-/// nearer ones cover the sliver a slightly convex crease leaves between the two faces.
-constexpr double kInactiveSideways = 0.05;
-
 /// Feature ids (triangleFeatureId) of this triangle.
 uint32_t featureId(const ContactTriangle& tri, uint32_t local) {
     return triangleFeatureId(tri.id, local);

@@ -30,6 +30,12 @@ struct ContactTriangle {
     bool vertexActive(int i) const { return activeFeatures & (kVertexActive0 << i); }
 };
 
+/// Inactive features whose closest point sits farther than this (in sphere radii) sideways from
+/// the sphere's foot on the plane are left to the neighbour triangle, which holds that foot;
+/// nearer ones cover the sliver a slightly convex crease leaves between the two faces
+/// (addSphereTriangleContacts).
+inline constexpr double kInactiveSideways = 0.05;
+
 /// The triangle's feature a closest point lies on.
 enum class TriangleFeature : uint8_t { Face, Vertex, Edge };
 

@@ -1,10 +1,7 @@
-// SoftSystem's coupling to rigid bodies: attachments (Eqs. 2-9) and particle contacts
-// (Eqs. 26-30 and 34), each particle standing in for a body with w = 1/m and no rotation
-// (paper section 4).
-#include "physics/collision/heightfield.h"
-#include "physics/collision/heightfield_sphere.h"
+// SoftSystem's coupling to rigid bodies: attachments (Eqs. 2-9) and the particle contacts'
+// solve (Eqs. 26-30 and 34), each particle standing in for a body with w = 1/m and no rotation
+// (paper section 4). Which contacts there are: soft_contacts.cpp.
 #include "physics/collision/narrowphase.h"
-#include "physics/collision/shape_bounds.h"
 #include "physics/soft/soft_system.h"
 
 #include <algorithm>
@@ -13,10 +10,6 @@
 
 namespace substep {
 namespace {
-
-/// A soft body's box over more heightfield cells than this keeps none of their normals
-/// (HeightfieldGrid::keepNormals): a big body over a fine grid. A tyre's box covers a few.
-constexpr int kMostKeptCells = 256;
 
 /// The speed (m/s) at which an overlap the motion does not explain is pushed out: the rigid
 /// contacts' value (contact.cpp), so a particle created sunk into the ground rises gently.
@@ -89,18 +82,6 @@ bool staticSlip(const Body& b, const Vec3& r, const Vec3& local1, const Vec3& n,
     return true;
 }
 
-/// Whether a body is still for a particle contact (ParticleContact::still): no inverse mass and
-/// every velocity +0, so that its point's velocity b.v + ω × r is +0 and v − that is v, bit for
-/// bit (−0 would turn a particle's −0 into +0).
-bool isStill(const Body& b) {
-    const auto positiveZero = [](const Vec3& a) {
-        return a.x() == 0.0 && a.y() == 0.0 && a.z() == 0.0 && !std::signbit(a.x()) && !std::signbit(a.y()) &&
-               !std::signbit(a.z());
-    };
-    return b.invMass == 0.0 && positiveZero(b.v) && positiveZero(b.omega) && positiveZero(b.vPrev) &&
-           positiveZero(b.omegaPrev);
-}
-
 /// pushOut against a still body whose point is `anchor`: its velocity and generalised inverse
 /// mass are zero (and w + 0 = w), so the same depth, cap and Δλ_n without rotating r1.
 double pushOutOfStill(const SolverContext& ctx, const Vec3& anchor, const Vec3& n, double radius, Vec3& x, double w,
@@ -152,99 +133,6 @@ inline double attachmentImpulse(double& lambda, double alphaTilde, double c2, do
     lambda += deltaLambda;
     return factor;
 }
-
-/// The highest sample of the heightfield cells that reach into the local x–z box [lo, hi] (the
-/// surface over a cell lies between its corners' samples), or −∞ where the box misses the field
-/// (nothing is solid there). A box over more than 4096 samples takes the field's maximum.
-double highestSampleUnder(const HeightfieldData& field, const Vec3& lo, const Vec3& hi) {
-    // The cells' range as HeightfieldData::forTrianglesIn takes it.
-    const auto range = [](double a, double b, double origin, double cell, int cells, int& first, int& last) {
-        const double i0 = std::floor((a - origin) / cell), i1 = std::floor((b - origin) / cell);
-        if (!(i1 >= 0.0) || !(i0 <= cells - 1)) return false;  // also rejects NaN
-        first = static_cast<int>(std::max(i0, 0.0));
-        last = static_cast<int>(std::min(i1, static_cast<double>(cells - 1)));
-        return true;
-    };
-    int i0, i1, j0, j1;
-    if (!range(lo.x(), hi.x(), -0.5 * field.sizeX, field.cellX(), field.columns - 1, i0, i1) ||
-        !range(lo.z(), hi.z(), -0.5 * field.sizeZ, field.cellZ(), field.rows - 1, j0, j1))
-        return -std::numeric_limits<double>::infinity();
-    if ((i1 - i0 + 2) * (j1 - j0 + 2) > 4096) return field.maxHeight;
-    double highest = -std::numeric_limits<double>::infinity();
-    for (int j = j0; j <= j1 + 1; ++j)
-        for (int i = i0; i <= i1 + 1; ++i)
-            highest = std::max(highest, field.heights[j * field.columns + i]);
-    return highest;
-}
-
-/// Lower bounds on the gap between a particle's sphere and a static shape, for the particles of
-/// one soft body in a frame (all inside `softBox`, world). The narrowphase's points are not a
-/// bound (a heightfield reports the triangles under the sphere), so each shape gets its own:
-/// - a box: the distance to it, in its frame;
-/// - a plane: the height above it;
-/// - a heightfield, solid below its surface: in its frame, the height above the highest sample
-///   under the soft body's box, or, for solid outside that column, the distance to the column's
-///   side, whichever is less (or the height above the field's highest sample, if larger); where
-///   that leaves the particle within reach, the height above the planes of the cells within its
-///   own reach (heightfieldGapBound), which on sloping cells is the distance, not the cells'
-///   highest sample 5 mm above it;
-/// - anything else: the distance to its world bounds.
-class StaticGap {
-public:
-    /// `grid`: a heightfield's, which keeps the normals of the cells under the soft body's box.
-    StaticGap(const Shape& shape, const Pose& pose, const Aabb& bounds, const Aabb& softBox, double radius,
-              HeightfieldGrid* grid)
-        : shape_(shape), pose_(pose), bounds_(bounds), radius_(radius), grid_(grid) {
-        if (shape.type != ShapeType::Heightfield || !shape.heightfield || !grid) return;
-        for (int corner = 0; corner < 8; ++corner)
-            column_.grow(pose.applyInverse(Vec3(corner & 1 ? softBox.max.x() : softBox.min.x(),
-                                                corner & 2 ? softBox.max.y() : softBox.min.y(),
-                                                corner & 4 ? softBox.max.z() : softBox.min.z())));
-        highest_ = highestSampleUnder(*shape.heightfield, column_.min, column_.max);
-        grid->keepNormals(column_, kMostKeptCells);
-    }
-
-    /// The bound for a particle at p that may move by `reach` in the frame (beyond it, the
-    /// bound is no tighter than `reach`).
-    double operator()(const Vec3& p, double reach) const {
-        switch (shape_.type) {
-            case ShapeType::Box: {
-                const Vec3 local = pose_.applyInverse(p);
-                return (local.cwiseAbs() - 0.5 * shape_.size).cwiseMax(0.0).norm() - radius_;
-            }
-            case ShapeType::Plane: return shape_.normal.dot(p) - shape_.offset - radius_;
-            case ShapeType::Heightfield: {
-                if (!shape_.heightfield || !grid_) return 0.0;
-                const Vec3 local = pose_.applyInverse(p);
-                const double side = std::min({local.x() - column_.min.x(), column_.max.x() - local.x(),
-                                              local.z() - column_.min.z(), column_.max.z() - local.z()});
-                // The old bound, the height above the whole field's highest sample, can be the
-                // larger where a soft body's box overhangs its column.
-                const double column =
-                    std::max(local.y() - shape_.heightfield->maxHeight, std::min(local.y() - highest_, side)) - radius_;
-                if (column > reach) return column;
-                return std::max(column, heightfieldGapBound(*grid_, local, radius_ + reach) - radius_);
-            }
-            default: return (bounds_.min - p).cwiseMax(p - bounds_.max).cwiseMax(0.0).norm() - radius_;
-        }
-    }
-
-    /// Whether the bound is the distance itself, or close to it where it matters (a heightfield's
-    /// near its surface): the bound alone then decides a particle's candidacy.
-    bool tight() const {
-        return shape_.type == ShapeType::Box || shape_.type == ShapeType::Plane ||
-               shape_.type == ShapeType::Heightfield;
-    }
-
-private:
-    const Shape& shape_;
-    Pose pose_;
-    Aabb bounds_;
-    double radius_;
-    Aabb column_;  ///< heightfield: the soft body's box in its frame
-    double highest_ = 0.0;
-    HeightfieldGrid* grid_;  ///< heightfield: its grid
-};
 
 }  // namespace
 
@@ -302,231 +190,86 @@ void SoftSystem::solveAttachments(SolverContext& ctx) {
     // accumulated rotation (microradians per substep), written back once at the end by the
     // exact map. The same corrections as one attachment after the other, to second order in
     // that rotation, without a quaternion update per particle.
+    //
+    // Each correction moves the body the next one starts from, so a run is one dependent chain
+    // (a division and two dozen products per link). Runs that share no body and no particle
+    // touch disjoint state, so up to kAttachmentLanes consecutive ones are stepped in turn,
+    // link by link: the same operations in the same order per run, the same bits as one run
+    // after the other, with the chains overlapping in the processor (rc_car's four rims).
     size_t k = 0;
     while (k < attachments_.size()) {
-        const uint32_t bodyIndex = attachments_[k].body;
-        size_t end = k;
-        while (end < attachments_.size() && attachments_[end].body == bodyIndex)
-            ++end;
-        Body& b = ctx.bodies[bodyIndex];
-        const bool moves = b.invMass > 0.0;
-        const bool turns = moves && b.rotates();
-        const Mat3 rotation = b.q.toRotationMatrix();
-        const Mat3 inverseInertia =
-            turns ? Mat3(rotation * b.invInertia.asDiagonal() * rotation.transpose())
-                  : Mat3::Zero();
-        const double inverseMass = moves ? b.invMass : 0.0;
-        Vec3 position = b.x, turned = Vec3::Zero();
-        for (; k < end; ++k) {
-            Attachment& a = attachments_[k];
-            const Vec3 r0 = rotation * a.local;
-            const Vec3 r = r0 + turned.cross(r0);
-            const Vec3 delta = position + r - x_[a.particle];
-            const double c2 = delta.squaredNorm();
-            if (!(c2 > kDirectionEpsilon * kDirectionEpsilon)) continue;
-            const double w = invMass_[a.particle];
-            const Vec3 rd = r.cross(delta);
-            const Vec3 spin = inverseInertia * rd;
-            const double angular = rd.dot(spin);  // Eqs. 2-3, times c²
-            // p = f delta, so I⁻¹ (r × p) = f I⁻¹ (r × delta): the body's turn reuses what
-            // its inverse mass took, one multiplication after the division on the chain.
-            const double factor = attachmentImpulse(a.lambda, a.compliance * ctx.invH2, c2, w + inverseMass, angular);
-            x_[a.particle] += (w * factor) * delta;       // Eq. 6
-            position -= (inverseMass * factor) * delta;   // Eq. 7, the body receiving −p
-            turned -= factor * spin;                      // Eq. 8
+        std::array<AttachmentRun, kAttachmentLanes> lanes;
+        int laneCount = 0;
+        while (laneCount < kAttachmentLanes && k < attachments_.size()) {
+            AttachmentRun run = attachmentRunAt(k);
+            bool independent = true;
+            for (int l = 0; l < laneCount; ++l)
+                independent = independent && run.bodyIndex != lanes[l].bodyIndex &&
+                              (run.lowParticle > lanes[l].highParticle || run.highParticle < lanes[l].lowParticle);
+            if (!independent) break;
+            k = run.end;
+            lanes[laneCount++] = run;
         }
-        if (moves) {
-            b.x = position;
-            if (turns) integrateRotation(b.q, turned);  // Eq. 9 by the exact map, as moveBody does
+        for (int l = 0; l < laneCount; ++l) lanes[l].begin(ctx.bodies[lanes[l].bodyIndex]);
+        size_t shortest = lanes[0].end - lanes[0].next;
+        for (int l = 1; l < laneCount; ++l) shortest = std::min(shortest, lanes[l].end - lanes[l].next);
+        const double invH2 = ctx.invH2;
+        // The common length link by link across the lanes, then each lane's rest.
+        for (size_t link = 0; link < shortest; ++link)
+            for (int l = 0; l < laneCount; ++l) solveAttachmentLink(lanes[l], attachments_[lanes[l].next++], invH2);
+        for (int l = 0; l < laneCount; ++l) {
+            AttachmentRun& run = lanes[l];
+            while (run.next < run.end) solveAttachmentLink(run, attachments_[run.next++], invH2);
+            run.finish(ctx.bodies[run.bodyIndex]);
         }
     }
 }
 
-void SoftSystem::collectCandidates(std::span<const Body> bodies, double dt, double margin, const Vec3& gravity) {
-    // Once per frame: every particle whose sphere may reach a rigid shape during the frame, with
-    // a margin for the frame's motion (a particle's speed twice over, for the corrections that
-    // move it, and the body's sweep). Each soft body's box is tested against each rigid body's
-    // first; then each particle, against a static shape by a lower bound on its gap (StaticGap;
-    // where that bound is the distance or near it, the bound alone decides, and a candidate
-    // that cannot touch costs the substeps one comparison each), against a moving one by the
-    // narrowphase itself.
-    candidates_.clear();
-    for (FieldGrid& slot : fieldGrids_) slot.field.reset();
-    fieldGridCount_ = 0;
-    const double fall = gravity.norm() * dt * dt;
-    ContactManifold manifold;
-    for (uint32_t s = 0; s < bodies_.size(); ++s) {
-        const SoftBodyData& soft = bodies_[s];
-        if (!soft.alive || !soft.collide || soft.particleCount == 0) continue;
-        const uint32_t first = soft.firstParticle, end = first + soft.particleCount;
-        Aabb softBox;
-        double fastest = 0.0;
-        for (uint32_t i = first; i < end; ++i) {
-            softBox.grow(x_[i]);
-            fastest = std::max(fastest, v_[i].squaredNorm());
-        }
-        softBox = softBox.inflated(soft.radius + margin + 2.0 * dt * std::sqrt(fastest) + fall);
-        const Shape probe = sphereShape(soft.radius);
-        for (uint32_t bi = 1; bi < bodies.size(); ++bi) {
-            const Body& b = bodies[bi];
-            if (!b.alive || !b.collide || b.shape.type == ShapeType::None) continue;
-            if (!canCollide(ShapeType::Sphere, b.shape.type)) continue;
-            // The filters, as two rigid bodies' (Body::filtersMeet).
-            if ((soft.collisionGroup & b.collisionMask) == 0 || (b.collisionGroup & soft.collisionMask) == 0)
-                continue;
-            // Attached particles sit on (or in) the body: they are held, not pushed out.
-            if (std::find(soft.attachedBodies.begin(), soft.attachedBodies.end(), bi) != soft.attachedBodies.end())
-                continue;
-            const Pose pose{b.userPosition(), b.userOrientation()};
-            // A static body stays put for the frame: its candidates keep their gap.
-            const bool still = b.type == BodyType::Static;
-            const double reach = shapeReach(b.shape);
-            double sweep = dt * b.v.norm();
-            if (std::isfinite(reach)) sweep += dt * b.omega.norm() * reach;
-            const Aabb staticBounds = shapeBounds(b.shape, pose.position, pose.rotation);
-            const Aabb bodyBox = staticBounds.inflated(sweep);
-            if (!bodyBox.overlaps(softBox)) continue;
-            if (still) {
-                HeightfieldGrid* grid = nullptr;
-                if (b.shape.type == ShapeType::Heightfield && b.shape.heightfield) {
-                    if (fieldGridCount_ == fieldGrids_.size()) fieldGrids_.emplace_back();
-                    FieldGrid& slot = fieldGrids_[fieldGridCount_++];
-                    slot.softBody = s, slot.body = bi, slot.field = b.shape.heightfield;
-                    slot.grid.reset(*slot.field);
-                    grid = &slot.grid;
-                }
-                const StaticGap gapOf(b.shape, pose, staticBounds, softBox, soft.radius, grid);
-                const bool decides = gapOf.tight();
-                // A field in the world's axes takes the particle's world coordinates less its
-                // position, exactly (a turn by the identity quaternion adds zeros), so its
-                // clearance moves to the world by that translation.
-                const bool clearance = grid && pose.rotation.w() == 1.0 && pose.rotation.vec().isZero(0.0);
-                for (uint32_t i = first; i < end; ++i) {
-                    const double reachOut = margin + 2.0 * dt * v_[i].norm() + fall;
-                    const Aabb point = Aabb{x_[i], x_[i]}.inflated(soft.radius + reachOut);
-                    if (!point.overlaps(bodyBox)) continue;
-                    const double gap = gapOf(x_[i], reachOut);
-                    if (gap > reachOut) continue;  // the narrowphase would find nothing
-                    if (!decides) {
-                        collide(probe, Pose{x_[i], Quat::Identity()}, b.shape, pose, reachOut, manifold);
-                        if (manifold.count == 0) continue;
-                    }
-                    Candidate& candidate = candidates_.emplace_back(
-                        Candidate{.particle = i, .body = bi, .softBody = s, .gap = gap, .origin = x_[i]});
-                    if (clearance) {
-                        candidate.clearAbove = std::numeric_limits<double>::quiet_NaN();  // findContacts'
-                        candidate.roam = reachOut - margin;
-                    }
-                }
-                continue;
-            }
-            for (uint32_t i = first; i < end; ++i) {
-                const double reachOut = margin + 2.0 * dt * v_[i].norm() + sweep + fall;
-                const Aabb point = Aabb{x_[i], x_[i]}.inflated(soft.radius + reachOut);
-                if (!point.overlaps(bodyBox)) continue;
-                collide(probe, Pose{x_[i], Quat::Identity()}, b.shape, pose, reachOut, manifold);
-                if (manifold.count == 0) continue;
-                // Never skipped: a moving body's gap changes with its own motion too.
-                candidates_.push_back({.particle = i, .body = bi, .softBody = s,
-                                       .gap = -std::numeric_limits<double>::infinity(), .origin = x_[i]});
-            }
-        }
+SoftSystem::AttachmentRun SoftSystem::attachmentRunAt(size_t first) const {
+    AttachmentRun run;
+    run.bodyIndex = attachments_[first].body;
+    run.next = run.end = first;
+    run.lowParticle = run.highParticle = attachments_[first].particle;
+    while (run.end < attachments_.size() && attachments_[run.end].body == run.bodyIndex) {
+        run.lowParticle = std::min(run.lowParticle, attachments_[run.end].particle);
+        run.highParticle = std::max(run.highParticle, attachments_[run.end].particle);
+        ++run.end;
     }
+    return run;
 }
 
-void SoftSystem::clearanceOf(Candidate& candidate, const Body& field, double margin) const {
-    const HeightfieldGrid* grid = nullptr;
-    for (size_t g = 0; g < fieldGridCount_ && !grid; ++g) {
-        const FieldGrid& slot = fieldGrids_[g];
-        if (slot.softBody == candidate.softBody && slot.body == candidate.body) grid = &slot.grid;
-    }
-    candidate.clearAbove = std::numeric_limits<double>::infinity();
-    if (!grid) return;
-    // The field's frame is the world's shifted by its position (collectCandidates checked
-    // that its turn is the identity), so its clearance moves to the world by that shift, with
-    // a slack for the rounding of the shift.
-    const Vec3 t = field.userPosition();
-    const double shiftSlack = 1e-9 * (1.0 + t.cwiseAbs().maxCoeff());
-    const HeightfieldClearance clear = heightfieldClearance(*grid, x_[candidate.particle] - t,
-                                                            bodies_[candidate.softBody].radius + margin, candidate.roam);
-    candidate.clearAbove = clear.above + t.y() + shiftSlack;
-    candidate.clearLowX = clear.lowX + t.x() + shiftSlack;
-    candidate.clearHighX = clear.highX + t.x() - shiftSlack;
-    candidate.clearLowZ = clear.lowZ + t.z() + shiftSlack;
-    candidate.clearHighZ = clear.highZ + t.z() - shiftSlack;
+void SoftSystem::AttachmentRun::begin(const Body& b) {
+    moves = b.invMass > 0.0;
+    turns = moves && b.rotates();
+    rotation = b.q.toRotationMatrix();
+    inverseInertia = turns ? Mat3(rotation * b.invInertia.asDiagonal() * rotation.transpose()) : Mat3::Zero();
+    inverseMass = moves ? b.invMass : 0.0;
+    position = b.x;
+    turned = Vec3::Zero();
 }
 
-void SoftSystem::findContacts(std::span<const Body> bodies, double margin) {
-    contacts_.clear();
-    ContactManifold manifold;
-    uint32_t poseBody = UINT32_MAX;
-    uint32_t probeBody = UINT32_MAX;
-    Pose pose;
-    Shape probe;
-    const HeightfieldGrid* grid = nullptr;
-    HeightfieldGrid ownGrid;  // a heightfield's without candidates kept by collectCandidates
-    double staticFriction = 0.0, dynamicFriction = 0.0, restitution = 0.0;
-    bool still = false;
-    // Candidates come grouped by soft body, then rigid body: poses and probes are made once
-    // per group.
-    for (Candidate& candidate : candidates_) {
-        // The particle's distance to a static shape changes by at most its own displacement:
-        // a particle still further than the margin from it cannot touch it in this substep
-        // (compared squared: most candidates of a rolling tyre are skipped here).
-        const Vec3& x = x_[candidate.particle];
-        const double slack = candidate.gap - margin;
-        if (slack > 0.0 && (x - candidate.origin).squaredNorm() < slack * slack) continue;
-        // Or it is above every sample of the cells the narrowphase would visit (a rolling tread
-        // particle moves along the ground more than toward it). Most candidates never get here,
-        // so the clearance is computed the first time one does, from where the particle is.
-        if (std::isnan(candidate.clearAbove)) clearanceOf(candidate, bodies[candidate.body], margin);
-        if (x.y() > candidate.clearAbove && x.x() > candidate.clearLowX && x.x() < candidate.clearHighX &&
-            x.z() > candidate.clearLowZ && x.z() < candidate.clearHighZ)
-            continue;
-        const Body& b = bodies[candidate.body];
-        const SoftBodyData& soft = bodies_[candidate.softBody];
-        if (candidate.body != poseBody || candidate.softBody != probeBody) {
-            poseBody = candidate.body;
-            probeBody = candidate.softBody;
-            pose = {b.userPosition(), b.userOrientation()};
-            probe = sphereShape(soft.radius);
-            grid = nullptr;
-            if (b.shape.type == ShapeType::Heightfield && b.shape.heightfield) {
-                for (size_t g = 0; g < fieldGridCount_ && !grid; ++g) {
-                    const FieldGrid& slot = fieldGrids_[g];
-                    if (slot.softBody == candidate.softBody && slot.body == candidate.body && slot.field == b.shape.heightfield)
-                        grid = &slot.grid;
-                }
-                if (!grid) {
-                    ownGrid.reset(*b.shape.heightfield);
-                    grid = &ownGrid;
-                }
-            }
-            // Paper 3.5: a pair's coefficients are the averages of its bodies'.
-            staticFriction = 0.5 * (soft.staticFriction + b.staticFriction);
-            dynamicFriction = 0.5 * (soft.dynamicFriction + b.dynamicFriction);
-            restitution = 0.5 * (soft.restitution + b.restitution);
-            still = isStill(b);
-        }
-        // A heightfield's cells straight from its heights (heightfield_sphere.h), the same points.
-        if (grid) collideSphereHeightfield(*grid, x_[candidate.particle], soft.radius, pose, margin, manifold);
-        else collide(probe, Pose{x_[candidate.particle], Quat::Identity()}, b.shape, pose, margin, manifold);
-        const Quat inverse = b.q.conjugate();
-        for (int k = 0; k < manifold.count; ++k) {
-            const ContactPoint& point = manifold.points[k];
-            const Vec3 local1 = inverse * (point.point1 - b.x);
-            contacts_.push_back({.particle = candidate.particle,
-                                 .body = candidate.body,
-                                 .local1 = local1,
-                                 .normal = point.normal,
-                                 .radius = soft.radius,
-                                 .staticFriction = staticFriction,
-                                 .dynamicFriction = dynamicFriction,
-                                 .restitution = restitution,
-                                 .still = still,
-                                 .anchor = still ? b.pointToWorld(local1) : Vec3::Zero()});
-        }
-    }
+void SoftSystem::AttachmentRun::finish(Body& b) const {
+    if (!moves) return;
+    b.x = position;
+    if (turns) integrateRotation(b.q, turned);  // Eq. 9 by the exact map, as moveBody does
+}
+
+void SoftSystem::solveAttachmentLink(AttachmentRun& run, Attachment& a, double invH2) {
+    const Vec3 r0 = run.rotation * a.local;
+    const Vec3 r = r0 + run.turned.cross(r0);
+    const Vec3 delta = run.position + r - x_[a.particle];
+    const double c2 = delta.squaredNorm();
+    if (!(c2 > kDirectionEpsilon * kDirectionEpsilon)) return;
+    const double w = invMass_[a.particle];
+    const Vec3 rd = r.cross(delta);
+    const Vec3 spin = run.inverseInertia * rd;
+    const double angular = rd.dot(spin);  // Eqs. 2-3, times c²
+    // p = f delta, so I⁻¹ (r × p) = f I⁻¹ (r × delta): the body's turn reuses what its inverse
+    // mass took, one multiplication after the division on the chain.
+    const double factor = attachmentImpulse(a.lambda, a.compliance * invH2, c2, w + run.inverseMass, angular);
+    x_[a.particle] += (w * factor) * delta;          // Eq. 6
+    run.position -= (run.inverseMass * factor) * delta;  // Eq. 7, the body receiving −p
+    run.turned -= factor * spin;                      // Eq. 8
 }
 
 void SoftSystem::groupContactPatches() {

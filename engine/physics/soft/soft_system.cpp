@@ -162,6 +162,7 @@ void SoftSystem::destroy(SoftBodyId id) {
     for (Attachment& a : attachments_)
         if (a.particle >= endParticle) a.particle -= particleCount;
     candidates_.clear();
+    candidateSkips_.clear();
     contacts_.clear();
     dead = SoftBodyData{};
     freeBodies_.push_back(id.index);
@@ -248,7 +249,14 @@ bool SoftSystem::isValid(SoftBodyId id) const {
 void SoftSystem::forgetBody(uint32_t bodyIndex) {
     for (SoftBodyData& body : bodies_) std::erase(body.attachedBodies, bodyIndex);
     std::erase_if(attachments_, [&](const Attachment& a) { return a.body == bodyIndex; });
-    std::erase_if(candidates_, [&](const Candidate& c) { return c.body == bodyIndex; });
+    size_t kept = 0;
+    for (size_t k = 0; k < candidates_.size(); ++k) {
+        if (candidates_[k].body == bodyIndex) continue;
+        candidates_[kept] = candidates_[k];
+        candidateSkips_[kept++] = candidateSkips_[k];
+    }
+    candidates_.resize(kept);
+    candidateSkips_.resize(kept);
     std::erase_if(contacts_, [&](const ParticleContact& c) { return c.body == bodyIndex; });
 }
 

@@ -126,6 +126,56 @@ TEST(HeightfieldSphere, GivesTheTriangleByTriangleContactsBitForBit) {
     EXPECT_LT(withContacts, cases);
 }
 
+TEST(HeightfieldSphere, GivesTheReferenceContactsBesideATriangle) {
+    // The narrowphase leaves out a triangle the sphere's foot lies beside when the features it
+    // would meet are internal and farther than kInactiveSideways r: feet placed just inside and
+    // just beyond that limit from every edge of random triangles (and near their corners), over
+    // flat fields (every feature internal), gentle and steep ones (convex creases active), the
+    // centre in front of and behind the plane. The same contacts as the reference, bit for bit.
+    std::mt19937 rng(21);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    std::uniform_int_distribution<int> pick(0, 2);
+    const double excess[] = {-1e-3, -1e-9, 0.0, 1e-12, 1e-9, 1e-7, 2e-6, 1e-4, 1e-2, 0.5, 3.0};
+    int withContacts = 0, cases = 0;
+    for (int f = 0; f < 300; ++f) {
+        const auto field = randomField(rng, f % 4);
+        HeightfieldGrid grid(*field);
+        if (f % 2 == 1) grid.keepNormals(someCells(*field, rng), 256);
+        const Pose pose = randomPose(rng, f % 3 == 0);
+        std::uniform_int_distribution<int> column(0, field->columns - 2), row(0, field->rows - 2);
+        for (int k = 0; k < 150; ++k) {
+            const ContactTriangle tri = field->triangle(column(rng), row(rng), pick(rng) % 2);
+            const int e = pick(rng);
+            const Vec3 a = tri.v[e], b = tri.v[(e + 1) % 3], opposite = tri.v[(e + 2) % 3];
+            Vec3 outward = (b - a).cross(tri.normal).normalized();
+            if ((opposite - a).dot(outward) > 0.0) outward = -outward;
+            const double r = std::min(field->cellX(), field->cellZ()) * std::pow(10.0, -3.0 + 2.5 * unit(rng));
+            const double margin = unit(rng) < 0.2 ? 0.0 : 0.4 * r * unit(rng);
+            const double along = -0.3 + 1.6 * unit(rng);  // beyond the corners at times
+            const double sideways = kInactiveSideways * r * (1.0 + excess[k % std::size(excess)]);
+            const double height = r * (-1.0 + 2.5 * unit(rng));
+            const Vec3 local = a + along * (b - a) + sideways * outward + height * tri.normal;
+            const Vec3 centre = pose.apply(local);
+            ContactManifold expected, got;
+            reference::collideSphereHeightfield(*field, centre, r, pose, margin, expected);
+            collideSphereHeightfield(grid, centre, r, pose, margin, got);
+            ++cases;
+            ASSERT_EQ(got.count, expected.count) << "field " << f << " case " << k;
+            for (int i = 0; i < got.count; ++i) {
+                const ContactPoint& p = got.points[i];
+                const ContactPoint& q = expected.points[i];
+                ASSERT_TRUE(sameBits(p.point0, q.point0) && sameBits(p.point1, q.point1) &&
+                            sameBits(p.normal, q.normal) && sameBits(p.depth, q.depth) && p.feature == q.feature)
+                    << "field " << f << " case " << k << " point " << i;
+            }
+            withContacts += expected.count > 0;
+        }
+    }
+    // The draw reaches both outcomes.
+    EXPECT_GT(withContacts, cases / 5);
+    EXPECT_LT(withContacts, cases);
+}
+
 TEST(HeightfieldSphere, KeepsTheNormalsOfTheCellsUnderABox) {
     const auto field = makeHeightfield(5, 4, {0, 1, 0, 2, 0, 0, 3, 0, 1, 0, 2, 0, 0, 1, 0, 0, 0, 2, 0, 1}, 4.0, 3.0);
     HeightfieldGrid grid(*field);

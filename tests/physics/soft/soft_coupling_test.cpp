@@ -5,12 +5,16 @@
 // which rigid bodies a soft body's particles meet (collectCandidates): never the bodies it is
 // attached to, only those the collision filters let through, and every other one, a tyre resting
 // on a box at its closed-form height; attachments one after the other close their gaps to a light
-// body as to a heavy one.
+// body as to a heavy one, and rims whose runs are solved side by side move as each alone.
 #include "soft_test_support.h"
 
 #include "physics_test_support.h"
 
 #include <gtest/gtest.h>
+
+#include <algorithm>
+#include <utility>
+#include <vector>
 
 namespace substep::test {
 namespace {
@@ -272,6 +276,53 @@ TEST(SoftCoupling, AttachmentsOneAfterTheOtherHoldALightBodyAsAHeavyOne) {
         EXPECT_LT(largest, 0.02 * gap) << bodyMass << " kg";
         const Vec3 momentum = bodyMass * world.body(body).v + softMomentum(world, cube);
         EXPECT_LT((momentum - Vec3(bodyMass, 0.0, 0.0)).norm(), 1e-12 * bodyMass) << bodyMass << " kg";
+    }
+}
+
+/// A rim hinged above its centre at `pivot`, tilted by `tilt` about z, carrying a tyre of `around`
+/// cells attached by its inner particles; returns the rim and the tyre.
+std::pair<BodyId, SoftBodyId> addSwingingTyre(World& world, const Vec3& pivot, double tilt, int around) {
+    const double ro = 0.35, ri = 0.25, width = 0.1, d = 0.15;
+    const Quat turn(Eigen::AngleAxisd(tilt, Vec3::UnitZ()));
+    const Vec3 centre = pivot + turn * Vec3(0, -d, 0);
+    const BodyId rim = world.createBody({.shape = cylinderShape(ri, width), .density = 2000.0, .position = centre,
+                                         .orientation = turn * kAxisAlongZ, .collide = false});
+    world.createJoint({.type = JointType::Hinge, .body1 = rim, .anchor0 = pivot, .anchor1 = Vec3(0, 0, -d),
+                       .axis0 = Vec3::UnitZ(), .axis1 = Vec3::UnitY()});
+    SoftBodyDef tyre{.type = SoftBodyType::Tyre, .outerRadius = ro, .innerRadius = ri, .width = width,
+                     .cells = {around, 2, 2}, .position = centre, .orientation = turn * kAxisAlongZ,
+                     .density = 500.0, .compliance = 1e-7, .collide = false};
+    tyre.attachments.push_back({.body = rim, .particles = SoftAttachmentParticles::Inner});
+    return {rim, world.createSoftBody(tyre)};
+}
+
+TEST(SoftCoupling, RimsSolvedSideBySideMoveAsEachAlone) {
+    // solveAttachments steps the runs of attachments to different bodies in turn, link by link
+    // (four at a time, here a second group of one): five swinging rims of unequal runs in one
+    // world move as each does alone, bit for bit, their poses and tyres.
+    const int arounds[] = {24, 30, 24, 36, 28};
+    const auto pivot = [](int k) { return Vec3(2.0 * k, 1, 0); };
+    const auto tilt = [](int k) { return 0.05 + 0.04 * k; };
+    const auto swing = [](World& world) {
+        for (int frame = 0; frame < 30; ++frame) world.step(1.0 / 60.0);
+    };
+    World together = worldWithGround(20, false);
+    std::vector<std::pair<BodyId, SoftBodyId>> parts;
+    for (int k = 0; k < 5; ++k) parts.push_back(addSwingingTyre(together, pivot(k), tilt(k), arounds[k]));
+    const Vec3 start = together.body(parts[4].first).x;
+    swing(together);
+    // The rims swung: the comparison is not of poses at rest.
+    EXPECT_GT((together.body(parts[4].first).x - start).norm(), 1e-3);
+    for (int k = 0; k < 5; ++k) {
+        World alone = worldWithGround(20, false);
+        const auto [rim, tyre] = addSwingingTyre(alone, pivot(k), tilt(k), arounds[k]);
+        swing(alone);
+        const Body& a = alone.body(rim);
+        const Body& b = together.body(parts[k].first);
+        EXPECT_TRUE(a.x == b.x && a.q.coeffs() == b.q.coeffs()) << "rim " << k;
+        const auto x = alone.softBodyPositions(tyre), y = together.softBodyPositions(parts[k].second);
+        ASSERT_EQ(x.size(), y.size());
+        EXPECT_TRUE(std::equal(x.begin(), x.end(), y.begin())) << "tyre " << k;
     }
 }
 
