@@ -1,10 +1,10 @@
 #!/usr/bin/python3
-# Draws docs/performance_growth.png from the figures of docs/PERFORMANCE.md ("How the cost grows"):
+# Draws docs/performance_growth.png from the figures of docs/PERFORMANCE_LOG.md ("How the cost grows"):
 #   /usr/bin/python3 docs/performance_growth.py docs/performance_growth.png
 import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
-# BM_spheres_in_a_box/N/1, CPU ms per frame against contact points per frame (docs/PERFORMANCE.md)
+# BM_spheres_in_a_box/N/1, CPU ms per frame against contact points per frame (docs/PERFORMANCE_LOG.md)
 before = ([2283, 8713, 33430], [19.9, 87.0, 398])   # general correction path (2026-11-24, earlier session)
 after = ([2184, 8625, 33042], [16.4, 75.5, 418])    # fused one-point path
 fig, ax = plt.subplots(figsize=(6, 4.2))

@@ -34,7 +34,7 @@ namespace {
 constexpr size_t kMinParallelItems = 128;
 /// The same for a colour of contact pairs: a pile's last colours hold 30 to 100 pairs (a
 /// sphere pair costs ~150 ns), and with the blocks' stealing splitting them paid (spheres1000 at
-/// 2 threads 9.9-10.1 ms/frame at 32 against 10.2-10.3 at 128; docs/PERFORMANCE.md).
+/// 2 threads 9.9-10.1 ms/frame at 32 against 10.2-10.3 at 128; docs/PERFORMANCE_LOG.md).
 constexpr size_t kMinParallelPairs = 32;
 /// Smallest block of a parallel loop (items).
 constexpr size_t kMinBlockItems = 8;
@@ -49,7 +49,7 @@ constexpr size_t kMinParallelBodies = 256;
 /// same bodies from stage to stage and colour to colour, and their cache lines stay in its core
 /// (on this project's two-core machine a line moving between cores costs ~170 ns; with four
 /// chunks per thread handed out as they came spheres1000 at 2 threads took 25.5 ms/frame
-/// against 18-20 ms with one chunk per thread, docs/PERFORMANCE.md), while the stealing evens
+/// against 18-20 ms with one chunk per thread, docs/PERFORMANCE_LOG.md), while the stealing evens
 /// out chunks of unequal cost (the floor's and walls' pairs, listed first, against the pile's).
 template <class Run>
 void forChunks(WorkerPool* pool, size_t count, bool serial, const Run& run, size_t minItems = kMinParallelItems) {

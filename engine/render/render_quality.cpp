@@ -8,7 +8,7 @@ namespace substep::render {
 
 RenderQuality qualitySettings(QualityLevel level) {
     switch (level) {
-        // Measured under Xvfb with llvmpipe at 1400x800 (docs/PERFORMANCE.md): its time grows
+        // Measured under Xvfb with llvmpipe at 1400x800 (docs/PERFORMANCE_LOG.md): its time grows
         // with the pixels drawn (multisampling, the 16-tap shadow filter, full resolution) and,
         // on spheres1000, with the 2304-triangle sphere (2.3 million triangles drawn twice,
         // shadow and view).

@@ -6,7 +6,7 @@
 /// `substep render`, and exits 2. With --frames it runs N frames as fast as it can (one scene dt
 /// each, no waiting for real time), optionally saves the window as a PNG, and exits: the
 /// scripted form the tests run under Xvfb; it then prints the frames' median times (the buffer
-/// swap included), what docs/PERFORMANCE.md records. `view --help` lists the window's keys.
+/// swap included), what docs/PERFORMANCE_LOG.md records. `view --help` lists the window's keys.
 
 #include <CLI/CLI.hpp>
 

@@ -29,7 +29,7 @@ void collideSphereAnyMesh(const Shape& a, const Pose& pa, const Shape& b, const 
 }
 
 /// A capsule against a hull takes the general pair: a quarter of the time of the special
-/// routine's searches along the segment (docs/PERFORMANCE.md, "General convex pair").
+/// routine's searches along the segment (docs/PERFORMANCE_LOG.md, "General convex pair").
 void collideCapsuleAnyMesh(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb,
                            double margin, ContactManifold& out) {
     if (b.convex) collideGeneralConvex(a, pa, b, pb, margin, out);
