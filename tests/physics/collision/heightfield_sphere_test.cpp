@@ -25,6 +25,27 @@ bool sameBits(const Vec3& a, const Vec3& b) {
     return sameBits(a.x(), b.x()) && sameBits(a.y(), b.y()) && sameBits(a.z(), b.z());
 }
 
+/// The narrowphase's contacts for a sphere against the reference's, bit for bit (success), and
+/// how many the reference found.
+::testing::AssertionResult sameContactsAsReference(const HeightfieldData& field, const HeightfieldGrid& grid,
+                                                   const Vec3& centre, double r, const Pose& pose, double margin,
+                                                   int& expectedCount) {
+    ContactManifold expected, got;
+    reference::collideSphereHeightfield(field, centre, r, pose, margin, expected);
+    collideSphereHeightfield(grid, centre, r, pose, margin, got);
+    expectedCount = expected.count;
+    if (got.count != expected.count)
+        return ::testing::AssertionFailure() << got.count << " contacts against the reference's " << expected.count;
+    for (int i = 0; i < got.count; ++i) {
+        const ContactPoint& a = got.points[i];
+        const ContactPoint& b = expected.points[i];
+        if (!(sameBits(a.point0, b.point0) && sameBits(a.point1, b.point1) && sameBits(a.normal, b.normal) &&
+              sameBits(a.depth, b.depth) && a.feature == b.feature))
+            return ::testing::AssertionFailure() << "point " << i << ": depth " << a.depth << " vs " << b.depth;
+    }
+    return ::testing::AssertionSuccess();
+}
+
 /// Fields of every kind the tests draw from: flat, gentle, steep (slopes of several cells' height
 /// per cell), with square and oblong cells of 1 cm to 2 m.
 std::shared_ptr<const HeightfieldData> randomField(std::mt19937& rng, int kind) {
@@ -104,20 +125,12 @@ TEST(HeightfieldSphere, GivesTheTriangleByTriangleContactsBitForBit) {
             const double r = std::min(field->cellX(), field->cellZ()) * std::pow(10.0, -3.0 + 3.3 * unit(rng));
             const double margin = unit(rng) < 0.2 ? 0.0 : 0.4 * r * unit(rng);
             const Vec3 centre = pose.apply(pointNear(*field, rng, r));
-            ContactManifold expected, got;
-            reference::collideSphereHeightfield(*field, centre, r, pose, margin, expected);
-            collideSphereHeightfield(grid, centre, r, pose, margin, got);
+            int expected = 0;
             ++cases;
-            ASSERT_EQ(got.count, expected.count) << "field " << f << " case " << k;
-            for (int i = 0; i < got.count; ++i) {
-                const ContactPoint& a = got.points[i];
-                const ContactPoint& b = expected.points[i];
-                ASSERT_TRUE(sameBits(a.point0, b.point0) && sameBits(a.point1, b.point1) &&
-                            sameBits(a.normal, b.normal) && sameBits(a.depth, b.depth) && a.feature == b.feature)
-                    << "field " << f << " case " << k << " point " << i << ": depth " << a.depth << " vs " << b.depth;
-            }
-            withContacts += expected.count > 0;
-            several += expected.count > 1;
+            ASSERT_TRUE(sameContactsAsReference(*field, grid, centre, r, pose, margin, expected))
+                << "field " << f << " case " << k;
+            withContacts += expected > 0;
+            several += expected > 1;
         }
     }
     // The draw reaches every outcome: no contact, one, several (edges, steep cells, big spheres).
@@ -156,19 +169,11 @@ TEST(HeightfieldSphere, GivesTheReferenceContactsBesideATriangle) {
             const double height = r * (-1.0 + 2.5 * unit(rng));
             const Vec3 local = a + along * (b - a) + sideways * outward + height * tri.normal;
             const Vec3 centre = pose.apply(local);
-            ContactManifold expected, got;
-            reference::collideSphereHeightfield(*field, centre, r, pose, margin, expected);
-            collideSphereHeightfield(grid, centre, r, pose, margin, got);
+            int expected = 0;
             ++cases;
-            ASSERT_EQ(got.count, expected.count) << "field " << f << " case " << k;
-            for (int i = 0; i < got.count; ++i) {
-                const ContactPoint& p = got.points[i];
-                const ContactPoint& q = expected.points[i];
-                ASSERT_TRUE(sameBits(p.point0, q.point0) && sameBits(p.point1, q.point1) &&
-                            sameBits(p.normal, q.normal) && sameBits(p.depth, q.depth) && p.feature == q.feature)
-                    << "field " << f << " case " << k << " point " << i;
-            }
-            withContacts += expected.count > 0;
+            ASSERT_TRUE(sameContactsAsReference(*field, grid, centre, r, pose, margin, expected))
+                << "field " << f << " case " << k;
+            withContacts += expected > 0;
         }
     }
     // The draw reaches both outcomes.
