@@ -215,63 +215,94 @@ inline void changePointVelocity(Body& b0, Body& b1, const PointResponse& s0, con
     changePointVelocity(b0, b1, s0, s1, t, -std::min(maxChange, slipSpeed));
 }
 
-/// The velocity pass for a pair with one point (Eq. 29, Eq. 30, Eq. 33, Eq. 34): restitution,
-/// then dynamic friction with the impulse clamped (ERRATA item 2). Fused: each change is
-/// applied along its unit direction with the generalised inverse mass computed once (the
-/// general Eq. 33 normalises the change and computes w again).
-[[gnu::flatten]] void solveSinglePointVelocities(const ContactPair& pair, const Contact& c, Body& b0, Body& b1,
-                                double h, double gravity) {
+/// After the collision pass: the approach a point of a one-point pair has left (its push's
+/// velocity removed, a support under gravity approaches by g h) is removed, Eq. 34 with e = 0.
+/// A point that collided and separates is left alone (its bounce). A point that did not
+/// collide (a push between two bodies a collision reached) separates no faster than it did
+/// before the substep (v̄_n, Eq. 29 on the velocities before the derivation): its own push is
+/// gone, so a faster separation is what the other contacts' pushes of this substep gave it.
+/// Left in, as it was, a frictionless pile never came to rest: spheres wedged between
+/// neighbours were pushed apart by their supports at every substep, kept that as a real
+/// separation, fell back into the overlap and were pushed apart again (the pile's energy rising
+/// by up to 0.13 J in a frame, the pile chattering past 12 s).
+void removeApproach(const Contact& c, Body& b0, Body& b1) {
     const Vec3& n = c.normal;
     const Vec3 r0 = b0.q * c.local0;
     const Vec3 r1 = b1.q * c.local1;
-    const Vec3 v = pointVelocity(b0.v, b0.omega, r0) - pointVelocity(b1.v, b1.omega, r1);  // Eq. 29
-    const double vn = v.dot(n);                                                               // Eq. 29
-    // v̄_n: Eq. 29 on the velocities before this substep's derivation (paper before Eq. 34).
-    const double vnBefore =
-        (pointVelocity(b0.vPrev, b0.omegaPrev, r0) - pointVelocity(b1.vPrev, b1.omegaPrev, r1)).dot(n);
-    const double e = std::abs(vnBefore) <= 2.0 * gravity * h ? 0.0 : pair.restitution;
-    const double change = std::max(-e * vnBefore, 0.0) - vn;  // Eq. 34
-    if (std::abs(change) > kRestingSpeed)
-        changePointVelocity(b0, b1, pointResponse(b0, r0, n), pointResponse(b1, r1, n), n, change);  // Eq. 33
-    applySinglePointFriction(pair, c, b0, b1, r0, r1, h);
-}
-
-}  // namespace
-
-double contactDepth(const Contact& contact, const Body& b0, const Body& b1) {
-    const Vec3 p0 = b0.pointToWorld(contact.local0);
-    const Vec3 p1 = b1.pointToWorld(contact.local1);
-    return (p1 - p0).dot(contact.normal);
-}
-
-void solveContactPositions(ContactPair& pair, std::span<Contact> contacts, SolverContext& ctx) {
-    const int points = static_cast<int>(std::min<size_t>(contacts.size(), kMaxPatchPoints));
-    if (points == 1) return solveSinglePointPositions(pair, contacts[0], ctx);
-    solvePatchPositions(pair, contacts.first(points), ctx);
-}
-
-void solveTouchingPositions(std::span<const uint32_t> touching, std::span<ContactPair> pairs,
-                            std::span<Contact> contacts, SolverContext& ctx) {
-    const auto solveAlone = [&](ContactPair& pair) {
-        solveContactPositions(pair, contacts.subspan(pair.first, pair.count), ctx);
-    };
-    if (ctx.solver != SolverType::GaussSeidel) {
-        for (const uint32_t p : touching) solveAlone(pairs[p]);
-        return;
+    const double vn = (pointVelocity(b0.v, b0.omega, r0) - pointVelocity(b1.v, b1.omega, r1)).dot(n);  // Eq. 29
+    double target = std::max(vn, 0.0);
+    if (!(c.restitutionImpulse > 0.0)) {
+        const double vnBefore =
+            (pointVelocity(b0.vPrev, b0.omegaPrev, r0) - pointVelocity(b1.vPrev, b1.omegaPrev, r1)).dot(n);
+        target = std::min(target, std::max(vnBefore, 0.0));
     }
-    // Gauss-Seidel's order binds only points that share a moving body: each one-point pair is
-    // solved side by side with the first of the next kWindow − 1 one-point pairs that shares no
-    // moving body with it nor with any pair between them still to be solved (those keep their
-    // place). Every body then sees its corrections in the listed order: the same bytes.
+    if (std::abs(target - vn) > kRestingSpeed)
+        changePointVelocity(b0, b1, pointResponse(b0, r0, n), pointResponse(b1, r1, n), n, target - vn);
+}
+
+/// The velocity pass for a pair with one point (Eq. 29, Eq. 30, Eq. 33, Eq. 34): restitution,
+/// then dynamic friction with the impulse clamped (ERRATA item 2); after the collision pass,
+/// removeApproach instead. Fused: each change is applied along its unit direction with the
+/// generalised inverse mass computed once (the general Eq. 33 normalises the change and
+/// computes w again). In its two dependent steps, so that two pairs with no moving body in
+/// common can go side by side (solveTouchingVelocities), as the position solve's do.
+struct OnePointVelocities {
+    const ContactPair& pair;
+    const Contact& c;
+    Body& b0;
+    Body& b1;
+    double h;
+    double gravity;
+    Vec3 r0, r1;
+    bool friction = false;  ///< the normal step set the velocity: dynamic friction follows
+
+    OnePointVelocities(const ContactPair& p, const Contact& contact, Body* bodies, double substep, double g)
+        : pair(p), c(contact), b0(bodies[p.body0]), b1(bodies[p.body1]), h(substep), gravity(g) {}
+
+    /// Eq. 34 (with Eq. 29 and Eq. 33), or removeApproach after the collision pass.
+    [[gnu::flatten]] void normal() {
+        if (c.collisionPass) {
+            removeApproach(c, b0, b1);
+            return;
+        }
+        if (!(c.lambdaNormal > 0.0)) return;
+        const Vec3& n = c.normal;
+        r0 = b0.q * c.local0;
+        r1 = b1.q * c.local1;
+        const Vec3 v = pointVelocity(b0.v, b0.omega, r0) - pointVelocity(b1.v, b1.omega, r1);  // Eq. 29
+        const double vn = v.dot(n);                                                               // Eq. 29
+        // v̄_n: Eq. 29 on the velocities before this substep's derivation (paper before Eq. 34).
+        const double vnBefore =
+            (pointVelocity(b0.vPrev, b0.omegaPrev, r0) - pointVelocity(b1.vPrev, b1.omegaPrev, r1)).dot(n);
+        const double e = std::abs(vnBefore) <= 2.0 * gravity * h ? 0.0 : pair.restitution;
+        const double change = std::max(-e * vnBefore, 0.0) - vn;  // Eq. 34
+        if (std::abs(change) > kRestingSpeed)
+            changePointVelocity(b0, b1, pointResponse(b0, r0, n), pointResponse(b1, r1, n), n, change);  // Eq. 33
+        friction = true;
+    }
+
+    /// Eq. 29, Eq. 30, Eq. 33 with ERRATA item 2.
+    [[gnu::flatten]] void dynamicFriction() {
+        if (friction) applySinglePointFriction(pair, c, b0, b1, r0, r1, h);
+    }
+};
+
+/// Gauss-Seidel's order binds only points that share a moving body: calls two(a, b) for a
+/// one-point pair a and the first of the next kWindow − 1 one-point pairs b that shares no
+/// moving body with it nor with any pair between them still to be solved (those keep their
+/// place), solve(pair) for every other pair. Every body then sees its corrections in the listed
+/// order: the same bytes as solve() on each pair in turn, whatever two() interleaves.
+template <class Pairs, class Solve, class Two>
+void sideBySide(std::span<const uint32_t> touching, Pairs pairs, const Body* bodies, const Solve& solve,
+                const Two& two) {
     constexpr size_t kWindow = 4;
-    const Body* bodies = ctx.bodies;
     const auto moves = [&](uint32_t body) { return bodies[body].invMass != 0.0; };
     uint32_t early = 0;  // bit i: touching[k + i] was already solved as a partner
     for (size_t k = 0; k < touching.size(); ++k, early >>= 1) {
         if (early & 1u) continue;
-        ContactPair& pair = pairs[touching[k]];
+        auto& pair = pairs[touching[k]];
         if (pair.count != 1) {
-            solveAlone(pair);
+            solve(pair);
             continue;
         }
         // The moving bodies the partner must not touch: this pair's and those of the pairs
@@ -300,13 +331,40 @@ void solveTouchingPositions(std::span<const uint32_t> touching, std::span<Contac
             block(candidate);
         }
         if (partner == 0) {
-            solveSinglePointPositions(pair, contacts[pair.first], ctx);
+            solve(pair);
             continue;
         }
-        ContactPair& other = pairs[touching[k + partner]];
-        solveSinglePointPositionsSideBySide(pair, contacts[pair.first], other, contacts[other.first], ctx);
+        two(pair, pairs[touching[k + partner]]);
         early |= 1u << partner;
     }
+}
+
+}  // namespace
+
+double contactDepth(const Contact& contact, const Body& b0, const Body& b1) {
+    const Vec3 p0 = b0.pointToWorld(contact.local0);
+    const Vec3 p1 = b1.pointToWorld(contact.local1);
+    return (p1 - p0).dot(contact.normal);
+}
+
+void solveContactPositions(ContactPair& pair, std::span<Contact> contacts, SolverContext& ctx) {
+    const int points = static_cast<int>(std::min<size_t>(contacts.size(), kMaxPatchPoints));
+    if (points == 1) return solveSinglePointPositions(pair, contacts[0], ctx);
+    solvePatchPositions(pair, contacts.first(points), ctx);
+}
+
+void solveTouchingPositions(std::span<const uint32_t> touching, std::span<ContactPair> pairs,
+                            std::span<Contact> contacts, SolverContext& ctx) {
+    const auto solveAlone = [&](ContactPair& pair) {
+        solveContactPositions(pair, contacts.subspan(pair.first, pair.count), ctx);
+    };
+    if (ctx.solver != SolverType::GaussSeidel) {
+        for (const uint32_t p : touching) solveAlone(pairs[p]);
+        return;
+    }
+    sideBySide(touching, pairs, ctx.bodies, solveAlone, [&](ContactPair& a, ContactPair& b) {
+        solveSinglePointPositionsSideBySide(a, contacts[a.first], b, contacts[b.first], ctx);
+    });
 }
 
 void solveCollisionVelocities(const ContactPair& pair, const Contact& c, Body* bodies, double h) {
@@ -323,50 +381,33 @@ void solveCollisionVelocities(const ContactPair& pair, const Contact& c, Body* b
     applySinglePointFriction(pair, c, b0, b1, r0, r1, h);
 }
 
-namespace {
-
-/// After the collision pass: the approach a point of a one-point pair has left (its push's
-/// velocity removed, a support under gravity approaches by g h) is removed, Eq. 34 with e = 0.
-/// A point that collided and separates is left alone (its bounce). A point that did not
-/// collide (a push between two bodies a collision reached) separates no faster than it did
-/// before the substep (v̄_n, Eq. 29 on the velocities before the derivation): its own push is
-/// gone, so a faster separation is what the other contacts' pushes of this substep gave it.
-/// Left in, as it was, a frictionless pile never came to rest: spheres wedged between
-/// neighbours were pushed apart by their supports at every substep, kept that as a real
-/// separation, fell back into the overlap and were pushed apart again (the pile's energy rising
-/// by up to 0.13 J in a frame, the pile chattering past 12 s).
-void removeApproach(const Contact& c, Body& b0, Body& b1) {
-    const Vec3& n = c.normal;
-    const Vec3 r0 = b0.q * c.local0;
-    const Vec3 r1 = b1.q * c.local1;
-    const double vn = (pointVelocity(b0.v, b0.omega, r0) - pointVelocity(b1.v, b1.omega, r1)).dot(n);  // Eq. 29
-    double target = std::max(vn, 0.0);
-    if (!(c.restitutionImpulse > 0.0)) {
-        const double vnBefore =
-            (pointVelocity(b0.vPrev, b0.omegaPrev, r0) - pointVelocity(b1.vPrev, b1.omegaPrev, r1)).dot(n);
-        target = std::min(target, std::max(vnBefore, 0.0));
-    }
-    if (std::abs(target - vn) > kRestingSpeed)
-        changePointVelocity(b0, b1, pointResponse(b0, r0, n), pointResponse(b1, r1, n), n, target - vn);
-}
-
-}  // namespace
-
 void solveContactVelocities(const ContactPair& pair, std::span<const Contact> contacts,
                             Body* bodies, double h, double gravity) {
     Body& b0 = bodies[pair.body0];
     Body& b1 = bodies[pair.body1];
     const int points = static_cast<int>(std::min<size_t>(contacts.size(), kMaxPatchPoints));
     if (points == 1) {
-        const Contact& c = contacts[0];
-        if (c.collisionPass) {
-            removeApproach(c, b0, b1);
-        } else if (c.lambdaNormal > 0.0) {
-            solveSinglePointVelocities(pair, c, b0, b1, h, gravity);
-        }
+        OnePointVelocities point(pair, contacts[0], bodies, h, gravity);
+        point.normal();
+        point.dynamicFriction();
         return;
     }
     solvePatchVelocities(pair, contacts.first(points), b0, b1, h, gravity);
+}
+
+void solveTouchingVelocities(std::span<const uint32_t> touching, std::span<const ContactPair> pairs,
+                             std::span<const Contact> contacts, Body* bodies, double h, double gravity) {
+    const auto solveAlone = [&](const ContactPair& pair) {
+        solveContactVelocities(pair, contacts.subspan(pair.first, pair.count), bodies, h, gravity);
+    };
+    sideBySide(touching, pairs, bodies, solveAlone, [&](const ContactPair& a, const ContactPair& b) {
+        OnePointVelocities first(a, contacts[a.first], bodies, h, gravity);
+        OnePointVelocities second(b, contacts[b.first], bodies, h, gravity);
+        first.normal();
+        second.normal();
+        first.dynamicFriction();
+        second.dynamicFriction();
+    });
 }
 
 }  // namespace substep

@@ -500,6 +500,9 @@ void World::solveVelocities(double h) {
                            [&] { solveCollisionVelocities(pair, contacts_[pair.first], bodies_.data(), h); });
             }
         if (frame_.coloured && !corrections_) return solveColouredContactVelocities(h, gravity);
+        // Recording the corrections goes pair by pair (around() reads the bodies before each).
+        if (!corrections_)
+            return solveTouchingVelocities(touchingPairs_, contactPairs_, contacts_, bodies_.data(), h, gravity);
         for (const uint32_t p : touchingPairs_) {
             const ContactPair& pair = contactPairs_[p];
             around(ConstraintKind::Contact, p, pair.body0, pair.body1, [&] {

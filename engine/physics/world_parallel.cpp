@@ -159,11 +159,8 @@ void World::solveColouredContactVelocities(double h, double gravity) {
     for (int g = 0; g < ColourGroups::kGroups; ++g) {
         const std::span<const uint32_t> pairs = state.touching[g];
         forChunks(pool, pairs.size(), g == kOverflow, [&](size_t first, size_t last) {
-            for (size_t k = first; k < last; ++k) {
-                const ContactPair& pair = contactPairs_[pairs[k]];
-                solveContactVelocities(pair, std::span(contacts_).subspan(pair.first, pair.count), bodies_.data(),
-                                       h, gravity);
-            }
+            solveTouchingVelocities(pairs.subspan(first, last - first), contactPairs_, contacts_, bodies_.data(), h,
+                                    gravity);
         }, kMinParallelPairs);
     }
 }

@@ -170,7 +170,9 @@ namespace {
 // (no moving body in common with each other or with the pairs the second passes): the bodies and
 // multipliers must come out bit for bit as solving the list in order one pair at a time. Few
 // bodies and many pairs, so that most neighbours in the list share a body, a static plane and a
-// static box shared by many, and two-point patches among them that keep their place.
+// static box shared by many, and two-point patches among them that keep their place. Then the
+// velocity pass the same way (solveTouchingVelocities against solveContactVelocities in order),
+// on random velocities, with some points after the collision pass (removeApproach).
 TEST(ContactOnePointTest, TouchingPairsSolvedSideBySideGiveTheBytesOfTheListedOrder) {
     std::mt19937 random(18);
     std::uniform_real_distribution<double> unit(-1.0, 1.0);
@@ -237,6 +239,33 @@ TEST(ContactOnePointTest, TouchingPairsSolvedSideBySideGiveTheBytesOfTheListedOr
             ASSERT_EQ(pairs[p].lambdaNormal, inOrderPairs[p].lambdaNormal) << "round " << round << " pair " << p;
             ASSERT_EQ(pairs[p].lambdaTangent1, inOrderPairs[p].lambdaTangent1) << "round " << round << " pair " << p;
         }
+
+        // The velocity pass: the same random velocities on both copies, a point in five after
+        // the collision pass (half of those with a collision impulse).
+        for (size_t b = 2; b < bodies.size(); ++b) {
+            Body& body = bodies[b];
+            body.v = Vec3(unit(random), unit(random), unit(random));
+            body.omega = 3.0 * Vec3(unit(random), unit(random), unit(random));
+            body.vPrev = body.v + 0.2 * Vec3(unit(random), unit(random), unit(random));
+            body.omegaPrev = body.omega + 0.5 * Vec3(unit(random), unit(random), unit(random));
+            Body& copy = inOrderBodies[b];
+            copy.v = body.v, copy.omega = body.omega, copy.vPrev = body.vPrev, copy.omegaPrev = body.omegaPrev;
+        }
+        for (size_t i = 0; i < contacts.size(); ++i) {
+            if (i % 5 != 4) continue;
+            contacts[i].collisionPass = inOrderContacts[i].collisionPass = true;
+            contacts[i].restitutionImpulse = inOrderContacts[i].restitutionImpulse = i % 10 == 4 ? 0.3 : 0.0;
+        }
+        for (const uint32_t p : touching)
+            solveContactVelocities(inOrderPairs[p],
+                                   std::span<const Contact>(inOrderContacts).subspan(inOrderPairs[p].first, inOrderPairs[p].count),
+                                   inOrderBodies.data(), h, 10.0);
+        solveTouchingVelocities(touching, pairs, contacts, bodies.data(), h, 10.0);
+        for (size_t b = 0; b < bodies.size(); ++b)
+            for (int k = 0; k < 3; ++k) {
+                ASSERT_EQ(bodies[b].v[k], inOrderBodies[b].v[k]) << "round " << round << " body " << b;
+                ASSERT_EQ(bodies[b].omega[k], inOrderBodies[b].omega[k]) << "round " << round << " body " << b;
+            }
     }
 }
 
