@@ -353,7 +353,7 @@ private:
     std::vector<ContactPair> contactPairs_;
     std::vector<ContactPair> previousPairs_;
     std::vector<double> reaches_;  ///< per body: its shape's reach (0: in no pair this frame)
-    std::vector<Pose> poses_;      ///< per body: its shape's pose this substep
+    std::vector<Pose> poses_;      ///< per body: its shape's pose this substep (a sphere's position alone)
     std::vector<Contact> contacts_;
     /// This substep's pairs with contact points (indices into contactPairs_, in pair order):
     /// the solve and the velocity pass visit these alone.

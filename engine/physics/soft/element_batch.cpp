@@ -14,15 +14,8 @@ namespace {
     using Kernel = BatchKernel<simd::Lanes>;
     uint32_t handedOver = 0;
     const bool anyHeld = !arrays.heldBatches.empty();
-    for (size_t b = 0; b < batches.size(); ++b) {
-        const ElementBatch* const batch[1] = {&batches[b]};
-        if (anyHeld && arrays.heldBatches[b] != 0) [[unlikely]]
-            handedOver += batches[b].contiguous ? Kernel::solve<true, true>(batch, arrays, invH2)
-                                                : Kernel::solve<false, true>(batch, arrays, invH2);
-        else
-            handedOver += batches[b].contiguous ? Kernel::solve<true, false>(batch, arrays, invH2)
-                                                : Kernel::solve<false, false>(batch, arrays, invH2);
-    }
+    for (size_t b = 0; b < batches.size(); ++b)
+        handedOver += Kernel::solveOne(batches[b], anyHeld && arrays.heldBatches[b] != 0, arrays, invH2);
     return handedOver;
 }
 

@@ -249,6 +249,15 @@ struct BatchKernel {
     template <bool Contiguous, bool Held>
     [[gnu::always_inline]] static uint32_t solve(const ElementBatch* const* batches, const ElementArrays& arrays,
                                                  double invH2);
+
+    /// One batch, by its kind: gathered or contiguous corners, with a held corner or without.
+    [[gnu::always_inline]] static uint32_t solveOne(const ElementBatch& batch, bool held, const ElementArrays& arrays,
+                                                    double invH2) {
+        const ElementBatch* const one[1] = {&batch};
+        if (held) [[unlikely]]
+            return batch.contiguous ? solve<true, true>(one, arrays, invH2) : solve<false, true>(one, arrays, invH2);
+        return batch.contiguous ? solve<true, false>(one, arrays, invH2) : solve<false, false>(one, arrays, invH2);
+    }
 };
 
 template <class Lanes>

@@ -36,15 +36,10 @@ namespace substep {
         if (batch.partnerBehind != 0 && !held(b) && !held(b - batch.partnerBehind)) continue;
         const size_t ahead = b + batch.partnerAhead;
         const ElementBatch* const pair[2] = {&batch, &batches[ahead]};
-        if (held(b)) [[unlikely]] {
-            handedOver += batches[b].contiguous ? Four::solve<true, true>(pair, arrays, invH2)
-                                                : Four::solve<false, true>(pair, arrays, invH2);
-        } else if (batch.partnerAhead != 0 && !held(ahead)) {
+        if (!held(b) && batch.partnerAhead != 0 && !held(ahead))
             handedOver += Eight::solve<true, false>(pair, arrays, invH2);
-        } else {
-            handedOver += batches[b].contiguous ? Four::solve<true, false>(pair, arrays, invH2)
-                                                : Four::solve<false, false>(pair, arrays, invH2);
-        }
+        else
+            handedOver += Four::solveOne(batch, held(b), arrays, invH2);
     }
     return handedOver;
 }

@@ -110,6 +110,18 @@ struct Elements {
     }
 };
 
+/// Marks each batch with a held corner (ElementArrays::heldBatches), as SoftSystem does for the
+/// particles in contact.
+void markHeldBatches(Elements& s, std::span<const ElementBatch> batches) {
+    s.heldBatches.clear();
+    for (const ElementBatch& batch : batches) {
+        bool any = false;
+        for (uint32_t l = 0; l < batch.lanes; ++l)
+            for (int j = 0; j < 8; ++j) any = any || !s.holdNormals[batch.particle[j][l]].isZero(0.0);
+        s.heldBatches.push_back(any ? 1 : 0);
+    }
+}
+
 /// Element e's share of a held corner's push into its contact: where the correction
 /// Δx_j = w_j ∇_j C Δλ points into it (Δλ's sign is that of `numerator`), the corner's inverse
 /// mass along n is 0. Takes the normal part out of `gradient` and returns it (0: not held).
@@ -306,12 +318,7 @@ TEST(ElementBatch, HeldCornersTakeNoCorrectionIntoTheirContact) {
             scalar.x = batched.x, scalar.holdNormals = batched.holdNormals, scalar.heldImpulse = batched.heldImpulse;
             std::vector<ElementBatch> batches;
             appendBatches(batched.arrays(), batched.wave, 0, static_cast<uint32_t>(batched.elements.size()), batches);
-            for (const ElementBatch& batch : batches) {
-                bool any = false;
-                for (uint32_t l = 0; l < batch.lanes; ++l)
-                    for (int j = 0; j < 8; ++j) any = any || !batched.holdNormals[batch.particle[j][l]].isZero(0.0);
-                batched.heldBatches.push_back(any ? 1 : 0);
-            }
+            markHeldBatches(batched, batches);
             const double invH2 = 1200.0 * 1200.0;
             double deepest = 0.0, moved = 0.0;
             for (int sweep = 0; sweep < 5; ++sweep) {
@@ -417,12 +424,7 @@ TEST(ElementBatch, EightLanesGiveTheBitsOfFour) {
                 wide.holdNormals[i] = Vec3(0.1, 1, 0).normalized();
             std::vector<ElementBatch> batches;
             appendBatches(wide.arrays(), wide.wave, 0, static_cast<uint32_t>(wide.elements.size()), batches);
-            for (const ElementBatch& batch : batches) {
-                bool any = false;
-                for (uint32_t l = 0; l < batch.lanes; ++l)
-                    for (int j = 0; j < 8; ++j) any = any || !wide.holdNormals[batch.particle[j][l]].isZero(0.0);
-                wide.heldBatches.push_back(any ? 1 : 0);
-            }
+            markHeldBatches(wide, batches);
             Elements four = wide;
             uint32_t handedWide = 0, handedFour = 0;
             for (int sweep = 0; sweep < 5; ++sweep) {
