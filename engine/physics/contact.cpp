@@ -1,6 +1,7 @@
 #include "physics/contact.h"
 
 #include "physics/contact_kinematics.h"
+#include "physics/contact_lanes.h"
 #include "physics/contact_patch.h"
 
 #include <algorithm>
@@ -163,22 +164,6 @@ void solveSinglePointPositions(ContactPair& pair, Contact& c, SolverContext& ctx
     solve.holdSlip();
 }
 
-/// Two one-point pairs with no moving body in common, step by step side by side: the same
-/// bytes as a then b, since neither reads what the other writes.
-void solveSinglePointPositionsSideBySide(ContactPair& a, Contact& ca, ContactPair& b, Contact& cb,
-                                         SolverContext& ctx) {
-    OnePointSolve first(a, ca, ctx);
-    OnePointSolve second(b, cb, ctx);
-    first.measure();
-    second.measure();
-    first.push();
-    second.push();
-    first.measureSlip();
-    second.measureSlip();
-    first.holdSlip();
-    second.holdSlip();
-}
-
 /// Eq. 33 along unit n for a velocity change of `change` along it, given both bodies' responses
 /// along n at r0, r1: p = change n / (w1 + w2), then v and ω of both bodies.
 inline void changePointVelocity(Body& b0, Body& b1, const PointResponse& s0, const PointResponse& s1,
@@ -287,29 +272,29 @@ struct OnePointVelocities {
     }
 };
 
-/// Gauss-Seidel's order binds only points that share a moving body: calls two(a, b) for a
-/// one-point pair a and the first of the next kWindow − 1 one-point pairs b that shares no
-/// moving body with it nor with any pair between them still to be solved (those keep their
-/// place), solve(pair) for every other pair. Every body then sees its corrections in the listed
-/// order: the same bytes as solve() on each pair in turn, whatever two() interleaves.
-template <class Pairs, class Solve, class Two>
-void sideBySide(std::span<const uint32_t> touching, Pairs pairs, const Body* bodies, const Solve& solve,
-                const Two& two) {
-    constexpr size_t kWindow = 4;
+/// Gauss-Seidel's order binds only points that share a moving body: gathers, for a pair that
+/// `joins` (a one-point pair), up to kContactLanes − 1 more that join from the next kWindow − 1
+/// pairs, each sharing no moving body with the group nor with any pair it passes that is still
+/// to be solved (those keep their place), and calls inLanes(group, members); solve(pair) takes
+/// every other pair, and a pair that found no partner. Every body then sees its corrections in
+/// the listed order: the same bytes as solve() on each pair in turn.
+template <class Pair, class Joins, class Solve, class InLanes>
+void inLanesWhereOrderAllows(std::span<const uint32_t> touching, std::span<Pair> pairs, const Body* bodies,
+                             const Joins& joins, const Solve& solve, const InLanes& inLanes) {
+    constexpr size_t kWindow = 8;
     const auto moves = [&](uint32_t body) { return bodies[body].invMass != 0.0; };
-    uint32_t early = 0;  // bit i: touching[k + i] was already solved as a partner
+    uint32_t early = 0;  // bit i: touching[k + i] was already solved in a group
     for (size_t k = 0; k < touching.size(); ++k, early >>= 1) {
         if (early & 1u) continue;
-        auto& pair = pairs[touching[k]];
-        if (pair.count != 1) {
+        Pair& pair = pairs[touching[k]];
+        if (!joins(pair)) {
             solve(pair);
             continue;
         }
-        // The moving bodies the partner must not touch: this pair's and those of the pairs
-        // it passes.
+        // The moving bodies a member must not touch: the group's and those of the pairs it passes.
         uint32_t blocked[2 * kWindow];
         size_t blockedCount = 0;
-        const auto block = [&](const ContactPair& p) {
+        const auto block = [&](const Pair& p) {
             if (moves(p.body0)) blocked[blockedCount++] = p.body0;
             if (moves(p.body1)) blocked[blockedCount++] = p.body1;
         };
@@ -318,24 +303,23 @@ void sideBySide(std::span<const uint32_t> touching, Pairs pairs, const Body* bod
                 if (blocked[i] == body) return true;
             return false;
         };
+        Pair* group[kContactLanes] = {&pair};
+        int members = 1;
         block(pair);
-        size_t partner = 0;
-        for (size_t i = 1; i < kWindow && k + i < touching.size(); ++i) {
+        for (size_t i = 1; i < kWindow && k + i < touching.size() && members < kContactLanes; ++i) {
             if (early >> i & 1u) continue;
-            const ContactPair& candidate = pairs[touching[k + i]];
-            if (candidate.count == 1 && !(moves(candidate.body0) && isBlocked(candidate.body0)) &&
+            Pair& candidate = pairs[touching[k + i]];
+            if (joins(candidate) && !(moves(candidate.body0) && isBlocked(candidate.body0)) &&
                 !(moves(candidate.body1) && isBlocked(candidate.body1))) {
-                partner = i;
-                break;
+                group[members++] = &candidate;
+                early |= 1u << i;
             }
             block(candidate);
         }
-        if (partner == 0) {
+        if (members == 1)
             solve(pair);
-            continue;
-        }
-        two(pair, pairs[touching[k + partner]]);
-        early |= 1u << partner;
+        else
+            inLanes(group, members);
     }
 }
 
@@ -362,9 +346,9 @@ void solveTouchingPositions(std::span<const uint32_t> touching, std::span<Contac
         for (const uint32_t p : touching) solveAlone(pairs[p]);
         return;
     }
-    sideBySide(touching, pairs, ctx.bodies, solveAlone, [&](ContactPair& a, ContactPair& b) {
-        solveSinglePointPositionsSideBySide(a, contacts[a.first], b, contacts[b.first], ctx);
-    });
+    inLanesWhereOrderAllows(
+        touching, pairs, ctx.bodies, [](const ContactPair& pair) { return pair.count == 1; }, solveAlone,
+        [&](ContactPair* const* group, int members) { solveOnePointPositionsInLanes(group, members, contacts, ctx); });
 }
 
 void solveCollisionVelocities(const ContactPair& pair, const Contact& c, Body* bodies, double h) {
@@ -400,13 +384,10 @@ void solveTouchingVelocities(std::span<const uint32_t> touching, std::span<const
     const auto solveAlone = [&](const ContactPair& pair) {
         solveContactVelocities(pair, contacts.subspan(pair.first, pair.count), bodies, h, gravity);
     };
-    sideBySide(touching, pairs, bodies, solveAlone, [&](const ContactPair& a, const ContactPair& b) {
-        OnePointVelocities first(a, contacts[a.first], bodies, h, gravity);
-        OnePointVelocities second(b, contacts[b.first], bodies, h, gravity);
-        first.normal();
-        second.normal();
-        first.dynamicFriction();
-        second.dynamicFriction();
+    // A point in the collision pass takes removeApproach (rare): alone.
+    const auto joins = [&](const ContactPair& pair) { return pair.count == 1 && !contacts[pair.first].collisionPass; };
+    inLanesWhereOrderAllows(touching, pairs, bodies, joins, solveAlone, [&](const ContactPair* const* group, int members) {
+        solveOnePointVelocitiesInLanes(group, members, contacts, bodies, h, gravity);
     });
 }
 
