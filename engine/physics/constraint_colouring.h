@@ -13,6 +13,8 @@
 /// dynamic bodies appears. A constraint that fits none goes to the overflow, solved serially
 /// after the colours. The colouring follows the constraints' order, so it is deterministic.
 
+#include "physics/contact_schedule.h"
+
 #include <array>
 #include <bit>
 #include <cstddef>
@@ -100,6 +102,7 @@ struct ColouredSolve {
     std::vector<uint8_t> pairColours;   ///< per contact pair of the frame
     std::vector<uint8_t> jointColours;  ///< per joint slot (ColourGroups::kSkip: dead)
     ColourGroups touching;              ///< this substep's touching pairs
+    ContactSchedule overflow;           ///< the overflow's touching pairs, which may share bodies
     /// The parallel narrowphase grouped this substep's touching pairs already (per block of
     /// pairs: its touching pairs' counts by colour, then where they go).
     bool touchingGrouped = false;

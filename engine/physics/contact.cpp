@@ -1,7 +1,6 @@
 #include "physics/contact.h"
 
 #include "physics/contact_kinematics.h"
-#include "physics/contact_lanes.h"
 #include "physics/contact_patch.h"
 
 #include <algorithm>
@@ -49,12 +48,10 @@ inline void movePoint(Body& b, const PointResponse& s, const Vec3& p, double del
 /// the general correction's normalisation, and both corrections move the bodies in place.
 /// Jacobi takes applyPositionalCorrection, which gathers the motions instead.
 ///
-/// Cut into its four dependent steps (measure, push, measure the slip, hold it), so that two
-/// points without a common moving body can be solved step by step side by side
-/// (solveTouchingPositions): each step ends in a chain of square roots and divisions the
-/// next one waits for, and a step of the other point fills that wait. Either way each point
-/// takes the same operations on the same numbers. The steps are flattened: GCC kept Eigen's
-/// quaternion rotation out of line in them, a call per lever arm (8 % of spheres1000).
+/// In its four dependent steps: measure, push, measure the slip, hold it. contact_lanes.cpp
+/// takes the same steps for up to four pairs at once, operation for operation (a pair gets the
+/// same bits either way): a change here is a change there. The steps are flattened: GCC kept
+/// Eigen's quaternion rotation out of line in them, a call per lever arm (8 % of spheres1000).
 struct OnePointSolve {
     ContactPair& pair;
     Contact& c;
@@ -229,8 +226,8 @@ void removeApproach(const Contact& c, Body& b0, Body& b1) {
 /// then dynamic friction with the impulse clamped (ERRATA item 2); after the collision pass,
 /// removeApproach instead. Fused: each change is applied along its unit direction with the
 /// generalised inverse mass computed once (the general Eq. 33 normalises the change and
-/// computes w again). In its two dependent steps, so that two pairs with no moving body in
-/// common can go side by side (solveTouchingVelocities), as the position solve's do.
+/// computes w again). In its two dependent steps, which contact_lanes.cpp takes for up to four
+/// pairs at once, operation for operation.
 struct OnePointVelocities {
     const ContactPair& pair;
     const Contact& c;
@@ -272,57 +269,6 @@ struct OnePointVelocities {
     }
 };
 
-/// Gauss-Seidel's order binds only points that share a moving body: gathers, for a pair that
-/// `joins` (a one-point pair), up to kContactLanes − 1 more that join from the next kWindow − 1
-/// pairs, each sharing no moving body with the group nor with any pair it passes that is still
-/// to be solved (those keep their place), and calls inLanes(group, members); solve(pair) takes
-/// every other pair, and a pair that found no partner. Every body then sees its corrections in
-/// the listed order: the same bytes as solve() on each pair in turn.
-template <class Pair, class Joins, class Solve, class InLanes>
-void inLanesWhereOrderAllows(std::span<const uint32_t> touching, std::span<Pair> pairs, const Body* bodies,
-                             const Joins& joins, const Solve& solve, const InLanes& inLanes) {
-    constexpr size_t kWindow = 8;
-    const auto moves = [&](uint32_t body) { return bodies[body].invMass != 0.0; };
-    uint32_t early = 0;  // bit i: touching[k + i] was already solved in a group
-    for (size_t k = 0; k < touching.size(); ++k, early >>= 1) {
-        if (early & 1u) continue;
-        Pair& pair = pairs[touching[k]];
-        if (!joins(pair)) {
-            solve(pair);
-            continue;
-        }
-        // The moving bodies a member must not touch: the group's and those of the pairs it passes.
-        uint32_t blocked[2 * kWindow];
-        size_t blockedCount = 0;
-        const auto block = [&](const Pair& p) {
-            if (moves(p.body0)) blocked[blockedCount++] = p.body0;
-            if (moves(p.body1)) blocked[blockedCount++] = p.body1;
-        };
-        const auto isBlocked = [&](uint32_t body) {
-            for (size_t i = 0; i < blockedCount; ++i)
-                if (blocked[i] == body) return true;
-            return false;
-        };
-        Pair* group[kContactLanes] = {&pair};
-        int members = 1;
-        block(pair);
-        for (size_t i = 1; i < kWindow && k + i < touching.size() && members < kContactLanes; ++i) {
-            if (early >> i & 1u) continue;
-            Pair& candidate = pairs[touching[k + i]];
-            if (joins(candidate) && !(moves(candidate.body0) && isBlocked(candidate.body0)) &&
-                !(moves(candidate.body1) && isBlocked(candidate.body1))) {
-                group[members++] = &candidate;
-                early |= 1u << i;
-            }
-            block(candidate);
-        }
-        if (members == 1)
-            solve(pair);
-        else
-            inLanes(group, members);
-    }
-}
-
 }  // namespace
 
 double contactDepth(const Contact& contact, const Body& b0, const Body& b1) {
@@ -335,20 +281,6 @@ void solveContactPositions(ContactPair& pair, std::span<Contact> contacts, Solve
     const int points = static_cast<int>(std::min<size_t>(contacts.size(), kMaxPatchPoints));
     if (points == 1) return solveSinglePointPositions(pair, contacts[0], ctx);
     solvePatchPositions(pair, contacts.first(points), ctx);
-}
-
-void solveTouchingPositions(std::span<const uint32_t> touching, std::span<ContactPair> pairs,
-                            std::span<Contact> contacts, SolverContext& ctx) {
-    const auto solveAlone = [&](ContactPair& pair) {
-        solveContactPositions(pair, contacts.subspan(pair.first, pair.count), ctx);
-    };
-    if (ctx.solver != SolverType::GaussSeidel) {
-        for (const uint32_t p : touching) solveAlone(pairs[p]);
-        return;
-    }
-    inLanesWhereOrderAllows(
-        touching, pairs, ctx.bodies, [](const ContactPair& pair) { return pair.count == 1; }, solveAlone,
-        [&](ContactPair* const* group, int members) { solveOnePointPositionsInLanes(group, members, contacts, ctx); });
 }
 
 void solveCollisionVelocities(const ContactPair& pair, const Contact& c, Body* bodies, double h) {
@@ -377,18 +309,6 @@ void solveContactVelocities(const ContactPair& pair, std::span<const Contact> co
         return;
     }
     solvePatchVelocities(pair, contacts.first(points), b0, b1, h, gravity);
-}
-
-void solveTouchingVelocities(std::span<const uint32_t> touching, std::span<const ContactPair> pairs,
-                             std::span<const Contact> contacts, Body* bodies, double h, double gravity) {
-    const auto solveAlone = [&](const ContactPair& pair) {
-        solveContactVelocities(pair, contacts.subspan(pair.first, pair.count), bodies, h, gravity);
-    };
-    // A point in the collision pass takes removeApproach (rare): alone.
-    const auto joins = [&](const ContactPair& pair) { return pair.count == 1 && !contacts[pair.first].collisionPass; };
-    inLanesWhereOrderAllows(touching, pairs, bodies, joins, solveAlone, [&](const ContactPair* const* group, int members) {
-        solveOnePointVelocitiesInLanes(group, members, contacts, bodies, h, gravity);
-    });
 }
 
 }  // namespace substep

@@ -96,12 +96,6 @@ double contactDepth(const Contact& contact, const Body& b0, const Body& b1);
 /// λ_t ≤ μ_s Σλ_n.
 void solveContactPositions(ContactPair& pair, std::span<Contact> contacts, SolverContext& ctx);
 
-/// The position solve of this substep's touching pairs (indices into `pairs`), in their order
-/// for Gauss-Seidel: solveContactPositions of each, with one-point pairs that share no moving
-/// body solved two at a time where the order allows (the same bytes, faster).
-void solveTouchingPositions(std::span<const uint32_t> touching, std::span<ContactPair> pairs,
-                            std::span<Contact> contacts, SolverContext& ctx);
-
 /// Velocity pass of one pair (paper 3.6, Eqs. 29-34): restitution e v̄_n (e = 0 below
 /// 2|g|h, the jitter guard) replaces the normal velocity PBD derived, and dynamic friction
 /// removes slip with an impulse of at most h μ_d |f_n| (Eq. 30 with ERRATA item 2's units).
@@ -110,12 +104,6 @@ void solveTouchingPositions(std::span<const uint32_t> touching, std::span<Contac
 /// (Eq. 34 with e = 0) and, if it did not collide, a separation faster than its v̄_n.
 void solveContactVelocities(const ContactPair& pair, std::span<const Contact> contacts,
                             Body* bodies, double h, double gravity);
-
-/// The velocity pass of this substep's touching pairs (indices into `pairs`), in their order:
-/// solveContactVelocities of each, with one-point pairs that share no moving body taken two at
-/// a time where the order allows, as solveTouchingPositions does (the same bytes, faster).
-void solveTouchingVelocities(std::span<const uint32_t> touching, std::span<const ContactPair> pairs,
-                             std::span<const Contact> contacts, Body* bodies, double h, double gravity);
 
 /// The collision pass of a one-point pair's point (Contact::collisionPass,
 /// contact_restitution.h): the push's impulse λ_n / h, which the derivation put into the

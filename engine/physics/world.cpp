@@ -298,7 +298,10 @@ bool World::substep() {
     lap(stepTimes_.integrate);
     if (!contactPairs_.empty()) findContacts(frame_.sleeping);
     else touchingPairs_.clear();
-    if (frame_.coloured) groupTouchingPairs();
+    if (frame_.coloured)
+        groupTouchingPairs();
+    else
+        contactSchedule_.plan(touchingPairs_, contactPairs_, bodies_.data());
     if (soft) soft_->findContacts(bodies_, settings_.contactMargin);
     if (soft) soft_->holdContactParticles();  // none unless SoftSystem::setHeldContacts
     lap(stepTimes_.narrowphase);
@@ -417,7 +420,7 @@ void World::solvePositions(double h) {
         solveColouredPositions(ctx, clusters);  // by colour, in parallel (world_parallel.cpp)
     } else {
         solveJointsInOrder(ctx, clusters);
-        solveTouchingPositions(touchingPairs_, contactPairs_, contacts_, ctx);
+        solveTouchingPositions(contactSchedule_, contactPairs_, contacts_, ctx);
     }
     // Soft bodies after the rigid ones: elements, attachments, then their contacts.
     if (hasSoftBodies()) {
@@ -502,7 +505,7 @@ void World::solveVelocities(double h) {
         if (frame_.coloured && !corrections_) return solveColouredContactVelocities(h, gravity);
         // Recording the corrections goes pair by pair (around() reads the bodies before each).
         if (!corrections_)
-            return solveTouchingVelocities(touchingPairs_, contactPairs_, contacts_, bodies_.data(), h, gravity);
+            return solveTouchingVelocities(contactSchedule_, contactPairs_, contacts_, bodies_.data(), h, gravity);
         for (const uint32_t p : touchingPairs_) {
             const ContactPair& pair = contactPairs_[p];
             around(ConstraintKind::Contact, p, pair.body0, pair.body1, [&] {

@@ -6,6 +6,7 @@
 #include "physics/body.h"
 #include "physics/collision/broadphase.h"
 #include "physics/contact.h"
+#include "physics/contact_schedule.h"
 #include "physics/contact_restitution.h"
 #include "physics/correction.h"
 #include "physics/handles.h"
@@ -358,6 +359,7 @@ private:
     /// This substep's pairs with contact points (indices into contactPairs_, in pair order):
     /// the solve and the velocity pass visit these alone.
     std::vector<uint32_t> touchingPairs_;
+    ContactSchedule contactSchedule_;  ///< this substep's touching pairs in their solve order (serial step)
     RestitutionScratch restitutionScratch_;  ///< reused by the restitution sweeps
     std::size_t droppedContactPairs_ = 0;
     /// Body pairs joined by a joint that does not let them collide, sorted; rebuilt when the

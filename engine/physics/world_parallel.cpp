@@ -115,11 +115,11 @@ void World::colourConstraints() {
 
 void World::groupTouchingPairs() {
     // The parallel narrowphase groups them as it lists them (world_contacts.cpp).
-    if (coloured_->touchingGrouped) {
+    if (coloured_->touchingGrouped)
         coloured_->touchingGrouped = false;
-        return;
-    }
-    coloured_->touching.group(touchingPairs_, coloured_->pairColours.data());
+    else
+        coloured_->touching.group(touchingPairs_, coloured_->pairColours.data());
+    coloured_->overflow.plan(coloured_->touching[ColourGroups::kOverflowGroup], contactPairs_, bodies_.data());
 }
 
 void World::solveColouredPositions(SolverContext& ctx, JointBlockSolver* clusters) {
@@ -143,11 +143,15 @@ void World::solveColouredPositions(SolverContext& ctx, JointBlockSolver* cluster
     }
     for (int g = 0; g < ColourGroups::kGroups; ++g) {
         const std::span<const uint32_t> pairs = state.touching[g];
-        // A colour's pairs share no moving body, so solveTouchingPositions takes its one-point
-        // pairs two at a time, side by side (the same bytes as one by one).
-        forChunks(pool, pairs.size(), g == kOverflow, [&](size_t first, size_t last) {
+        // A colour's pairs share no moving body: its one-point pairs go into lanes as they come.
+        // The overflow's may share bodies, and they are solved serially in their schedule.
+        if (g == kOverflow) {
+            solveTouchingPositions(state.overflow, contactPairs_, contacts_, ctx);
+            continue;
+        }
+        forChunks(pool, pairs.size(), false, [&](size_t first, size_t last) {
             SolverContext local = ctx;
-            solveTouchingPositions(pairs.subspan(first, last - first), contactPairs_, contacts_, local);
+            solveIndependentPositions(pairs.subspan(first, last - first), contactPairs_, contacts_, local);
         }, kMinParallelPairs);
     }
 }
@@ -158,9 +162,13 @@ void World::solveColouredContactVelocities(double h, double gravity) {
     constexpr int kOverflow = ColourGroups::kOverflowGroup;
     for (int g = 0; g < ColourGroups::kGroups; ++g) {
         const std::span<const uint32_t> pairs = state.touching[g];
-        forChunks(pool, pairs.size(), g == kOverflow, [&](size_t first, size_t last) {
-            solveTouchingVelocities(pairs.subspan(first, last - first), contactPairs_, contacts_, bodies_.data(), h,
-                                    gravity);
+        if (g == kOverflow) {
+            solveTouchingVelocities(state.overflow, contactPairs_, contacts_, bodies_.data(), h, gravity);
+            continue;
+        }
+        forChunks(pool, pairs.size(), false, [&](size_t first, size_t last) {
+            solveIndependentVelocities(pairs.subspan(first, last - first), contactPairs_, contacts_, bodies_.data(), h,
+                                       gravity);
         }, kMinParallelPairs);
     }
 }

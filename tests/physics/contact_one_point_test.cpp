@@ -7,6 +7,7 @@
 // solves one-point pairs two at a time, against the list solved in order, bit for bit.
 
 #include "physics/contact.h"
+#include "physics/contact_schedule.h"
 #include "physics_test_support.h"
 
 #include <gtest/gtest.h>
@@ -227,8 +228,10 @@ TEST(ContactOnePointTest, TouchingPairsSolvedSideBySideGiveTheBytesOfTheListedOr
         for (const uint32_t p : touching)
             solveContactPositions(inOrderPairs[p], std::span(inOrderContacts).subspan(inOrderPairs[p].first, inOrderPairs[p].count),
                                   inOrder);
-        SolverContext sideBySide{.bodies = bodies.data(), .h = h, .invH2 = 1.0 / (h * h)};
-        solveTouchingPositions(touching, pairs, contacts, sideBySide);
+        SolverContext inLanes{.bodies = bodies.data(), .h = h, .invH2 = 1.0 / (h * h)};
+        ContactSchedule schedule;
+        schedule.plan(touching, pairs, bodies.data());
+        solveTouchingPositions(schedule, pairs, contacts, inLanes);
 
         for (size_t b = 0; b < bodies.size(); ++b) {
             for (int k = 0; k < 3; ++k) ASSERT_EQ(bodies[b].x[k], inOrderBodies[b].x[k]) << "round " << round << " body " << b;
@@ -260,7 +263,7 @@ TEST(ContactOnePointTest, TouchingPairsSolvedSideBySideGiveTheBytesOfTheListedOr
             solveContactVelocities(inOrderPairs[p],
                                    std::span<const Contact>(inOrderContacts).subspan(inOrderPairs[p].first, inOrderPairs[p].count),
                                    inOrderBodies.data(), h, 10.0);
-        solveTouchingVelocities(touching, pairs, contacts, bodies.data(), h, 10.0);
+        solveTouchingVelocities(schedule, pairs, contacts, bodies.data(), h, 10.0);
         for (size_t b = 0; b < bodies.size(); ++b)
             for (int k = 0; k < 3; ++k) {
                 ASSERT_EQ(bodies[b].v[k], inOrderBodies[b].v[k]) << "round " << round << " body " << b;
