@@ -13,34 +13,41 @@ void ContactSchedule::plan(std::span<const uint32_t> touching, std::span<const C
     constexpr size_t kWindow = 8;
     touching_.assign(touching.begin(), touching.end());
     steps_.resize(2 * touching.size());  // at most a count and an index per pair
+    // Each pair's moving bodies, read once: the window below looks at every pair up to
+    // kWindow − 1 times, and a body's record is a scattered 608 bytes.
+    constexpr uint32_t kStill = ~0u;  // a static or kinematic body, which the step may share
+    candidates_.resize(touching.size());
+    for (size_t k = 0; k < touching.size(); ++k) {
+        const ContactPair& pair = pairs[touching[k]];
+        const auto moving = [&](uint32_t body) { return bodies[body].invMass != 0.0 ? body : kStill; };
+        candidates_[k] = {moving(pair.body0), moving(pair.body1), pair.count == 1};
+    }
     size_t written = 0;
-    const auto moves = [&](uint32_t body) { return bodies[body].invMass != 0.0; };
     uint32_t early = 0;  // bit i: touching[k + i] already has its step
     for (size_t k = 0; k < touching.size(); ++k, early >>= 1) {
         if (early & 1u) continue;
-        const ContactPair& pair = pairs[touching[k]];
         const size_t step = written;
         steps_[written++] = 1;
         steps_[written++] = touching[k];
-        if (pair.count != 1) continue;
+        if (!candidates_[k].onePoint) continue;
         // The moving bodies a partner must not touch: the step's and those of the pairs it passes.
         uint32_t blocked[2 * kWindow];
         size_t blockedCount = 0;
-        const auto block = [&](const ContactPair& p) {
-            if (moves(p.body0)) blocked[blockedCount++] = p.body0;
-            if (moves(p.body1)) blocked[blockedCount++] = p.body1;
+        const auto block = [&](const Candidate& c) {
+            if (c.moving0 != kStill) blocked[blockedCount++] = c.moving0;
+            if (c.moving1 != kStill) blocked[blockedCount++] = c.moving1;
         };
         const auto isBlocked = [&](uint32_t body) {
+            if (body == kStill) return false;
             for (size_t i = 0; i < blockedCount; ++i)
                 if (blocked[i] == body) return true;
             return false;
         };
-        block(pair);
+        block(candidates_[k]);
         for (size_t i = 1; i < kWindow && k + i < touching.size() && steps_[step] < kContactLanes; ++i) {
             if (early >> i & 1u) continue;
-            const ContactPair& candidate = pairs[touching[k + i]];
-            if (candidate.count == 1 && !(moves(candidate.body0) && isBlocked(candidate.body0)) &&
-                !(moves(candidate.body1) && isBlocked(candidate.body1))) {
+            const Candidate& candidate = candidates_[k + i];
+            if (candidate.onePoint && !isBlocked(candidate.moving0) && !isBlocked(candidate.moving1)) {
                 steps_[written++] = touching[k + i];
                 ++steps_[step];
                 early |= 1u << i;

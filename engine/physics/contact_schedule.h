@@ -34,8 +34,16 @@ public:
     std::span<const uint32_t> steps() const { return steps_; }
 
 private:
+    /// A touching pair as the planning sees it: its moving bodies (~0 for one that does not move).
+    struct Candidate {
+        uint32_t moving0;
+        uint32_t moving1;
+        bool onePoint;
+    };
+
     std::vector<uint32_t> touching_;
     std::vector<uint32_t> steps_;
+    std::vector<Candidate> candidates_;  ///< scratch of plan()
 };
 
 /// The position solve of the planned pairs: solveContactPositions of each, in the schedule's
