@@ -167,14 +167,17 @@ TEST(ContactOnePointTest, StaticFrictionRemovesTheTangentialMotion) {
 namespace substep {
 namespace {
 
-// solveTouchingPositions solves one-point pairs two at a time where Gauss-Seidel's order allows
-// (no moving body in common with each other or with the pairs the second passes): the bodies and
-// multipliers must come out bit for bit as solving the list in order one pair at a time. Few
-// bodies and many pairs, so that most neighbours in the list share a body, a static plane and a
-// static box shared by many, and two-point patches among them that keep their place. Then the
-// velocity pass the same way (solveTouchingVelocities against solveContactVelocities in order),
-// on random velocities, with some points after the collision pass (removeApproach).
-TEST(ContactOnePointTest, TouchingPairsSolvedSideBySideGiveTheBytesOfTheListedOrder) {
+// solveTouchingPositions solves up to four one-point pairs at once, in vector lanes, where
+// Gauss-Seidel's order allows (ContactSchedule: no moving body in common with one another or
+// with the pairs they pass): the bodies and multipliers must come out bit for bit as solving the
+// list in order one pair at a time. Few bodies and many pairs, so that most neighbours in the
+// list share a body, a static plane and a static box shared by many, boxes (anisotropic) in some
+// rounds, two-point patches among them that keep their place, pairs with a λ_t of two tangents
+// left from a patch, and rounds of deep overlaps pushed out whole, whose turns go past the
+// series of integrateRotation. Then the velocity pass the same way (solveTouchingVelocities
+// against solveContactVelocities in order), on random velocities, with restitution, and with
+// some points after the collision pass (removeApproach).
+TEST(ContactOnePointTest, TouchingPairsSolvedInLanesGiveTheBytesOfTheListedOrder) {
     std::mt19937 random(18);
     std::uniform_real_distribution<double> unit(-1.0, 1.0);
     const auto randomTurn = [&] { return Quat(unit(random), unit(random), unit(random), unit(random)).normalized(); };
@@ -197,6 +200,7 @@ TEST(ContactOnePointTest, TouchingPairsSolvedSideBySideGiveTheBytesOfTheListedOr
         std::vector<Contact> contacts;
         std::uniform_int_distribution<int> pick(0, bodyCount - 1);
         const int pairCount = 5 + round % 40;
+        const bool deep = round % 5 == 4;  // pushed out whole (no cap): turns of over 0.2 rad
         while (static_cast<int>(pairs.size()) < pairCount) {
             const int i = pick(random), j = pick(random);
             if (i == j || (i < 2 && j < 2)) continue;
@@ -205,12 +209,16 @@ TEST(ContactOnePointTest, TouchingPairsSolvedSideBySideGiveTheBytesOfTheListedOr
             const int points = round % 4 == 1 && pairs.size() % 5 == 2 ? 2 : 1;
             pairs.push_back({.body0 = static_cast<uint32_t>(i), .body1 = static_cast<uint32_t>(j),
                              .staticFriction = pairs.size() % 7 == 3 ? 0.0 : 0.6, .dynamicFriction = 0.4,
-                             .first = static_cast<uint32_t>(contacts.size()), .count = static_cast<uint32_t>(points)});
+                             .restitution = pairs.size() % 3 == 1 ? 0.7 : 0.0,
+                             .first = static_cast<uint32_t>(contacts.size()), .count = static_cast<uint32_t>(points),
+                             .lambdaTangent1 = pairs.size() % 4 == 2 ? 1e-6 * unit(random) : 0.0,
+                             .lambdaTangent2 = pairs.size() % 8 == 2 ? 1e-6 * unit(random) : 0.0,
+                             .anchored = pairs.size() % 2 == 0});
             const Vec3 n = Vec3(unit(random), unit(random), unit(random)).normalized();
             for (int k = 0; k < points; ++k) {
                 // Overlapping by up to 5 mm (some not at all), anywhere between the bodies.
                 const Vec3 centre = 0.5 * (b0.x + b1.x) + 0.05 * Vec3(unit(random), unit(random), unit(random));
-                const double depth = 0.005 * unit(random);
+                const double depth = (deep ? 0.3 : 0.005) * unit(random);
                 const Vec3 p0 = centre - 0.5 * depth * n, p1 = centre + 0.5 * depth * n;
                 contacts.push_back({.local0 = b0.q.conjugate() * (p0 - b0.x),
                                     .local1 = b1.q.conjugate() * (p1 - b1.x),
@@ -224,11 +232,11 @@ TEST(ContactOnePointTest, TouchingPairsSolvedSideBySideGiveTheBytesOfTheListedOr
         std::vector<ContactPair> inOrderPairs = pairs;
         std::vector<Contact> inOrderContacts = contacts;
         const double h = 1.0 / 1200.0;
-        SolverContext inOrder{.bodies = inOrderBodies.data(), .h = h, .invH2 = 1.0 / (h * h)};
+        SolverContext inOrder{.bodies = inOrderBodies.data(), .h = h, .invH2 = 1.0 / (h * h), .capPushOut = !deep};
         for (const uint32_t p : touching)
             solveContactPositions(inOrderPairs[p], std::span(inOrderContacts).subspan(inOrderPairs[p].first, inOrderPairs[p].count),
                                   inOrder);
-        SolverContext inLanes{.bodies = bodies.data(), .h = h, .invH2 = 1.0 / (h * h)};
+        SolverContext inLanes{.bodies = bodies.data(), .h = h, .invH2 = 1.0 / (h * h), .capPushOut = !deep};
         ContactSchedule schedule;
         schedule.plan(touching, pairs, bodies.data());
         solveTouchingPositions(schedule, pairs, contacts, inLanes);
@@ -241,7 +249,11 @@ TEST(ContactOnePointTest, TouchingPairsSolvedSideBySideGiveTheBytesOfTheListedOr
         for (size_t p = 0; p < pairs.size(); ++p) {
             ASSERT_EQ(pairs[p].lambdaNormal, inOrderPairs[p].lambdaNormal) << "round " << round << " pair " << p;
             ASSERT_EQ(pairs[p].lambdaTangent1, inOrderPairs[p].lambdaTangent1) << "round " << round << " pair " << p;
+            ASSERT_EQ(pairs[p].lambdaTangent2, inOrderPairs[p].lambdaTangent2) << "round " << round << " pair " << p;
+            ASSERT_EQ(pairs[p].anchored, inOrderPairs[p].anchored) << "round " << round << " pair " << p;
         }
+        for (size_t i = 0; i < contacts.size(); ++i)
+            ASSERT_EQ(contacts[i].lambdaNormal, inOrderContacts[i].lambdaNormal) << "round " << round << " point " << i;
 
         // The velocity pass: the same random velocities on both copies, a point in five after
         // the collision pass (half of those with a collision impulse).
