@@ -3,6 +3,7 @@
 #include "physics/contact_kinematics.h"
 #include "physics/soft/lanes.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstring>
@@ -312,12 +313,8 @@ struct LanePoints {
     omega1 = select(apply & b1.turning, omega1 - impulse * s1.turn, omega1);
 }
 
-}  // namespace
-
-// Compiled for the base ISA and two wider ones, chosen at load time. The file is compiled with
-// -ffp-contract=off: a fused multiply-add would round differently from the scalar path.
-[[gnu::target_clones("arch=x86-64-v4", "avx2", "default")]] void solveOnePointPositionsInLanes(
-    ContactPair* const* pairs, int count, std::span<Contact> contacts, SolverContext& ctx) {
+[[gnu::always_inline]] inline void solvePositions(ContactPair* const* pairs, int count, std::span<Contact> contacts,
+                                                 SolverContext& ctx) {
     const LanePoints<ContactPair, Contact> points(pairs, count, contacts);
     LaneBodies b0(ctx.bodies, points.body0);
     LaneBodies b1(ctx.bodies, points.body1);
@@ -396,9 +393,9 @@ struct LanePoints {
     b1.storePose(count);
 }
 
-[[gnu::target_clones("arch=x86-64-v4", "avx2", "default")]] void solveOnePointVelocitiesInLanes(
-    const ContactPair* const* pairs, int count, std::span<const Contact> contacts, Body* bodies, double h,
-    double gravity) {
+[[gnu::always_inline]] inline void solveVelocities(const ContactPair* const* pairs, int count,
+                                                  std::span<const Contact> contacts, Body* bodies, double h,
+                                                  double gravity) {
     const LanePoints<const ContactPair, const Contact> points(pairs, count, contacts);
     const LaneBodies b0(bodies, points.body0);
     const LaneBodies b1(bodies, points.body1);
@@ -446,6 +443,74 @@ struct LanePoints {
     }
     b0.storeVelocities(v0, omega0, afterOmega0, count);
     b1.storeVelocities(v1, omega1, afterOmega1, count);
+}
+
+// The kernels compiled for three instruction sets. The file is compiled with -ffp-contract=off:
+// a fused multiply-add would round differently from the scalar path.
+[[gnu::target("arch=x86-64-v4")]] void solvePositionsAvx512(ContactPair* const* pairs, int count,
+                                                            std::span<Contact> contacts, SolverContext& ctx) {
+    solvePositions(pairs, count, contacts, ctx);
+}
+[[gnu::target("avx2")]] void solvePositionsAvx2(ContactPair* const* pairs, int count, std::span<Contact> contacts,
+                                                SolverContext& ctx) {
+    solvePositions(pairs, count, contacts, ctx);
+}
+void solvePositionsBase(ContactPair* const* pairs, int count, std::span<Contact> contacts, SolverContext& ctx) {
+    solvePositions(pairs, count, contacts, ctx);
+}
+[[gnu::target("arch=x86-64-v4")]] void solveVelocitiesAvx512(const ContactPair* const* pairs, int count,
+                                                             std::span<const Contact> contacts, Body* bodies,
+                                                             double h, double gravity) {
+    solveVelocities(pairs, count, contacts, bodies, h, gravity);
+}
+[[gnu::target("avx2")]] void solveVelocitiesAvx2(const ContactPair* const* pairs, int count,
+                                                 std::span<const Contact> contacts, Body* bodies, double h,
+                                                 double gravity) {
+    solveVelocities(pairs, count, contacts, bodies, h, gravity);
+}
+void solveVelocitiesBase(const ContactPair* const* pairs, int count, std::span<const Contact> contacts, Body* bodies,
+                         double h, double gravity) {
+    solveVelocities(pairs, count, contacts, bodies, h, gravity);
+}
+
+LaneIsa chosenIsa = widestLaneIsa();
+
+}  // namespace
+
+LaneIsa widestLaneIsa() {
+    // x86-64-v4's AVX-512 subsets (a CPU with them has the rest of x86-64-v4 and AVX2).
+    static const LaneIsa widest =
+        __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
+                __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512bw")
+            ? LaneIsa::Avx512
+            : (__builtin_cpu_supports("avx2") ? LaneIsa::Avx2 : LaneIsa::Base);
+    return widest;
+}
+
+LaneIsa useLaneIsa(LaneIsa isa) {
+    const LaneIsa previous = chosenIsa;
+    chosenIsa = std::min(isa, widestLaneIsa());
+    return previous;
+}
+
+void solveOnePointPositionsInLanes(ContactPair* const* pairs, int count, std::span<Contact> contacts,
+                                   SolverContext& ctx) {
+    switch (chosenIsa) {
+        case LaneIsa::Avx512: return solvePositionsAvx512(pairs, count, contacts, ctx);
+        case LaneIsa::Avx2: return solvePositionsAvx2(pairs, count, contacts, ctx);
+        case LaneIsa::Base: break;
+    }
+    solvePositionsBase(pairs, count, contacts, ctx);
+}
+
+void solveOnePointVelocitiesInLanes(const ContactPair* const* pairs, int count, std::span<const Contact> contacts,
+                                    Body* bodies, double h, double gravity) {
+    switch (chosenIsa) {
+        case LaneIsa::Avx512: return solveVelocitiesAvx512(pairs, count, contacts, bodies, h, gravity);
+        case LaneIsa::Avx2: return solveVelocitiesAvx2(pairs, count, contacts, bodies, h, gravity);
+        case LaneIsa::Base: break;
+    }
+    solveVelocitiesBase(pairs, count, contacts, bodies, h, gravity);
 }
 
 }  // namespace substep::contact_detail

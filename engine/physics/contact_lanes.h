@@ -15,12 +15,25 @@
 
 #include "physics/contact.h"
 
+#include <cstdint>
 #include <span>
 
 namespace substep::contact_detail {
 
 /// Most pairs one call takes.
 inline constexpr int kContactLanes = 4;
+
+/// The instruction sets the lanes are compiled for, narrowest first. Each gives the same bits
+/// (no fused multiply-adds); the widest the CPU has is used.
+enum class LaneIsa : uint8_t { Base, Avx2, Avx512 };
+
+/// The widest LaneIsa this CPU runs.
+LaneIsa widestLaneIsa();
+
+/// Makes the calls below use `isa` (at most the widest) and returns the one used before: for
+/// the tests, which compare every one with the scalar path, and the benchmarks. Not thread-safe:
+/// call it while no step runs.
+LaneIsa useLaneIsa(LaneIsa isa);
 
 /// solveContactPositions (Gauss-Seidel) of `count` one-point pairs, 1 ≤ count ≤ kContactLanes,
 /// that share no moving body.

@@ -7,6 +7,7 @@
 // solves one-point pairs two at a time, against the list solved in order, bit for bit.
 
 #include "physics/contact.h"
+#include "physics/contact_lanes.h"
 #include "physics/contact_schedule.h"
 #include "physics_test_support.h"
 
@@ -15,6 +16,7 @@
 #include <cmath>
 #include <random>
 #include <span>
+#include <string>
 #include <vector>
 
 namespace substep {
@@ -177,7 +179,8 @@ namespace {
 // series of integrateRotation. Then the velocity pass the same way (solveTouchingVelocities
 // against solveContactVelocities in order), on random velocities, with restitution, and with
 // some points after the collision pass (removeApproach).
-TEST(ContactOnePointTest, TouchingPairsSolvedInLanesGiveTheBytesOfTheListedOrder) {
+/// The check below, with the lanes in the instruction set chosen (contact_detail::useLaneIsa).
+void expectLanesGiveTheBytesOfTheListedOrder() {
     std::mt19937 random(18);
     std::uniform_real_distribution<double> unit(-1.0, 1.0);
     const auto randomTurn = [&] { return Quat(unit(random), unit(random), unit(random), unit(random)).normalized(); };
@@ -281,6 +284,18 @@ TEST(ContactOnePointTest, TouchingPairsSolvedInLanesGiveTheBytesOfTheListedOrder
                 ASSERT_EQ(bodies[b].v[k], inOrderBodies[b].v[k]) << "round " << round << " body " << b;
                 ASSERT_EQ(bodies[b].omega[k], inOrderBodies[b].omega[k]) << "round " << round << " body " << b;
             }
+    }
+}
+
+TEST(ContactOnePointTest, TouchingPairsSolvedInLanesGiveTheBytesOfTheListedOrder) {
+    using contact_detail::LaneIsa;
+    // Every instruction set the lanes are compiled for that this CPU runs (the base one always).
+    for (const LaneIsa isa : {LaneIsa::Base, LaneIsa::Avx2, LaneIsa::Avx512}) {
+        if (isa > contact_detail::widestLaneIsa()) continue;
+        SCOPED_TRACE("lane instruction set " + std::to_string(static_cast<int>(isa)));
+        const LaneIsa before = contact_detail::useLaneIsa(isa);
+        expectLanesGiveTheBytesOfTheListedOrder();
+        contact_detail::useLaneIsa(before);
     }
 }
 
