@@ -445,17 +445,16 @@ struct LanePoints {
     b1.storeVelocities(v1, omega1, afterOmega1, count);
 }
 
-// The kernels compiled for three instruction sets. The file is compiled with -ffp-contract=off:
-// a fused multiply-add would round differently from the scalar path.
+// The kernels compiled for two instruction sets. The file is compiled with -ffp-contract=off:
+// a fused multiply-add would round differently from the scalar path. On the base ISA
+// (sixteen SSE registers of two doubles) the four-lane kernel spilled and ran at half the speed
+// of the scalar path, which it therefore takes, pair by pair.
 [[gnu::target("arch=x86-64-v4")]] void solvePositionsAvx512(ContactPair* const* pairs, int count,
                                                             std::span<Contact> contacts, SolverContext& ctx) {
     solvePositions(pairs, count, contacts, ctx);
 }
 [[gnu::target("avx2")]] void solvePositionsAvx2(ContactPair* const* pairs, int count, std::span<Contact> contacts,
                                                 SolverContext& ctx) {
-    solvePositions(pairs, count, contacts, ctx);
-}
-void solvePositionsBase(ContactPair* const* pairs, int count, std::span<Contact> contacts, SolverContext& ctx) {
     solvePositions(pairs, count, contacts, ctx);
 }
 [[gnu::target("arch=x86-64-v4")]] void solveVelocitiesAvx512(const ContactPair* const* pairs, int count,
@@ -466,10 +465,6 @@ void solvePositionsBase(ContactPair* const* pairs, int count, std::span<Contact>
 [[gnu::target("avx2")]] void solveVelocitiesAvx2(const ContactPair* const* pairs, int count,
                                                  std::span<const Contact> contacts, Body* bodies, double h,
                                                  double gravity) {
-    solveVelocities(pairs, count, contacts, bodies, h, gravity);
-}
-void solveVelocitiesBase(const ContactPair* const* pairs, int count, std::span<const Contact> contacts, Body* bodies,
-                         double h, double gravity) {
     solveVelocities(pairs, count, contacts, bodies, h, gravity);
 }
 
@@ -500,7 +495,7 @@ void solveOnePointPositionsInLanes(ContactPair* const* pairs, int count, std::sp
         case LaneIsa::Avx2: return solvePositionsAvx2(pairs, count, contacts, ctx);
         case LaneIsa::Base: break;
     }
-    solvePositionsBase(pairs, count, contacts, ctx);
+    for (int i = 0; i < count; ++i) solveContactPositions(*pairs[i], contacts.subspan(pairs[i]->first, 1), ctx);
 }
 
 void solveOnePointVelocitiesInLanes(const ContactPair* const* pairs, int count, std::span<const Contact> contacts,
@@ -510,7 +505,8 @@ void solveOnePointVelocitiesInLanes(const ContactPair* const* pairs, int count, 
         case LaneIsa::Avx2: return solveVelocitiesAvx2(pairs, count, contacts, bodies, h, gravity);
         case LaneIsa::Base: break;
     }
-    solveVelocitiesBase(pairs, count, contacts, bodies, h, gravity);
+    for (int i = 0; i < count; ++i)
+        solveContactVelocities(*pairs[i], contacts.subspan(pairs[i]->first, 1), bodies, h, gravity);
 }
 
 }  // namespace substep::contact_detail

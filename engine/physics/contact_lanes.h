@@ -23,8 +23,9 @@ namespace substep::contact_detail {
 /// Most pairs one call takes.
 inline constexpr int kContactLanes = 4;
 
-/// The instruction sets the lanes are compiled for, narrowest first. Each gives the same bits
-/// (no fused multiply-adds); the widest the CPU has is used.
+/// The instruction sets the lanes are compiled for, narrowest first: the base ISA solves the
+/// pairs one by one, with the scalar path. Each gives the same bits (no fused multiply-adds);
+/// the widest the CPU has is used.
 enum class LaneIsa : uint8_t { Base, Avx2, Avx512 };
 
 /// The widest LaneIsa this CPU runs.
