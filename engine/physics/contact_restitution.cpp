@@ -77,6 +77,10 @@ inline bool starts(const ContactPair& pair, std::span<const Contact> contacts) {
     return !pair.pushedBefore && sweeps(pair, contacts);
 }
 
+inline SweepPair sweepPair(uint32_t index, const ContactPair& pair) {
+    return {index, pair.body0, pair.body1, pair.pushedBefore ? 1u : 0u};
+}
+
 }  // namespace
 
 bool findRestitutionImpulses(std::span<const uint32_t> touching, std::span<const ContactPair> pairs,
@@ -109,7 +113,7 @@ bool findRestitutionImpulses(std::span<const uint32_t> touching, std::span<const
         const Contact& c = contacts[pair.first];
         return approach(velocityBefore(b0), velocityBefore(b1), b0.q * c.local0, b1.q * c.local1, c.normal) > resting;
     };
-    std::vector<uint32_t>& visited = scratch.pairs;
+    std::vector<SweepPair>& visited = scratch.pairs;
     visited.clear();
     bool starting = false;
     const bool parallel = pool != nullptr && pool->threads() > 1 && touching.size() >= kMinParallelLook;
@@ -120,13 +124,13 @@ bool findRestitutionImpulses(std::span<const uint32_t> touching, std::span<const
         // block order, the serial `visited`. The serial look stops at the first pair that starts
         // one when the window is closed; that changes how much is looked at, not what is found.
         const size_t blocks = lookInBlocks(*pool, touching.size(), scratch, [&](size_t block, size_t first, size_t last) {
-            std::vector<uint32_t>& list = scratch.blockPairs[block];
+            std::vector<SweepPair>& list = scratch.blockPairs[block];
             list.clear();
             bool starts = false;
             for (size_t i = first; i < last; ++i) {
                 const ContactPair& pair = pairs[touching[i]];
                 if (!sweeps(pair, contacts)) continue;
-                list.push_back(touching[i]);
+                list.push_back(sweepPair(touching[i], pair));
                 starts = starts || startsNow(pair);
             }
             scratch.blockFlags[block] = starts ? 1 : 0;
@@ -140,7 +144,7 @@ bool findRestitutionImpulses(std::span<const uint32_t> touching, std::span<const
         for (const uint32_t k : touching) {
             const ContactPair& pair = pairs[k];
             if (!sweeps(pair, contacts)) continue;
-            visited.push_back(k);
+            visited.push_back(sweepPair(k, pair));
             starting = starting || startsNow(pair);
         }
     } else {
@@ -151,7 +155,7 @@ bool findRestitutionImpulses(std::span<const uint32_t> touching, std::span<const
             }
         if (!starting) return false;
         for (const uint32_t k : touching)
-            if (sweeps(pairs[k], contacts)) visited.push_back(k);
+            if (sweeps(pairs[k], contacts)) visited.push_back(sweepPair(k, pairs[k]));
     }
 
     BodyVelocity* velocities = scratch.velocities.data();
@@ -166,16 +170,16 @@ bool findRestitutionImpulses(std::span<const uint32_t> touching, std::span<const
     bool collidedAny = false;
     for (int sweep = 0; starting && sweep < kMaxSweeps; ++sweep) {
         bool collided = false;
-        for (const uint32_t k : visited) {
-            const ContactPair& pair = pairs[k];
+        for (const SweepPair& k : visited) {
             // The first sweep looks at every pair that pushed; the later ones only at the pairs
             // a body of which changed in the sweep before.
-            if (sweep > 0 && !(reachedNow(pair.body0) && changedIn[pair.body0] >= sweep - 1) &&
-                !(reachedNow(pair.body1) && changedIn[pair.body1] >= sweep - 1))
+            if (sweep > 0 && !(reachedNow(k.body0) && changedIn[k.body0] >= sweep - 1) &&
+                !(reachedNow(k.body1) && changedIn[k.body1] >= sweep - 1))
                 continue;
             // A pair that was already touching collides only once a collision has reached one
             // of its bodies: its own approach is a pile's settling, left to Eq. 34.
-            if (pair.pushedBefore && !reachedNow(pair.body0) && !reachedNow(pair.body1)) continue;
+            if (k.pushedBefore && !reachedNow(k.body0) && !reachedNow(k.body1)) continue;
+            const ContactPair& pair = pairs[k.pair];
             const Body& b0 = bodies[pair.body0];
             const Body& b1 = bodies[pair.body1];
             Contact& c = contacts[pair.first];
@@ -218,7 +222,7 @@ bool findRestitutionImpulses(std::span<const uint32_t> touching, std::span<const
             // several others), not a chain. Two-body collisions taken one after another do not
             // settle there, and their impulses left it shaking (spheres1000: 1650 collisions a
             // substep, five times the paper's rule's, and 70 % more time). It keeps Eq. 34.
-            for (const uint32_t k : visited) contacts[pairs[k].first].restitutionImpulse = 0.0;
+            for (const SweepPair& k : visited) contacts[pairs[k.pair].first].restitutionImpulse = 0.0;
             return false;
         }
     }
@@ -227,9 +231,8 @@ bool findRestitutionImpulses(std::span<const uint32_t> touching, std::span<const
     if (scratch.lastCollision == 0 || call - scratch.lastCollision >= kCollisionWindow) return false;
     uint32_t* collidedIn = scratch.collidedIn.data();
     if (collidedAny)
-        for (const uint32_t k : visited) {
-            const ContactPair& pair = pairs[k];
-            for (const uint32_t body : {pair.body0, pair.body1})
+        for (const SweepPair& k : visited) {
+            for (const uint32_t body : {k.body0, k.body1})
                 if (stamp[body] == call) collidedIn[body] = call;
         }
     // The points whose push the velocity pass replaces: those that collided, and those between
@@ -248,9 +251,9 @@ bool findRestitutionImpulses(std::span<const uint32_t> touching, std::span<const
     const auto markPasses = [&](size_t first, size_t last) {
         bool any = false;
         for (size_t i = first; i < last; ++i) {
-            const ContactPair& pair = pairs[visited[i]];
-            Contact& c = contacts[pair.first];
-            c.collisionPass = c.restitutionImpulse > 0.0 || (reached(pair.body0) && reached(pair.body1));
+            const SweepPair& k = visited[i];
+            Contact& c = contacts[pairs[k.pair].first];
+            c.collisionPass = c.restitutionImpulse > 0.0 || (reached(k.body0) && reached(k.body1));
             any = any || c.collisionPass;
         }
         return any;

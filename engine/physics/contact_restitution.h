@@ -53,6 +53,16 @@ struct BodyVelocity {
     Vec3 omega = Vec3::Zero();
 };
 
+/// A pair the sweeps visit, with what their every pass over it reads first: a compact, ordered
+/// list rather than the pairs' records (each its own cache line), read up to kMaxSweeps times
+/// a substep on one thread.
+struct SweepPair {
+    uint32_t pair;          ///< index into the pairs
+    uint32_t body0;
+    uint32_t body1;
+    uint32_t pushedBefore;  ///< ContactPair::pushedBefore
+};
+
 /// Storage the sweeps reuse from substep to substep (grown, never shrunk: no allocation once a
 /// world has settled). A body's entry in `velocities` is valid only while its `stamp` equals
 /// the current call's, so a call touches only the bodies a collision reaches.
@@ -60,11 +70,11 @@ struct RestitutionScratch {
     std::vector<BodyVelocity> velocities;  ///< per body: its velocities in the sweeps
     std::vector<uint32_t> stamp;           ///< per body: the call that last set its entry
     std::vector<int> changedIn;            ///< per body: the sweep its velocities last changed in
-    std::vector<uint32_t> pairs;           ///< the pairs the sweeps visit
+    std::vector<SweepPair> pairs;          ///< the pairs the sweeps visit, in pair order
     std::vector<uint32_t> collidedIn;      ///< per body: the last call a collision reached it in
     /// Per block of a parallel look over the touching pairs: the sweeps' pairs it found, and
     /// whether one of them starts a collision (or, later, takes the collision pass).
-    std::vector<std::vector<uint32_t>> blockPairs;
+    std::vector<std::vector<SweepPair>> blockPairs;
     std::vector<uint8_t> blockFlags;
     uint32_t call = 0;                     ///< this call's stamp
     uint32_t lastCollision = 0;            ///< the last call with a collision (0: none yet)

@@ -496,7 +496,8 @@ void World::solveVelocities(double h) {
                                                       gravity, restitutionScratch_, workerPool());
         // Only the pairs the sweeps visited (RestitutionScratch::pairs, in pair order) can take it.
         if (collided)
-            for (const uint32_t p : restitutionScratch_.pairs) {
+            for (const SweepPair& swept : restitutionScratch_.pairs) {
+                const uint32_t p = swept.pair;
                 const ContactPair& pair = contactPairs_[p];
                 if (contacts_[pair.first].collisionPass)
                     around(ConstraintKind::Contact, p, pair.body0, pair.body1,
