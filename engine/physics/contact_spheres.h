@@ -11,19 +11,42 @@
 #include "physics/collision/shape.h"
 #include "physics/contact.h"
 
+#include <cstdint>
 #include <vector>
 
 namespace substep {
 
 /// The contact of one point as World::findPairContacts stores it: each body's point in its
-/// principal frame (paper 3.5: r1, r2), the normal from body 1 towards body 0.
-[[gnu::flatten]] inline void appendContactInBodyFrames(const Body& b0, const Body& b1, const Vec3& point0,
-                                      const Vec3& point1, const Vec3& normal,
-                                      std::vector<Contact>& out) {
-    out.push_back({.local0 = b0.q.conjugate() * (point0 - b0.x),
-                   .local1 = b1.q.conjugate() * (point1 - b1.x),
+/// principal frame (paper 3.5: r1, r2), q0⁻¹ (p0 − x0) and q1⁻¹ (p1 − x1), the normal from body
+/// 1 towards body 0. The two points are turned side by side in the lanes of two doubles, each
+/// lane with Eigen's operations on a quaternion's conjugate and a vector in Eigen's order
+/// (u = 2 q⃗ × v, then (v + w u) + q⃗ × u, a cross product row by row), so the bits are Eigen's
+/// in half the instructions.
+[[gnu::always_inline]] inline void appendContactInBodyFrames(const Body& b0, const Body& b1, const Vec3& point0,
+                                                             const Vec3& point1, const Vec3& normal,
+                                                             std::vector<Contact>& out, uint32_t feature = 0) {
+    using Two = double __attribute__((vector_size(2 * sizeof(double))));
+    // The conjugates' vector parts, −q⃗ (a sign flip, as Eigen's conjugate()).
+    const Two qx{-b0.q.x(), -b1.q.x()};
+    const Two qy{-b0.q.y(), -b1.q.y()};
+    const Two qz{-b0.q.z(), -b1.q.z()};
+    const Two w{b0.q.w(), b1.q.w()};
+    const Two vx{point0.x() - b0.x.x(), point1.x() - b1.x.x()};
+    const Two vy{point0.y() - b0.x.y(), point1.y() - b1.x.y()};
+    const Two vz{point0.z() - b0.x.z(), point1.z() - b1.x.z()};
+    Two ux = qy * vz - qz * vy;
+    Two uy = qz * vx - qx * vz;
+    Two uz = qx * vy - qy * vx;
+    ux = ux + ux;
+    uy = uy + uy;
+    uz = uz + uz;
+    const Two rx = (vx + w * ux) + (qy * uz - qz * uy);
+    const Two ry = (vy + w * uy) + (qz * ux - qx * uz);
+    const Two rz = (vz + w * uz) + (qx * uy - qy * ux);
+    out.push_back({.local0 = Vec3(rx[0], ry[0], rz[0]),
+                   .local1 = Vec3(rx[1], ry[1], rz[1]),
                    .normal = normal,
-                   .feature = 0});
+                   .feature = feature});
 }
 
 /// Sphere (a, pose pa) against sphere (b, pose pb): collideSphereSphere's point on the line of

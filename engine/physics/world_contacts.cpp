@@ -187,63 +187,71 @@ void World::findContacts(bool sleeping) {
     });
 }
 
-void World::findPairContacts(const uint32_t* order, size_t first, size_t last, bool sleeping,
-                             std::vector<Contact>& out, std::vector<uint32_t>& touching) {
-    // Most of a frame's pairs have no point in a given substep (a pile's: half of them): the
+// Compiled for the base ISA and AVX2 (without FMA, so every operation rounds as in the base
+// build), chosen at load time: the three-operand forms take instructions off.
+[[gnu::target_clones("avx2", "default")]] void World::findPairContacts(
+    const uint32_t* order, size_t first, size_t last, bool sleeping, std::vector<Contact>& out,
+    std::vector<uint32_t>& touching) {
+    // Most of a frame's pairs have no point in a given substep (a pile's: three in four): the
     // solve and the velocity pass visit only those that have, in pair order. Listed here, as
     // each pair's point is found, rather than in a second pass over every pair.
     ContactManifold manifold;
+    // Read once, not per pair: the loop writes pairs and contacts, which the compiler cannot
+    // tell apart from these arrays.
+    ContactPair* const pairs = contactPairs_.data();
+    const Body* const bodies = bodies_.data();
+    const Pose* const poses = poses_.data();
+    const double* const reaches = reaches_.data();
+    uint8_t* const touched = pairTouched_.data();
+    const double margin = settings_.contactMargin;
+    auto written = static_cast<uint32_t>(out.size());
     for (size_t k = first; k < last; ++k) {
         const size_t p = order ? order[k] : k;
-        ContactPair& pair = contactPairs_[p];
+        ContactPair& pair = pairs[p];
         // The step ends at the substep loop's check. Asked every kPairsPerChunk pairs: the
         // flag is an atomic load, and a frame's pairs are thousands.
         if ((k - first) % kPairsPerChunk == 0 && stepCancellationRequested()) break;
-        const Body& b0 = bodies_[pair.body0];
-        const Body& b1 = bodies_[pair.body1];
-        const Pose& pose0 = poses_[pair.body0];
-        const Pose& pose1 = poses_[pair.body1];
+        const Pose& pose0 = poses[pair.body0];
+        const Pose& pose1 = poses[pair.body1];
         // Bounding spheres first: most of a frame's candidate pairs are not touching in a
         // given substep, and this test costs a fraction of the narrowphase.
-        const double reach = reaches_[pair.body0] + reaches_[pair.body1] + settings_.contactMargin;
+        const double reach = reaches[pair.body0] + reaches[pair.body1] + margin;
         const bool apart =
             std::isfinite(reach) && (pose0.position - pose1.position).squaredNorm() > reach * reach;
-        pair.first = static_cast<uint32_t>(out.size());
+        pair.first = written;
         pair.pushedBefore = pair.lambdaNormal > 0.0;
         pair.lambdaNormal = pair.lambdaTangent1 = pair.lambdaTangent2 = pair.lambdaTwist = 0.0;
-        // Spheres on spheres and planes (a pile's pairs) write their point straight into `out`.
-        const int spherePoints =
-            apart ? 0 : appendSpherePairContacts(b0, pose0, b1, pose1, settings_.contactMargin, out);
-        if (spherePoints >= 0) {
-            pair.count = static_cast<uint32_t>(spherePoints);
-            if (spherePoints == 0) {
-                pair.anchored = false;  // apart: the next touch anchors anew
-                continue;
-            }
-            touching.push_back(static_cast<uint32_t>(p));
-            if (sleeping) pairTouched_[p] = 1;
+        if (apart) {
+            pair.count = 0;
+            pair.anchored = false;  // apart: the next touch anchors anew
             continue;
         }
-        // The general path's poses, a sphere's with the orientation the pose loop left out.
-        const auto fullPose = [](const Body& body, const Pose& pose) {
-            return body.shape.type == ShapeType::Sphere ? Pose{pose.position, body.userOrientation()} : pose;
-        };
-        collide(b0.shape, fullPose(b0, pose0), b1.shape, fullPose(b1, pose1), settings_.contactMargin, manifold);
-        pair.count = static_cast<uint32_t>(manifold.count);
-        if (manifold.count == 0) pair.anchored = false;  // apart: the next touch anchors anew
-        if (manifold.count > 0) touching.push_back(static_cast<uint32_t>(p));
-        if (sleeping && manifold.count > 0) pairTouched_[p] = 1;
-        // Paper 3.5: the points are kept in the bodies' frames (r1, r2), so the position solve
-        // measures the depth on the poses as other corrections leave them.
-        const Quat q0Inverse = b0.q.conjugate();
-        const Quat q1Inverse = b1.q.conjugate();
-        for (int i = 0; i < manifold.count; ++i) {
-            const ContactPoint& point = manifold.points[i];
-            out.push_back({.local0 = q0Inverse * (point.point0 - b0.x),
-                           .local1 = q1Inverse * (point.point1 - b1.x),
-                           .normal = point.normal,
-                           .feature = point.feature});
+        const Body& b0 = bodies[pair.body0];
+        const Body& b1 = bodies[pair.body1];
+        // Spheres on spheres and planes (a pile's pairs) write their point straight into `out`.
+        int count = appendSpherePairContacts(b0, pose0, b1, pose1, margin, out);
+        if (count < 0) {
+            // The general path's poses, a sphere's with the orientation the pose loop left out.
+            const auto fullPose = [](const Body& body, const Pose& pose) {
+                return body.shape.type == ShapeType::Sphere ? Pose{pose.position, body.userOrientation()} : pose;
+            };
+            collide(b0.shape, fullPose(b0, pose0), b1.shape, fullPose(b1, pose1), margin, manifold);
+            count = manifold.count;
+            // Paper 3.5: the points are kept in the bodies' frames (r1, r2), so the position
+            // solve measures the depth on the poses as other corrections leave them.
+            for (int i = 0; i < manifold.count; ++i) {
+                const ContactPoint& point = manifold.points[i];
+                appendContactInBodyFrames(b0, b1, point.point0, point.point1, point.normal, out, point.feature);
+            }
         }
+        pair.count = static_cast<uint32_t>(count);
+        if (count == 0) {
+            pair.anchored = false;  // apart: the next touch anchors anew
+            continue;
+        }
+        written += static_cast<uint32_t>(count);
+        touching.push_back(static_cast<uint32_t>(p));
+        if (sleeping) touched[p] = 1;
     }
 }
 

@@ -137,6 +137,29 @@ TEST(ContactSpheres, OtherPairsAreLeftToTheGeneralNarrowphase) {
     EXPECT_TRUE(out.empty());
 }
 
+TEST(ContactSpheres, BodyFramesAreEigensConjugateRotationBitForBit) {
+    // The frame change both paths store (appendContactInBodyFrames, two lanes side by side)
+    // against Eigen's q⁻¹ (p − x) one point at a time, for any bodies, points and feature ids.
+    std::mt19937_64 rng(35);
+    std::uniform_real_distribution<double> unit(-1.0, 1.0);
+    for (int trial = 0; trial < 2000; ++trial) {
+        Body b0 = makeSphere(0.1, Vec3(unit(rng), unit(rng), unit(rng)) * 50, randomRotation(rng));
+        Body b1 = makeBody({.shape = boxShape(Vec3(0.3, 0.2, 0.1)), .mass = 2.0,
+                            .position = Vec3(unit(rng), unit(rng), unit(rng)) * 50,
+                            .orientation = randomRotation(rng)});
+        const Vec3 point0 = b0.x + Vec3(unit(rng), unit(rng), unit(rng));
+        const Vec3 point1 = b1.x + Vec3(unit(rng), unit(rng), unit(rng)) * 1e-3;
+        const Vec3 normal = Vec3(unit(rng), unit(rng), unit(rng)).normalized();
+        std::vector<Contact> out;
+        appendContactInBodyFrames(b0, b1, point0, point1, normal, out, static_cast<uint32_t>(trial));
+        ASSERT_EQ(out.size(), 1u);
+        expectSameBits(out[0].local0, b0.q.conjugate() * (point0 - b0.x));
+        expectSameBits(out[0].local1, b1.q.conjugate() * (point1 - b1.x));
+        expectSameBits(out[0].normal, normal);
+        EXPECT_EQ(out[0].feature, static_cast<uint32_t>(trial));
+    }
+}
+
 TEST(ContactSpheres, RandomPairsMatchTheGeneralPathBitForBit) {
     std::mt19937_64 rng(18);
     std::uniform_real_distribution<double> unit(-1.0, 1.0);
