@@ -23,6 +23,30 @@ namespace {
 /// flag is asked every this many pairs.
 constexpr size_t kPairsPerChunk = 64;
 
+/// The points of a pair other than two spheres, appended to `out` in the bodies' frames;
+/// returns their count: a sphere on a plane or a box by the fast path, any other pair by the
+/// dispatch table. Out of line, so that the loop over a pile's pairs (spheres on spheres, most
+/// of them apart) keeps its own values in registers.
+[[gnu::noinline, gnu::target_clones("avx2", "default")]] int appendOtherPairContacts(
+    const Body& b0, const Pose& pose0, const Body& b1, const Pose& pose1, double margin,
+    std::vector<Contact>& out) {
+    const int spherePoints = appendSpherePairContacts(b0, pose0, b1, pose1, margin, out);
+    if (spherePoints >= 0) return spherePoints;
+    // The general path's poses, a sphere's with the orientation the pose loop left out.
+    const auto fullPose = [](const Body& body, const Pose& pose) {
+        return body.shape.type == ShapeType::Sphere ? Pose{pose.position, body.userOrientation()} : pose;
+    };
+    ContactManifold manifold;
+    collide(b0.shape, fullPose(b0, pose0), b1.shape, fullPose(b1, pose1), margin, manifold);
+    // Paper 3.5: the points are kept in the bodies' frames (r1, r2), so the position solve
+    // measures the depth on the poses as other corrections leave them.
+    for (int i = 0; i < manifold.count; ++i) {
+        const ContactPoint& point = manifold.points[i];
+        appendContactInBodyFrames(b0, b1, point.point0, point.point1, point.normal, out, point.feature);
+    }
+    return manifold.count;
+}
+
 }  // namespace
 
 void World::listAwake(bool newPairs) {
@@ -195,7 +219,6 @@ void World::findContacts(bool sleeping) {
     // Most of a frame's pairs have no point in a given substep (a pile's: three in four): the
     // solve and the velocity pass visit only those that have, in pair order. Listed here, as
     // each pair's point is found, rather than in a second pass over every pair.
-    ContactManifold manifold;
     // Read once, not per pair: the loop writes pairs and contacts, which the compiler cannot
     // tell apart from these arrays.
     ContactPair* const pairs = contactPairs_.data();
@@ -228,22 +251,10 @@ void World::findContacts(bool sleeping) {
         }
         const Body& b0 = bodies[pair.body0];
         const Body& b1 = bodies[pair.body1];
-        // Spheres on spheres and planes (a pile's pairs) write their point straight into `out`.
-        int count = appendSpherePairContacts(b0, pose0, b1, pose1, margin, out);
-        if (count < 0) {
-            // The general path's poses, a sphere's with the orientation the pose loop left out.
-            const auto fullPose = [](const Body& body, const Pose& pose) {
-                return body.shape.type == ShapeType::Sphere ? Pose{pose.position, body.userOrientation()} : pose;
-            };
-            collide(b0.shape, fullPose(b0, pose0), b1.shape, fullPose(b1, pose1), margin, manifold);
-            count = manifold.count;
-            // Paper 3.5: the points are kept in the bodies' frames (r1, r2), so the position
-            // solve measures the depth on the poses as other corrections leave them.
-            for (int i = 0; i < manifold.count; ++i) {
-                const ContactPoint& point = manifold.points[i];
-                appendContactInBodyFrames(b0, b1, point.point0, point.point1, point.normal, out, point.feature);
-            }
-        }
+        // Spheres on spheres (a pile's pairs) write their point straight into `out`.
+        const int count = b0.shape.type == ShapeType::Sphere && b1.shape.type == ShapeType::Sphere
+                              ? appendSphereSphereContact(b0, pose0, b1, pose1, margin, out)
+                              : appendOtherPairContacts(b0, pose0, b1, pose1, margin, out);
         pair.count = static_cast<uint32_t>(count);
         if (count == 0) {
             pair.anchored = false;  // apart: the next touch anchors anew
