@@ -228,41 +228,52 @@ void World::findContacts(bool sleeping) {
     uint8_t* const touched = pairTouched_.data();
     const double margin = settings_.contactMargin;
     auto written = static_cast<uint32_t>(out.size());
-    for (size_t k = first; k < last; ++k) {
-        const size_t p = order ? order[k] : k;
-        ContactPair& pair = pairs[p];
+    // Pairs [from, to) by their index in contactPairs_ (the loop is made once for the awake
+    // list and once for every pair, so that neither asks which per pair).
+    const auto findPoints = [&](size_t from, size_t to, const auto& pairIndex) __attribute__((always_inline)) {
+        for (size_t k = from; k < to; ++k) {
+            const size_t p = pairIndex(k);
+            ContactPair& pair = pairs[p];
+            const Pose& pose0 = poses[pair.body0];
+            const Pose& pose1 = poses[pair.body1];
+            // Bounding spheres first: most of a frame's candidate pairs are not touching in a
+            // given substep, and this test costs a fraction of the narrowphase.
+            const double reach = reaches[pair.body0] + reaches[pair.body1] + margin;
+            const bool apart =
+                std::isfinite(reach) && (pose0.position - pose1.position).squaredNorm() > reach * reach;
+            pair.first = written;
+            pair.pushedBefore = pair.lambdaNormal > 0.0;
+            pair.lambdaNormal = pair.lambdaTangent1 = pair.lambdaTangent2 = pair.lambdaTwist = 0.0;
+            if (apart) {
+                pair.count = 0;
+                pair.anchored = false;  // apart: the next touch anchors anew
+                continue;
+            }
+            const Body& b0 = bodies[pair.body0];
+            const Body& b1 = bodies[pair.body1];
+            // Spheres on spheres (a pile's pairs) write their point straight into `out`.
+            const int count = b0.shape.type == ShapeType::Sphere && b1.shape.type == ShapeType::Sphere
+                                  ? appendSphereSphereContact(b0, pose0, b1, pose1, margin, out)
+                                  : appendOtherPairContacts(b0, pose0, b1, pose1, margin, out);
+            pair.count = static_cast<uint32_t>(count);
+            if (count == 0) {
+                pair.anchored = false;  // apart: the next touch anchors anew
+                continue;
+            }
+            written += static_cast<uint32_t>(count);
+            touching.push_back(static_cast<uint32_t>(p));
+            if (sleeping) touched[p] = 1;
+        }
+    };
+    for (size_t from = first; from < last; from += kPairsPerChunk) {
         // The step ends at the substep loop's check. Asked every kPairsPerChunk pairs: the
         // flag is an atomic load, and a frame's pairs are thousands.
-        if ((k - first) % kPairsPerChunk == 0 && stepCancellationRequested()) break;
-        const Pose& pose0 = poses[pair.body0];
-        const Pose& pose1 = poses[pair.body1];
-        // Bounding spheres first: most of a frame's candidate pairs are not touching in a
-        // given substep, and this test costs a fraction of the narrowphase.
-        const double reach = reaches[pair.body0] + reaches[pair.body1] + margin;
-        const bool apart =
-            std::isfinite(reach) && (pose0.position - pose1.position).squaredNorm() > reach * reach;
-        pair.first = written;
-        pair.pushedBefore = pair.lambdaNormal > 0.0;
-        pair.lambdaNormal = pair.lambdaTangent1 = pair.lambdaTangent2 = pair.lambdaTwist = 0.0;
-        if (apart) {
-            pair.count = 0;
-            pair.anchored = false;  // apart: the next touch anchors anew
-            continue;
-        }
-        const Body& b0 = bodies[pair.body0];
-        const Body& b1 = bodies[pair.body1];
-        // Spheres on spheres (a pile's pairs) write their point straight into `out`.
-        const int count = b0.shape.type == ShapeType::Sphere && b1.shape.type == ShapeType::Sphere
-                              ? appendSphereSphereContact(b0, pose0, b1, pose1, margin, out)
-                              : appendOtherPairContacts(b0, pose0, b1, pose1, margin, out);
-        pair.count = static_cast<uint32_t>(count);
-        if (count == 0) {
-            pair.anchored = false;  // apart: the next touch anchors anew
-            continue;
-        }
-        written += static_cast<uint32_t>(count);
-        touching.push_back(static_cast<uint32_t>(p));
-        if (sleeping) touched[p] = 1;
+        if (stepCancellationRequested()) break;
+        const size_t to = std::min(from + kPairsPerChunk, last);
+        if (order)
+            findPoints(from, to, [order](size_t k) { return size_t{order[k]}; });
+        else
+            findPoints(from, to, [](size_t k) { return k; });
     }
 }
 
