@@ -143,7 +143,7 @@ void World::findContacts(bool sleeping) {
     // sleep, the awake bodies' and pairs' lists alone are visited (in chunks with more threads).
     // A sphere's orientation is left out: the fast path (contact_spheres.h) reads its position
     // alone, and findPairContacts gives the general path its orientation when a pair needs it.
-    const auto pose = [&](Body& body) {
+    const auto pose = [&](Body& body) __attribute__((always_inline)) {
         const auto i = static_cast<size_t>(&body - bodies_.data());
         if (!(reaches_[i] > 0.0)) return;
         poses_[i].position = body.userPosition();
