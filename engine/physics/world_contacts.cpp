@@ -29,14 +29,13 @@ constexpr size_t kPairsPerChunk = 64;
 /// of them apart) keeps its own values in registers.
 [[gnu::noinline, gnu::target_clones("avx2", "default")]] int appendOtherPairContacts(
     const Body& b0, const Pose& pose0, const Body& b1, const Pose& pose1, double margin,
-    std::vector<Contact>& out) {
+    ContactManifold& manifold, std::vector<Contact>& out) {
     const int spherePoints = appendSpherePairContacts(b0, pose0, b1, pose1, margin, out);
     if (spherePoints >= 0) return spherePoints;
     // The general path's poses, a sphere's with the orientation the pose loop left out.
     const auto fullPose = [](const Body& body, const Pose& pose) {
         return body.shape.type == ShapeType::Sphere ? Pose{pose.position, body.userOrientation()} : pose;
     };
-    ContactManifold manifold;
     collide(b0.shape, fullPose(b0, pose0), b1.shape, fullPose(b1, pose1), margin, manifold);
     // Paper 3.5: the points are kept in the bodies' frames (r1, r2), so the position solve
     // measures the depth on the poses as other corrections leave them.
@@ -219,6 +218,7 @@ void World::findContacts(bool sleeping) {
     // Most of a frame's pairs have no point in a given substep (a pile's: three in four): the
     // solve and the velocity pass visit only those that have, in pair order. Listed here, as
     // each pair's point is found, rather than in a second pass over every pair.
+    ContactManifold manifold;  // the general path's, made once
     // Read once, not per pair: the loop writes pairs and contacts, which the compiler cannot
     // tell apart from these arrays.
     ContactPair* const pairs = contactPairs_.data();
@@ -254,7 +254,7 @@ void World::findContacts(bool sleeping) {
             // Spheres on spheres (a pile's pairs) write their point straight into `out`.
             const int count = b0.shape.type == ShapeType::Sphere && b1.shape.type == ShapeType::Sphere
                                   ? appendSphereSphereContact(b0, pose0, b1, pose1, margin, out)
-                                  : appendOtherPairContacts(b0, pose0, b1, pose1, margin, out);
+                                  : appendOtherPairContacts(b0, pose0, b1, pose1, margin, manifold, out);
             pair.count = static_cast<uint32_t>(count);
             if (count == 0) {
                 pair.anchored = false;  // apart: the next touch anchors anew
