@@ -25,9 +25,11 @@ namespace substep {
 /// lane with Eigen's operations on a quaternion's conjugate and a vector in Eigen's order
 /// (u = 2 q⃗ × v, then (v + w u) + q⃗ × u, a cross product row by row), so the bits are Eigen's
 /// in half the instructions.
-[[gnu::always_inline]] inline void appendContactInBodyFrames(const Body& b0, const Body& b1, const Vec3& point0,
-                                                             const Vec3& point1, const Vec3& normal,
-                                                             std::vector<Contact>& out, uint32_t feature = 0) {
+[[gnu::always_inline]] inline void appendContactInBodyFrames(const Body& b0, const Body& b1,
+                                                             const Vec3& point0, const Vec3& point1,
+                                                             const Vec3& normal,
+                                                             std::vector<Contact>& out,
+                                                             uint32_t feature = 0) {
     using Two = double __attribute__((vector_size(2 * sizeof(double))));
     // The conjugates' vector parts, −q⃗ (a sign flip, as Eigen's conjugate()).
     const Two qx{-b0.q.x(), -b1.q.x()};
@@ -54,8 +56,10 @@ namespace substep {
 
 /// Sphere (a, pose pa) against sphere (b, pose pb): collideSphereSphere's point on the line of
 /// centres, kept while its gap is within `margin`. Returns the points added (0 or 1).
-[[gnu::always_inline]] inline int appendSphereSphereContact(const Body& b0, const Pose& pa, const Body& b1, const Pose& pb,
-                                     double margin, std::vector<Contact>& out) {
+[[gnu::always_inline]] inline int appendSphereSphereContact(const Body& b0, const Pose& pa,
+                                                            const Body& b1, const Pose& pb,
+                                                            double margin,
+                                                            std::vector<Contact>& out) {
     const double ra = b0.shape.radius;
     const double rb = b1.shape.radius;
     const Vec3 d = pa.position - pb.position;
@@ -75,8 +79,10 @@ namespace substep {
 /// the centre. `sphereFirst` says whether the sphere is the pair's body 0; otherwise the point
 /// is stored the other way round with the normal flipped, as the dispatch table's swapped slot
 /// does. Returns the points added (0 or 1).
-[[gnu::always_inline]] inline int appendSpherePlaneContact(const Body& sphere, const Pose& ps, const Body& plane,
-                                    bool sphereFirst, double margin, std::vector<Contact>& out) {
+[[gnu::always_inline]] inline int appendSpherePlaneContact(const Body& sphere, const Pose& ps,
+                                                           const Body& plane, bool sphereFirst,
+                                                           double margin,
+                                                           std::vector<Contact>& out) {
     // unitPlane (primitive_geometry.h): a zero normal means +y.
     const Shape& shape = plane.shape;
     const double length = shape.normal.norm();
@@ -99,8 +105,10 @@ namespace substep {
 /// the sphere's centre against its closest point of the box (or, from inside, of the nearest
 /// face). `sphereFirst` as for a plane: otherwise stored the other way round, the normal
 /// flipped. Returns the points added (0 or 1).
-[[gnu::always_inline]] inline int appendSphereBoxContact(const Body& sphere, const Pose& ps, const Body& box, const Pose& pb,
-                                  bool sphereFirst, double margin, std::vector<Contact>& out) {
+[[gnu::always_inline]] inline int appendSphereBoxContact(const Body& sphere, const Pose& ps,
+                                                         const Body& box, const Pose& pb,
+                                                         bool sphereFirst, double margin,
+                                                         std::vector<Contact>& out) {
     const double radius = sphere.shape.radius;
     const Mat3 rotation = pb.rotation.toRotationMatrix();
     const Vec3 half = primitive::halfExtents(box.shape);
@@ -144,8 +152,10 @@ namespace substep {
 /// The fast path's pairs: sphere – sphere, sphere – plane and sphere – box in either order.
 /// Appends their point and returns its count, or −1 for any other pair (the general
 /// narrowphase's).
-[[gnu::always_inline]] inline int appendSpherePairContacts(const Body& b0, const Pose& pose0, const Body& b1,
-                                    const Pose& pose1, double margin, std::vector<Contact>& out) {
+[[gnu::always_inline]] inline int appendSpherePairContacts(const Body& b0, const Pose& pose0,
+                                                           const Body& b1, const Pose& pose1,
+                                                           double margin,
+                                                           std::vector<Contact>& out) {
     const ShapeType t0 = b0.shape.type;
     const ShapeType t1 = b1.shape.type;
     if (t0 == ShapeType::Sphere) {

@@ -34,14 +34,16 @@ constexpr size_t kPairsPerChunk = 64;
     if (spherePoints >= 0) return spherePoints;
     // The general path's poses, a sphere's with the orientation the pose loop left out.
     const auto fullPose = [](const Body& body, const Pose& pose) {
-        return body.shape.type == ShapeType::Sphere ? Pose{pose.position, body.userOrientation()} : pose;
+        return body.shape.type == ShapeType::Sphere ? Pose{pose.position, body.userOrientation()}
+                                                    : pose;
     };
     collide(b0.shape, fullPose(b0, pose0), b1.shape, fullPose(b1, pose1), margin, manifold);
     // Paper 3.5: the points are kept in the bodies' frames (r1, r2), so the position solve
     // measures the depth on the poses as other corrections leave them.
     for (int i = 0; i < manifold.count; ++i) {
         const ContactPoint& point = manifold.points[i];
-        appendContactInBodyFrames(b0, b1, point.point0, point.point1, point.normal, out, point.feature);
+        appendContactInBodyFrames(b0, b1, point.point0, point.point1, point.normal, out,
+                                  point.feature);
     }
     return manifold.count;
 }
@@ -230,7 +232,8 @@ void World::findContacts(bool sleeping) {
     auto written = static_cast<uint32_t>(out.size());
     // Pairs [from, to) by their index in contactPairs_ (the loop is made once for the awake
     // list and once for every pair, so that neither asks which per pair).
-    const auto findPoints = [&](size_t from, size_t to, const auto& pairIndex) __attribute__((always_inline)) {
+    const auto findPoints = [&](size_t from, size_t to, const auto& pairIndex)
+        __attribute__((always_inline)) {
         for (size_t k = from; k < to; ++k) {
             const size_t p = pairIndex(k);
             ContactPair& pair = pairs[p];
@@ -239,8 +242,8 @@ void World::findContacts(bool sleeping) {
             // Bounding spheres first: most of a frame's candidate pairs are not touching in a
             // given substep, and this test costs a fraction of the narrowphase.
             const double reach = reaches[pair.body0] + reaches[pair.body1] + margin;
-            const bool apart =
-                std::isfinite(reach) && (pose0.position - pose1.position).squaredNorm() > reach * reach;
+            const bool apart = std::isfinite(reach) &&
+                               (pose0.position - pose1.position).squaredNorm() > reach * reach;
             pair.first = written;
             pair.pushedBefore = pair.lambdaNormal > 0.0;
             pair.lambdaNormal = pair.lambdaTangent1 = pair.lambdaTangent2 = pair.lambdaTwist = 0.0;
@@ -252,9 +255,10 @@ void World::findContacts(bool sleeping) {
             const Body& b0 = bodies[pair.body0];
             const Body& b1 = bodies[pair.body1];
             // Spheres on spheres (a pile's pairs) write their point straight into `out`.
-            const int count = b0.shape.type == ShapeType::Sphere && b1.shape.type == ShapeType::Sphere
-                                  ? appendSphereSphereContact(b0, pose0, b1, pose1, margin, out)
-                                  : appendOtherPairContacts(b0, pose0, b1, pose1, margin, manifold, out);
+            const int count =
+                b0.shape.type == ShapeType::Sphere && b1.shape.type == ShapeType::Sphere
+                    ? appendSphereSphereContact(b0, pose0, b1, pose1, margin, out)
+                    : appendOtherPairContacts(b0, pose0, b1, pose1, margin, manifold, out);
             pair.count = static_cast<uint32_t>(count);
             if (count == 0) {
                 pair.anchored = false;  // apart: the next touch anchors anew

@@ -115,8 +115,10 @@ TEST(ContactSpheres, SpherePlaneDepthIsRadiusMinusHeightInEitherOrder) {
 TEST(ContactSpheres, SphereBoxDepthIsRadiusMinusHeightAboveTheFaceInEitherOrder) {
     // A turned 1 x 1 x 1 box; a sphere of radius 0.2 whose centre is 0.15 above its +y face.
     const Quat turn(Eigen::AngleAxisd(0.4, Vec3(1, 0, 1).normalized()));
-    const Body box = makeBody({.shape = boxShape(Vec3::Ones()), .type = BodyType::Static,
-                               .position = Vec3(0.3, 0.5, -0.1), .orientation = turn});
+    const Body box = makeBody({.shape = boxShape(Vec3::Ones()),
+                               .type = BodyType::Static,
+                               .position = Vec3(0.3, 0.5, -0.1),
+                               .orientation = turn});
     const Body sphere = makeSphere(0.2, box.x + turn * Vec3(0.1, 0.5 + 0.15, -0.2),
                                    Quat(Eigen::AngleAxisd(1.1, Vec3::UnitZ())));
     for (const bool sphereFirst : {true, false}) {
@@ -151,8 +153,12 @@ TEST(ContactSpheres, OtherPairsAreLeftToTheGeneralNarrowphase) {
     const Body sphere = makeSphere(0.1, Vec3::Zero(), Quat::Identity());
     const Body capsule = makeBody({.shape = capsuleShape(0.1, 0.4), .mass = 1.0});
     std::vector<Contact> out;
-    EXPECT_EQ(appendSpherePairContacts(sphere, poseOf(sphere), capsule, poseOf(capsule), kMargin, out), -1);
-    EXPECT_EQ(appendSpherePairContacts(capsule, poseOf(capsule), sphere, poseOf(sphere), kMargin, out), -1);
+    EXPECT_EQ(
+        appendSpherePairContacts(sphere, poseOf(sphere), capsule, poseOf(capsule), kMargin, out),
+        -1);
+    EXPECT_EQ(
+        appendSpherePairContacts(capsule, poseOf(capsule), sphere, poseOf(sphere), kMargin, out),
+        -1);
     EXPECT_TRUE(out.empty());
 }
 
@@ -163,14 +169,16 @@ TEST(ContactSpheres, BodyFramesAreEigensConjugateRotationBitForBit) {
     std::uniform_real_distribution<double> unit(-1.0, 1.0);
     for (int trial = 0; trial < 2000; ++trial) {
         Body b0 = makeSphere(0.1, Vec3(unit(rng), unit(rng), unit(rng)) * 50, randomRotation(rng));
-        Body b1 = makeBody({.shape = boxShape(Vec3(0.3, 0.2, 0.1)), .mass = 2.0,
+        Body b1 = makeBody({.shape = boxShape(Vec3(0.3, 0.2, 0.1)),
+                            .mass = 2.0,
                             .position = Vec3(unit(rng), unit(rng), unit(rng)) * 50,
                             .orientation = randomRotation(rng)});
         const Vec3 point0 = b0.x + Vec3(unit(rng), unit(rng), unit(rng));
         const Vec3 point1 = b1.x + Vec3(unit(rng), unit(rng), unit(rng)) * 1e-3;
         const Vec3 normal = Vec3(unit(rng), unit(rng), unit(rng)).normalized();
         std::vector<Contact> out;
-        appendContactInBodyFrames(b0, b1, point0, point1, normal, out, static_cast<uint32_t>(trial));
+        appendContactInBodyFrames(b0, b1, point0, point1, normal, out,
+                                  static_cast<uint32_t>(trial));
         ASSERT_EQ(out.size(), 1u);
         expectSameBits(out[0].local0, b0.q.conjugate() * (point0 - b0.x));
         expectSameBits(out[0].local1, b1.q.conjugate() * (point1 - b1.x));
@@ -206,12 +214,16 @@ TEST(ContactSpheres, RandomPairsMatchTheGeneralPathBitForBit) {
         expectSameContacts(plane, b0);
         // Boxes of any pose and size (a pile's walls), the centre outside, on the surface or
         // inside, both orders.
-        const Vec3 size(0.1 + 3 * std::abs(unit(rng)), 0.1 + 3 * std::abs(unit(rng)), 0.1 + 3 * std::abs(unit(rng)));
+        const Vec3 size(0.1 + 3 * std::abs(unit(rng)), 0.1 + 3 * std::abs(unit(rng)),
+                        0.1 + 3 * std::abs(unit(rng)));
         const Quat boxRotation = randomRotation(rng);
-        const Vec3 local = size.cwiseProduct(Vec3(unit(rng), unit(rng), unit(rng))) * 0.5 *
-                           (trial % 3 == 0 ? 0.9 : 1.0 + r0 / size.minCoeff() * std::abs(unit(rng)));
-        const Body box = makeBody({.shape = boxShape(size), .type = BodyType::Static,
-                                   .position = c0 - boxRotation * local, .orientation = boxRotation});
+        const Vec3 local =
+            size.cwiseProduct(Vec3(unit(rng), unit(rng), unit(rng))) * 0.5 *
+            (trial % 3 == 0 ? 0.9 : 1.0 + r0 / size.minCoeff() * std::abs(unit(rng)));
+        const Body box = makeBody({.shape = boxShape(size),
+                                   .type = BodyType::Static,
+                                   .position = c0 - boxRotation * local,
+                                   .orientation = boxRotation});
         expectSameContacts(b0, box);
         expectSameContacts(box, b0);
         touching += static_cast<int>(fastContacts(b0, b1).size() + fastContacts(b0, plane).size());
@@ -227,11 +239,13 @@ TEST(ContactSpheres, RandomPairsMatchTheGeneralPathBitForBit) {
     expectSameContacts(a, flat);
     expectSameContacts(flat, a);
     // A box centred on the sphere's centre (ties between faces: the first axis), and on a face.
-    const Body cube = makeBody({.shape = boxShape(Vec3::Constant(1.0)), .type = BodyType::Static,
+    const Body cube = makeBody({.shape = boxShape(Vec3::Constant(1.0)),
+                                .type = BodyType::Static,
                                 .position = Vec3(1, 2, 3)});
     expectSameContacts(a, cube);
     expectSameContacts(cube, a);
-    const Body onFace = makeBody({.shape = boxShape(Vec3::Constant(1.0)), .type = BodyType::Static,
+    const Body onFace = makeBody({.shape = boxShape(Vec3::Constant(1.0)),
+                                  .type = BodyType::Static,
                                   .position = Vec3(1, 2.5, 3)});
     expectSameContacts(a, onFace);
     expectSameContacts(onFace, a);
