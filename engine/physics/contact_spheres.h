@@ -3,9 +3,10 @@
 /// and sphere – box contacts written straight into the solver's Contact list, in the bodies'
 /// frames, without the dispatch table, the manifold and its copy (World::findPairContacts). The
 /// arithmetic is collideSphereSphere's, collideSpherePlane's and collideSphereBox's expression
-/// for expression,
-/// followed by the frame change World::findPairContacts makes, so the contacts are
-/// bit-identical to the general path's (tests/physics/contact_spheres_test.cpp compares them).
+/// for expression, followed by the frame change World::findPairContacts makes, so the contacts
+/// are bit-identical to the general path's (tests/physics/contact_spheres_test.cpp compares
+/// them). Every function is always inlined: its callers are compiled for AVX2 too
+/// (target_clones), and a copy left out of line would be the base ISA's.
 
 #include "physics/body.h"
 #include "physics/collision/contact_manifold.h"
