@@ -1,35 +1,66 @@
 #pragma once
-/// The narrowphase's fast path for the pairs of a sphere pile: sphere – sphere and sphere –
-/// plane contacts written straight into the solver's Contact list, in the bodies' frames,
-/// without the dispatch table, the manifold and its copy (World::findPairContacts). The
-/// arithmetic is collideSphereSphere's and collideSpherePlane's expression for expression,
-/// followed by the frame change World::findPairContacts makes, so the contacts are
-/// bit-identical to the general path's (tests/physics/contact_spheres_test.cpp compares them).
+/// The narrowphase's fast path for the pairs of a sphere pile: sphere – sphere, sphere – plane
+/// and sphere – box contacts written straight into the solver's Contact list, in the bodies'
+/// frames, without the dispatch table, the manifold and its copy (World::findPairContacts). The
+/// arithmetic is collideSphereSphere's, collideSpherePlane's and collideSphereBox's expression
+/// for expression, followed by the frame change World::findPairContacts makes, so the contacts
+/// are bit-identical to the general path's (tests/physics/contact_spheres_test.cpp compares
+/// them). Every function is always inlined: its callers are compiled for AVX2 too
+/// (target_clones), and a copy left out of line would be the base ISA's.
 
 #include "physics/body.h"
 #include "physics/collision/contact_manifold.h"
+#include "physics/collision/primitive_geometry.h"
 #include "physics/collision/shape.h"
 #include "physics/contact.h"
 
+#include <cmath>
+#include <cstdint>
 #include <vector>
 
 namespace substep {
 
 /// The contact of one point as World::findPairContacts stores it: each body's point in its
-/// principal frame (paper 3.5: r1, r2), the normal from body 1 towards body 0.
-[[gnu::flatten]] inline void appendContactInBodyFrames(const Body& b0, const Body& b1, const Vec3& point0,
-                                      const Vec3& point1, const Vec3& normal,
-                                      std::vector<Contact>& out) {
-    out.push_back({.local0 = b0.q.conjugate() * (point0 - b0.x),
-                   .local1 = b1.q.conjugate() * (point1 - b1.x),
+/// principal frame (paper 3.5: r1, r2), q0⁻¹ (p0 − x0) and q1⁻¹ (p1 − x1), the normal from body
+/// 1 towards body 0. The two points are turned side by side in the lanes of two doubles, each
+/// lane with Eigen's operations on a quaternion's conjugate and a vector in Eigen's order
+/// (u = 2 q⃗ × v, then (v + w u) + q⃗ × u, a cross product row by row), so the bits are Eigen's
+/// in half the instructions.
+[[gnu::always_inline]] inline void appendContactInBodyFrames(const Body& b0, const Body& b1,
+                                                             const Vec3& point0, const Vec3& point1,
+                                                             const Vec3& normal,
+                                                             std::vector<Contact>& out,
+                                                             uint32_t feature = 0) {
+    using Two = double __attribute__((vector_size(2 * sizeof(double))));
+    // The conjugates' vector parts, −q⃗ (a sign flip, as Eigen's conjugate()).
+    const Two qx{-b0.q.x(), -b1.q.x()};
+    const Two qy{-b0.q.y(), -b1.q.y()};
+    const Two qz{-b0.q.z(), -b1.q.z()};
+    const Two w{b0.q.w(), b1.q.w()};
+    const Two vx{point0.x() - b0.x.x(), point1.x() - b1.x.x()};
+    const Two vy{point0.y() - b0.x.y(), point1.y() - b1.x.y()};
+    const Two vz{point0.z() - b0.x.z(), point1.z() - b1.x.z()};
+    Two ux = qy * vz - qz * vy;
+    Two uy = qz * vx - qx * vz;
+    Two uz = qx * vy - qy * vx;
+    ux = ux + ux;
+    uy = uy + uy;
+    uz = uz + uz;
+    const Two rx = (vx + w * ux) + (qy * uz - qz * uy);
+    const Two ry = (vy + w * uy) + (qz * ux - qx * uz);
+    const Two rz = (vz + w * uz) + (qx * uy - qy * ux);
+    out.push_back({.local0 = Vec3(rx[0], ry[0], rz[0]),
+                   .local1 = Vec3(rx[1], ry[1], rz[1]),
                    .normal = normal,
-                   .feature = 0});
+                   .feature = feature});
 }
 
 /// Sphere (a, pose pa) against sphere (b, pose pb): collideSphereSphere's point on the line of
 /// centres, kept while its gap is within `margin`. Returns the points added (0 or 1).
-inline int appendSphereSphereContact(const Body& b0, const Pose& pa, const Body& b1, const Pose& pb,
-                                     double margin, std::vector<Contact>& out) {
+[[gnu::always_inline]] inline int appendSphereSphereContact(const Body& b0, const Pose& pa,
+                                                            const Body& b1, const Pose& pb,
+                                                            double margin,
+                                                            std::vector<Contact>& out) {
     const double ra = b0.shape.radius;
     const double rb = b1.shape.radius;
     const Vec3 d = pa.position - pb.position;
@@ -49,8 +80,10 @@ inline int appendSphereSphereContact(const Body& b0, const Pose& pa, const Body&
 /// the centre. `sphereFirst` says whether the sphere is the pair's body 0; otherwise the point
 /// is stored the other way round with the normal flipped, as the dispatch table's swapped slot
 /// does. Returns the points added (0 or 1).
-inline int appendSpherePlaneContact(const Body& sphere, const Pose& ps, const Body& plane,
-                                    bool sphereFirst, double margin, std::vector<Contact>& out) {
+[[gnu::always_inline]] inline int appendSpherePlaneContact(const Body& sphere, const Pose& ps,
+                                                           const Body& plane, bool sphereFirst,
+                                                           double margin,
+                                                           std::vector<Contact>& out) {
     // unitPlane (primitive_geometry.h): a zero normal means +y.
     const Shape& shape = plane.shape;
     const double length = shape.normal.norm();
@@ -69,10 +102,61 @@ inline int appendSpherePlaneContact(const Body& sphere, const Pose& ps, const Bo
     return 1;
 }
 
-/// The fast path's pairs: sphere – sphere and sphere – plane in either order. Appends their
-/// point and returns its count, or −1 for any other pair (the general narrowphase's).
-inline int appendSpherePairContacts(const Body& b0, const Pose& pose0, const Body& b1,
-                                    const Pose& pose1, double margin, std::vector<Contact>& out) {
+/// Sphere body `sphere` (pose ps) against box body `box` (pose pb): collideSphereBox's point,
+/// the sphere's centre against its closest point of the box (or, from inside, of the nearest
+/// face). `sphereFirst` as for a plane: otherwise stored the other way round, the normal
+/// flipped. Returns the points added (0 or 1).
+[[gnu::always_inline]] inline int appendSphereBoxContact(const Body& sphere, const Pose& ps,
+                                                         const Body& box, const Pose& pb,
+                                                         bool sphereFirst, double margin,
+                                                         std::vector<Contact>& out) {
+    const double radius = sphere.shape.radius;
+    const Mat3 rotation = pb.rotation.toRotationMatrix();
+    const Vec3 half = primitive::halfExtents(box.shape);
+    const Vec3 centre = rotation.transpose() * (ps.position - pb.position);
+    Vec3 closest = centre.cwiseMax(-half).cwiseMin(half);
+    const Vec3 outside = centre - closest;
+    const double distance2 = outside.squaredNorm();
+    Vec3 localNormal;
+    if (distance2 > primitive::kTinySquared) {
+        const double distance = std::sqrt(distance2);
+        if (distance - radius > margin) return 0;
+        localNormal = outside / distance;
+    } else {
+        // Centre inside (or on the surface): leave through the nearest face, the first axis
+        // on ties.
+        int axis = 0;
+        double nearest = half[0] - std::abs(centre[0]);
+        for (int k = 1; k < 3; ++k) {
+            const double gap = half[k] - std::abs(centre[k]);
+            if (gap < nearest) {
+                nearest = gap;
+                axis = k;
+            }
+        }
+        const double sign = centre[axis] >= 0.0 ? 1.0 : -1.0;
+        closest[axis] = sign * half[axis];
+        localNormal = sign * Vec3::Unit(axis);
+    }
+    const Vec3 n = rotation * localNormal;
+    const Vec3 point0 = ps.position - radius * n;
+    const Vec3 point1 = pb.position + rotation * closest;
+    const double depth = (point1 - point0).dot(n);
+    if (!(depth >= -margin)) return 0;
+    if (sphereFirst)
+        appendContactInBodyFrames(sphere, box, point0, point1, n, out);
+    else
+        appendContactInBodyFrames(box, sphere, point1, point0, Vec3(-n), out);
+    return 1;
+}
+
+/// The fast path's pairs: sphere – sphere, sphere – plane and sphere – box in either order.
+/// Appends their point and returns its count, or −1 for any other pair (the general
+/// narrowphase's).
+[[gnu::always_inline]] inline int appendSpherePairContacts(const Body& b0, const Pose& pose0,
+                                                           const Body& b1, const Pose& pose1,
+                                                           double margin,
+                                                           std::vector<Contact>& out) {
     const ShapeType t0 = b0.shape.type;
     const ShapeType t1 = b1.shape.type;
     if (t0 == ShapeType::Sphere) {
@@ -80,8 +164,13 @@ inline int appendSpherePairContacts(const Body& b0, const Pose& pose0, const Bod
             return appendSphereSphereContact(b0, pose0, b1, pose1, margin, out);
         if (t1 == ShapeType::Plane)
             return appendSpherePlaneContact(b0, pose0, b1, true, margin, out);
-    } else if (t0 == ShapeType::Plane && t1 == ShapeType::Sphere) {
-        return appendSpherePlaneContact(b1, pose1, b0, false, margin, out);
+        if (t1 == ShapeType::Box)
+            return appendSphereBoxContact(b0, pose0, b1, pose1, true, margin, out);
+    } else if (t1 == ShapeType::Sphere) {
+        if (t0 == ShapeType::Plane)
+            return appendSpherePlaneContact(b1, pose1, b0, false, margin, out);
+        if (t0 == ShapeType::Box)
+            return appendSphereBoxContact(b1, pose1, b0, pose0, false, margin, out);
     }
     return -1;
 }

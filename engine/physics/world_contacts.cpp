@@ -23,6 +23,31 @@ namespace {
 /// flag is asked every this many pairs.
 constexpr size_t kPairsPerChunk = 64;
 
+/// The points of a pair other than two spheres, appended to `out` in the bodies' frames;
+/// returns their count: a sphere on a plane or a box by the fast path, any other pair by the
+/// dispatch table. Out of line, so that the loop over a pile's pairs (spheres on spheres, most
+/// of them apart) keeps its own values in registers (a function with clones is not inlined).
+[[gnu::target_clones("avx2", "default")]] int appendOtherPairContacts(
+    const Body& b0, const Pose& pose0, const Body& b1, const Pose& pose1, double margin,
+    ContactManifold& manifold, std::vector<Contact>& out) {
+    const int spherePoints = appendSpherePairContacts(b0, pose0, b1, pose1, margin, out);
+    if (spherePoints >= 0) return spherePoints;
+    // The general path's poses, a sphere's with the orientation the pose loop left out.
+    const auto fullPose = [](const Body& body, const Pose& pose) {
+        return body.shape.type == ShapeType::Sphere ? Pose{pose.position, body.userOrientation()}
+                                                    : pose;
+    };
+    collide(b0.shape, fullPose(b0, pose0), b1.shape, fullPose(b1, pose1), margin, manifold);
+    // Paper 3.5: the points are kept in the bodies' frames (r1, r2), so the position solve
+    // measures the depth on the poses as other corrections leave them.
+    for (int i = 0; i < manifold.count; ++i) {
+        const ContactPoint& point = manifold.points[i];
+        appendContactInBodyFrames(b0, b1, point.point0, point.point1, point.normal, out,
+                                  point.feature);
+    }
+    return manifold.count;
+}
+
 }  // namespace
 
 void World::listAwake(bool newPairs) {
@@ -114,12 +139,82 @@ void World::collectContactPairs(double dt) {
     }
 }
 
+// Compiled for the base ISA and AVX2 (without FMA, so every operation rounds as in the base
+// build), chosen at load time: the three-operand forms take instructions off. Defined before
+// its first call, as clang asks of a function with clones.
+[[gnu::target_clones("avx2", "default")]] void World::findPairContacts(
+    const uint32_t* order, size_t first, size_t last, bool sleeping, std::vector<Contact>& out,
+    std::vector<uint32_t>& touching) {
+    // Most of a frame's pairs have no point in a given substep (a pile's: three in four): the
+    // solve and the velocity pass visit only those that have, in pair order. Listed here, as
+    // each pair's point is found, rather than in a second pass over every pair.
+    ContactManifold manifold;  // the general path's, made once
+    // Read once, not per pair: the loop writes pairs and contacts, which the compiler cannot
+    // tell apart from these arrays.
+    ContactPair* const pairs = contactPairs_.data();
+    const Body* const bodies = bodies_.data();
+    const Pose* const poses = poses_.data();
+    const double* const reaches = reaches_.data();
+    uint8_t* const touched = pairTouched_.data();
+    const double margin = settings_.contactMargin;
+    auto written = static_cast<uint32_t>(out.size());
+    // Pairs [from, to) by their index in contactPairs_ (the loop is made once for the awake
+    // list and once for every pair, so that neither asks which per pair).
+    const auto findPoints = [&](size_t from, size_t to, const auto& pairIndex)
+        __attribute__((always_inline)) {
+        for (size_t k = from; k < to; ++k) {
+            const size_t p = pairIndex(k);
+            ContactPair& pair = pairs[p];
+            const Pose& pose0 = poses[pair.body0];
+            const Pose& pose1 = poses[pair.body1];
+            // Bounding spheres first: most of a frame's candidate pairs are not touching in a
+            // given substep, and this test costs a fraction of the narrowphase.
+            const double reach = reaches[pair.body0] + reaches[pair.body1] + margin;
+            const bool apart = std::isfinite(reach) &&
+                               (pose0.position - pose1.position).squaredNorm() > reach * reach;
+            pair.first = written;
+            pair.pushedBefore = pair.lambdaNormal > 0.0;
+            pair.lambdaNormal = pair.lambdaTangent1 = pair.lambdaTangent2 = pair.lambdaTwist = 0.0;
+            if (apart) {
+                pair.count = 0;
+                pair.anchored = false;  // apart: the next touch anchors anew
+                continue;
+            }
+            const Body& b0 = bodies[pair.body0];
+            const Body& b1 = bodies[pair.body1];
+            // Spheres on spheres (a pile's pairs) write their point straight into `out`.
+            const int count =
+                b0.shape.type == ShapeType::Sphere && b1.shape.type == ShapeType::Sphere
+                    ? appendSphereSphereContact(b0, pose0, b1, pose1, margin, out)
+                    : appendOtherPairContacts(b0, pose0, b1, pose1, margin, manifold, out);
+            pair.count = static_cast<uint32_t>(count);
+            if (count == 0) {
+                pair.anchored = false;  // apart: the next touch anchors anew
+                continue;
+            }
+            written += static_cast<uint32_t>(count);
+            touching.push_back(static_cast<uint32_t>(p));
+            if (sleeping) touched[p] = 1;
+        }
+    };
+    for (size_t from = first; from < last; from += kPairsPerChunk) {
+        // The step ends at the substep loop's check. Asked every kPairsPerChunk pairs: the
+        // flag is an atomic load, and a frame's pairs are thousands.
+        if (stepCancellationRequested()) break;
+        const size_t to = std::min(from + kPairsPerChunk, last);
+        if (order)
+            findPoints(from, to, [order](size_t k) { return size_t{order[k]}; });
+        else
+            findPoints(from, to, [](size_t k) { return k; });
+    }
+}
+
 void World::findContacts(bool sleeping) {
     // Each colliding body's shape pose, once per substep rather than once per pair; while some
     // sleep, the awake bodies' and pairs' lists alone are visited (in chunks with more threads).
     // A sphere's orientation is left out: the fast path (contact_spheres.h) reads its position
     // alone, and findPairContacts gives the general path its orientation when a pair needs it.
-    const auto pose = [&](Body& body) {
+    const auto pose = [&](Body& body) __attribute__((always_inline)) {
         const auto i = static_cast<size_t>(&body - bodies_.data());
         if (!(reaches_[i] > 0.0)) return;
         poses_[i].position = body.userPosition();
@@ -185,66 +280,6 @@ void World::findContacts(bool sleeping) {
             coloured_->touching.placeBlock(chunkTouching_[chunk], coloured_->pairColours.data(),
                                            coloured_->blockCounts[chunk]);
     });
-}
-
-void World::findPairContacts(const uint32_t* order, size_t first, size_t last, bool sleeping,
-                             std::vector<Contact>& out, std::vector<uint32_t>& touching) {
-    // Most of a frame's pairs have no point in a given substep (a pile's: half of them): the
-    // solve and the velocity pass visit only those that have, in pair order. Listed here, as
-    // each pair's point is found, rather than in a second pass over every pair.
-    ContactManifold manifold;
-    for (size_t k = first; k < last; ++k) {
-        const size_t p = order ? order[k] : k;
-        ContactPair& pair = contactPairs_[p];
-        // The step ends at the substep loop's check. Asked every kPairsPerChunk pairs: the
-        // flag is an atomic load, and a frame's pairs are thousands.
-        if ((k - first) % kPairsPerChunk == 0 && stepCancellationRequested()) break;
-        const Body& b0 = bodies_[pair.body0];
-        const Body& b1 = bodies_[pair.body1];
-        const Pose& pose0 = poses_[pair.body0];
-        const Pose& pose1 = poses_[pair.body1];
-        // Bounding spheres first: most of a frame's candidate pairs are not touching in a
-        // given substep, and this test costs a fraction of the narrowphase.
-        const double reach = reaches_[pair.body0] + reaches_[pair.body1] + settings_.contactMargin;
-        const bool apart =
-            std::isfinite(reach) && (pose0.position - pose1.position).squaredNorm() > reach * reach;
-        pair.first = static_cast<uint32_t>(out.size());
-        pair.pushedBefore = pair.lambdaNormal > 0.0;
-        pair.lambdaNormal = pair.lambdaTangent1 = pair.lambdaTangent2 = pair.lambdaTwist = 0.0;
-        // Spheres on spheres and planes (a pile's pairs) write their point straight into `out`.
-        const int spherePoints =
-            apart ? 0 : appendSpherePairContacts(b0, pose0, b1, pose1, settings_.contactMargin, out);
-        if (spherePoints >= 0) {
-            pair.count = static_cast<uint32_t>(spherePoints);
-            if (spherePoints == 0) {
-                pair.anchored = false;  // apart: the next touch anchors anew
-                continue;
-            }
-            touching.push_back(static_cast<uint32_t>(p));
-            if (sleeping) pairTouched_[p] = 1;
-            continue;
-        }
-        // The general path's poses, a sphere's with the orientation the pose loop left out.
-        const auto fullPose = [](const Body& body, const Pose& pose) {
-            return body.shape.type == ShapeType::Sphere ? Pose{pose.position, body.userOrientation()} : pose;
-        };
-        collide(b0.shape, fullPose(b0, pose0), b1.shape, fullPose(b1, pose1), settings_.contactMargin, manifold);
-        pair.count = static_cast<uint32_t>(manifold.count);
-        if (manifold.count == 0) pair.anchored = false;  // apart: the next touch anchors anew
-        if (manifold.count > 0) touching.push_back(static_cast<uint32_t>(p));
-        if (sleeping && manifold.count > 0) pairTouched_[p] = 1;
-        // Paper 3.5: the points are kept in the bodies' frames (r1, r2), so the position solve
-        // measures the depth on the poses as other corrections leave them.
-        const Quat q0Inverse = b0.q.conjugate();
-        const Quat q1Inverse = b1.q.conjugate();
-        for (int i = 0; i < manifold.count; ++i) {
-            const ContactPoint& point = manifold.points[i];
-            out.push_back({.local0 = q0Inverse * (point.point0 - b0.x),
-                           .local1 = q1Inverse * (point.point1 - b1.x),
-                           .normal = point.normal,
-                           .feature = point.feature});
-        }
-    }
 }
 
 }  // namespace substep

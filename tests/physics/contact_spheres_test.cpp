@@ -1,6 +1,7 @@
 // Tests engine/physics/contact_spheres.h: the sphere pile's fast path gives the depth and normal
-// of the closed forms (r0 + r1 − |c0 − c1| along the line of centres; r − height above a plane),
-// and, over random poses, radii, planes and both orders of the bodies, exactly the contacts the
+// of the closed forms (r0 + r1 − |c0 − c1| along the line of centres; r − height above a plane
+// or a box's face), and, over random poses, radii, planes, boxes and both orders of the bodies,
+// exactly the contacts the
 // general narrowphase (collide() and World::findPairContacts' change of frame) gives, bit for
 // bit, so that a pile's results do not depend on which path found its points.
 
@@ -111,6 +112,26 @@ TEST(ContactSpheres, SpherePlaneDepthIsRadiusMinusHeightInEitherOrder) {
     }
 }
 
+TEST(ContactSpheres, SphereBoxDepthIsRadiusMinusHeightAboveTheFaceInEitherOrder) {
+    // A turned 1 x 1 x 1 box; a sphere of radius 0.2 whose centre is 0.15 above its +y face.
+    const Quat turn(Eigen::AngleAxisd(0.4, Vec3(1, 0, 1).normalized()));
+    const Body box = makeBody({.shape = boxShape(Vec3::Ones()),
+                               .type = BodyType::Static,
+                               .position = Vec3(0.3, 0.5, -0.1),
+                               .orientation = turn});
+    const Body sphere = makeSphere(0.2, box.x + turn * Vec3(0.1, 0.5 + 0.15, -0.2),
+                                   Quat(Eigen::AngleAxisd(1.1, Vec3::UnitZ())));
+    for (const bool sphereFirst : {true, false}) {
+        const Body& b0 = sphereFirst ? sphere : box;
+        const Body& b1 = sphereFirst ? box : sphere;
+        const std::vector<Contact> contacts = fastContacts(b0, b1);
+        ASSERT_EQ(contacts.size(), 1u);
+        EXPECT_NEAR(depthOf(contacts[0], b0, b1), 0.05, 1e-14);
+        const Vec3 up = turn * Vec3::UnitY();  // from the box towards the sphere
+        EXPECT_NEAR((contacts[0].normal - (sphereFirst ? up : Vec3(-up))).norm(), 0.0, 1e-15);
+    }
+}
+
 TEST(ContactSpheres, GapsBeyondTheMarginGiveNoPoint) {
     const Body b0 = makeSphere(0.1, Vec3(0, 0, 0), Quat::Identity());
     const Body near = makeSphere(0.1, Vec3(0.2 + 0.9 * kMargin, 0, 0), Quat::Identity());
@@ -130,11 +151,40 @@ TEST(ContactSpheres, GapsBeyondTheMarginGiveNoPoint) {
 
 TEST(ContactSpheres, OtherPairsAreLeftToTheGeneralNarrowphase) {
     const Body sphere = makeSphere(0.1, Vec3::Zero(), Quat::Identity());
-    const Body box = makeBody({.shape = boxShape(Vec3::Constant(0.2)), .mass = 1.0});
+    const Body capsule = makeBody({.shape = capsuleShape(0.1, 0.4), .mass = 1.0});
     std::vector<Contact> out;
-    EXPECT_EQ(appendSpherePairContacts(sphere, poseOf(sphere), box, poseOf(box), kMargin, out), -1);
-    EXPECT_EQ(appendSpherePairContacts(box, poseOf(box), sphere, poseOf(sphere), kMargin, out), -1);
+    EXPECT_EQ(
+        appendSpherePairContacts(sphere, poseOf(sphere), capsule, poseOf(capsule), kMargin, out),
+        -1);
+    EXPECT_EQ(
+        appendSpherePairContacts(capsule, poseOf(capsule), sphere, poseOf(sphere), kMargin, out),
+        -1);
     EXPECT_TRUE(out.empty());
+}
+
+TEST(ContactSpheres, BodyFramesAreEigensConjugateRotationBitForBit) {
+    // The frame change both paths store (appendContactInBodyFrames, two lanes side by side)
+    // against Eigen's q⁻¹ (p − x) one point at a time, for any bodies, points and feature ids.
+    std::mt19937_64 rng(35);
+    std::uniform_real_distribution<double> unit(-1.0, 1.0);
+    for (int trial = 0; trial < 2000; ++trial) {
+        Body b0 = makeSphere(0.1, Vec3(unit(rng), unit(rng), unit(rng)) * 50, randomRotation(rng));
+        Body b1 = makeBody({.shape = boxShape(Vec3(0.3, 0.2, 0.1)),
+                            .mass = 2.0,
+                            .position = Vec3(unit(rng), unit(rng), unit(rng)) * 50,
+                            .orientation = randomRotation(rng)});
+        const Vec3 point0 = b0.x + Vec3(unit(rng), unit(rng), unit(rng));
+        const Vec3 point1 = b1.x + Vec3(unit(rng), unit(rng), unit(rng)) * 1e-3;
+        const Vec3 normal = Vec3(unit(rng), unit(rng), unit(rng)).normalized();
+        std::vector<Contact> out;
+        appendContactInBodyFrames(b0, b1, point0, point1, normal, out,
+                                  static_cast<uint32_t>(trial));
+        ASSERT_EQ(out.size(), 1u);
+        expectSameBits(out[0].local0, b0.q.conjugate() * (point0 - b0.x));
+        expectSameBits(out[0].local1, b1.q.conjugate() * (point1 - b1.x));
+        expectSameBits(out[0].normal, normal);
+        EXPECT_EQ(out[0].feature, static_cast<uint32_t>(trial));
+    }
 }
 
 TEST(ContactSpheres, RandomPairsMatchTheGeneralPathBitForBit) {
@@ -142,6 +192,7 @@ TEST(ContactSpheres, RandomPairsMatchTheGeneralPathBitForBit) {
     std::uniform_real_distribution<double> unit(-1.0, 1.0);
     std::uniform_real_distribution<double> radius(0.01, 2.0);
     int touching = 0;
+    int boxTouching = 0;
     for (int trial = 0; trial < 2000; ++trial) {
         const double r0 = radius(rng);
         const double r1 = radius(rng);
@@ -161,8 +212,24 @@ TEST(ContactSpheres, RandomPairsMatchTheGeneralPathBitForBit) {
         const Body plane = makePlane(normal, offset);
         expectSameContacts(b0, plane);
         expectSameContacts(plane, b0);
+        // Boxes of any pose and size (a pile's walls), the centre outside, on the surface or
+        // inside, both orders.
+        const Vec3 size(0.1 + 3 * std::abs(unit(rng)), 0.1 + 3 * std::abs(unit(rng)),
+                        0.1 + 3 * std::abs(unit(rng)));
+        const Quat boxRotation = randomRotation(rng);
+        const Vec3 local =
+            size.cwiseProduct(Vec3(unit(rng), unit(rng), unit(rng))) * 0.5 *
+            (trial % 3 == 0 ? 0.9 : 1.0 + r0 / size.minCoeff() * std::abs(unit(rng)));
+        const Body box = makeBody({.shape = boxShape(size),
+                                   .type = BodyType::Static,
+                                   .position = c0 - boxRotation * local,
+                                   .orientation = boxRotation});
+        expectSameContacts(b0, box);
+        expectSameContacts(box, b0);
         touching += static_cast<int>(fastContacts(b0, b1).size() + fastContacts(b0, plane).size());
+        boxTouching += static_cast<int>(fastContacts(b0, box).size());
     }
+    EXPECT_GT(boxTouching, 500);
     EXPECT_GT(touching, 1000);  // the trials reach both sides of the margin
     // Degenerate cases: coincident centres (+y), a zero plane normal (+y).
     const Body a = makeSphere(0.3, Vec3(1, 2, 3), Quat::Identity());
@@ -171,6 +238,17 @@ TEST(ContactSpheres, RandomPairsMatchTheGeneralPathBitForBit) {
     const Body flat = makePlane(Vec3::Zero(), 1.5);
     expectSameContacts(a, flat);
     expectSameContacts(flat, a);
+    // A box centred on the sphere's centre (ties between faces: the first axis), and on a face.
+    const Body cube = makeBody({.shape = boxShape(Vec3::Constant(1.0)),
+                                .type = BodyType::Static,
+                                .position = Vec3(1, 2, 3)});
+    expectSameContacts(a, cube);
+    expectSameContacts(cube, a);
+    const Body onFace = makeBody({.shape = boxShape(Vec3::Constant(1.0)),
+                                  .type = BodyType::Static,
+                                  .position = Vec3(1, 2.5, 3)});
+    expectSameContacts(a, onFace);
+    expectSameContacts(onFace, a);
 }
 
 }  // namespace

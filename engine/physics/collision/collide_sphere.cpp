@@ -1,5 +1,7 @@
 // Narrowphase pairs of a sphere (shape a) against sphere, plane, box and capsule: each is the
-// distance from the centre to the other shape's closest point, minus the radius.
+// distance from the centre to the other shape's closest point, minus the radius. The sphere,
+// plane and box pairs are repeated expression for expression by the pile's fast path
+// (physics/contact_spheres.h); contact_spheres_test.cpp compares the two bit for bit.
 
 #include "physics/collision/collide_primitives.h"
 #include "physics/collision/primitive_geometry.h"
