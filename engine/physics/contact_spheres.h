@@ -2,8 +2,8 @@
 /// The narrowphase's fast path for the pairs of a sphere pile: sphere – sphere, sphere – plane
 /// and sphere – box contacts written straight into the solver's Contact list, in the bodies'
 /// frames, without the dispatch table, the manifold and its copy (World::findPairContacts). The
-/// arithmetic is collideSphereSphere's, collideSpherePlane's and collideSphereBox's expression
-/// for expression, followed by the frame change World::findPairContacts makes, so the contacts
+/// arithmetic is collideSphereSphere's and collideSpherePlane's expression for expression, and
+/// collideSphereBox's own primitive::sphereBoxPoints, followed by the frame change World::findPairContacts makes, so the contacts
 /// are bit-identical to the general path's (tests/physics/contact_spheres_test.cpp compares
 /// them). Every function is always inlined: its callers are compiled for AVX2 too
 /// (target_clones), and a copy left out of line would be the base ISA's.
@@ -102,45 +102,21 @@ namespace substep {
     return 1;
 }
 
-/// Sphere body `sphere` (pose ps) against box body `box` (pose pb): collideSphereBox's point,
-/// the sphere's centre against its closest point of the box (or, from inside, of the nearest
+/// Sphere body `sphere` (pose ps) against box body `box` (pose pb): collideSphereBox's point
+/// (primitive::sphereBoxPoints), the sphere's centre against its closest point of the box (or, from inside, of the nearest
 /// face). `sphereFirst` as for a plane: otherwise stored the other way round, the normal
 /// flipped. Returns the points added (0 or 1).
 [[gnu::always_inline]] inline int appendSphereBoxContact(const Body& sphere, const Pose& ps,
                                                          const Body& box, const Pose& pb,
                                                          bool sphereFirst, double margin,
                                                          std::vector<Contact>& out) {
-    const double radius = sphere.shape.radius;
-    const Mat3 rotation = pb.rotation.toRotationMatrix();
-    const Vec3 half = primitive::halfExtents(box.shape);
-    const Vec3 centre = rotation.transpose() * (ps.position - pb.position);
-    Vec3 closest = centre.cwiseMax(-half).cwiseMin(half);
-    const Vec3 outside = centre - closest;
-    const double distance2 = outside.squaredNorm();
-    Vec3 localNormal;
-    if (distance2 > primitive::kTinySquared) {
-        const double distance = std::sqrt(distance2);
-        if (distance - radius > margin) return 0;
-        localNormal = outside / distance;
-    } else {
-        // Centre inside (or on the surface): leave through the nearest face, the first axis
-        // on ties.
-        int axis = 0;
-        double nearest = half[0] - std::abs(centre[0]);
-        for (int k = 1; k < 3; ++k) {
-            const double gap = half[k] - std::abs(centre[k]);
-            if (gap < nearest) {
-                nearest = gap;
-                axis = k;
-            }
-        }
-        const double sign = centre[axis] >= 0.0 ? 1.0 : -1.0;
-        closest[axis] = sign * half[axis];
-        localNormal = sign * Vec3::Unit(axis);
-    }
-    const Vec3 n = rotation * localNormal;
-    const Vec3 point0 = ps.position - radius * n;
-    const Vec3 point1 = pb.position + rotation * closest;
+    primitive::SphereBoxPoints points;
+    if (!primitive::sphereBoxPoints(ps.position, sphere.shape.radius, pb, primitive::halfExtents(box.shape), margin,
+                                    points))
+        return 0;
+    const Vec3& point0 = points.onSphere;
+    const Vec3& point1 = points.onBox;
+    const Vec3& n = points.normal;
     const double depth = (point1 - point0).dot(n);
     if (!(depth >= -margin)) return 0;
     if (sphereFirst)

@@ -1,7 +1,8 @@
 // Narrowphase pairs of a sphere (shape a) against sphere, plane, box and capsule: each is the
-// distance from the centre to the other shape's closest point, minus the radius. The sphere,
-// plane and box pairs are repeated expression for expression by the pile's fast path
-// (physics/contact_spheres.h); contact_spheres_test.cpp compares the two bit for bit.
+// distance from the centre to the other shape's closest point, minus the radius. The sphere and
+// plane pairs are repeated expression for expression by the pile's fast path
+// (physics/contact_spheres.h), which shares the box pair's sphereBoxPoints;
+// contact_spheres_test.cpp compares the two bit for bit.
 
 #include "physics/collision/collide_primitives.h"
 #include "physics/collision/primitive_geometry.h"
@@ -30,35 +31,9 @@ void collideSpherePlane(const Shape& a, const Pose& pa, const Shape& b, const Po
 
 void collideSphereBox(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb, double margin,
                       ContactManifold& out) {
-    const Mat3 rotation = pb.rotation.toRotationMatrix();
-    const Vec3 half = halfExtents(b);
-    const Vec3 centre = rotation.transpose() * (pa.position - pb.position);
-    Vec3 closest = centre.cwiseMax(-half).cwiseMin(half);
-    const Vec3 outside = centre - closest;
-    const double distance2 = outside.squaredNorm();
-    Vec3 localNormal;
-    if (distance2 > kTinySquared) {
-        const double distance = std::sqrt(distance2);
-        if (distance - a.radius > margin) return;
-        localNormal = outside / distance;
-    } else {
-        // Centre inside (or on the surface): leave through the nearest face, the first axis
-        // on ties so that a centred sphere gets a definite normal.
-        int axis = 0;
-        double nearest = half[0] - std::abs(centre[0]);
-        for (int k = 1; k < 3; ++k) {
-            const double gap = half[k] - std::abs(centre[k]);
-            if (gap < nearest) {
-                nearest = gap;
-                axis = k;
-            }
-        }
-        const double sign = centre[axis] >= 0.0 ? 1.0 : -1.0;
-        closest[axis] = sign * half[axis];
-        localNormal = sign * Vec3::Unit(axis);
-    }
-    const Vec3 n = rotation * localNormal;
-    addContact(out, pa.position - a.radius * n, pb.position + rotation * closest, n, margin, 0);
+    SphereBoxPoints points;
+    if (!sphereBoxPoints(pa.position, a.radius, pb, halfExtents(b), margin, points)) return;
+    addContact(out, points.onSphere, points.onBox, points.normal, margin, 0);
 }
 
 void collideSphereCapsule(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb,

@@ -8,6 +8,7 @@
 #include "physics/math.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 
 namespace substep::primitive {
@@ -109,6 +110,52 @@ inline UnitPlane unitPlane(const Shape& plane) {
 /// Half extents of a box (its size is the full extents).
 inline Vec3 halfExtents(const Shape& box) {
     return 0.5 * box.size.cwiseAbs();
+}
+
+/// A sphere's point pair against a box: the sphere's point along the normal and the box's
+/// closest point to the centre (from inside, its point on the nearest face, the first axis on
+/// ties), the normal from the box towards the sphere.
+struct SphereBoxPoints {
+    Vec3 onSphere;
+    Vec3 onBox;
+    Vec3 normal;
+};
+
+/// The points of a sphere (centre, radius) against a box (pose, half extents); false when the
+/// centre lies more than radius + margin outside it. Shared by collideSphereBox and the sphere
+/// pile's fast path (physics/contact_spheres.h), which must give the same bits.
+[[gnu::always_inline]] inline bool sphereBoxPoints(const Vec3& sphereCentre, double radius, const Pose& box,
+                                                   const Vec3& half, double margin, SphereBoxPoints& points) {
+    const Mat3 rotation = box.rotation.toRotationMatrix();
+    const Vec3 centre = rotation.transpose() * (sphereCentre - box.position);
+    Vec3 closest = centre.cwiseMax(-half).cwiseMin(half);
+    const Vec3 outside = centre - closest;
+    const double distance2 = outside.squaredNorm();
+    Vec3 localNormal;
+    if (distance2 > kTinySquared) {
+        const double distance = std::sqrt(distance2);
+        if (distance - radius > margin) return false;
+        localNormal = outside / distance;
+    } else {
+        // Centre inside (or on the surface): leave through the nearest face, the first axis
+        // on ties so that a centred sphere gets a definite normal.
+        int axis = 0;
+        double nearest = half[0] - std::abs(centre[0]);
+        for (int k = 1; k < 3; ++k) {
+            const double gap = half[k] - std::abs(centre[k]);
+            if (gap < nearest) {
+                nearest = gap;
+                axis = k;
+            }
+        }
+        const double sign = centre[axis] >= 0.0 ? 1.0 : -1.0;
+        closest[axis] = sign * half[axis];
+        localNormal = sign * Vec3::Unit(axis);
+    }
+    points.normal = rotation * localNormal;
+    points.onSphere = sphereCentre - radius * points.normal;
+    points.onBox = box.position + rotation * closest;
+    return true;
 }
 
 /// Adds the point pair with depth = (point1 − point0)·normal when the depth is at least
