@@ -12,7 +12,9 @@ void ContactSchedule::plan(std::span<const uint32_t> touching, std::span<const C
     // pairs in 29 % of spheres1000's steps at 8) but checks more bodies per pair.
     constexpr size_t kWindow = 8;
     touching_.assign(touching.begin(), touching.end());
-    steps_.resize(2 * touching.size());  // at most a count and an index per pair
+    // At most a count and an index per pair. Grown only: shrunk to the steps' length, the vector
+    // would zero its tail again at every substep.
+    if (steps_.size() < 2 * touching.size()) steps_.resize(2 * touching.size());
     // Each pair's moving bodies, read once: the window below looks at every pair up to
     // kWindow − 1 times, and a body's record is a scattered 608 bytes.
     constexpr uint32_t kStill = ~0u;  // a static or kinematic body, which the step may share
@@ -55,7 +57,7 @@ void ContactSchedule::plan(std::span<const uint32_t> touching, std::span<const C
             block(candidate);
         }
     }
-    steps_.resize(written);
+    stepsLength_ = written;
 }
 
 namespace {

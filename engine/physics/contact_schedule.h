@@ -15,6 +15,7 @@
 
 #include "physics/contact.h"
 
+#include <cstddef>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -31,7 +32,7 @@ public:
 
     /// The steps: each the number of pairs it takes together (1 to kContactLanes), then their
     /// indices.
-    std::span<const uint32_t> steps() const { return steps_; }
+    std::span<const uint32_t> steps() const { return std::span<const uint32_t>(steps_).first(stepsLength_); }
 
 private:
     /// A touching pair as the planning sees it: its moving bodies (~0 for one that does not move).
@@ -42,7 +43,8 @@ private:
     };
 
     std::vector<uint32_t> touching_;
-    std::vector<uint32_t> steps_;
+    std::vector<uint32_t> steps_;  ///< the steps in its first stepsLength_ entries
+    size_t stepsLength_ = 0;
     std::vector<Candidate> candidates_;  ///< scratch of plan()
 };
 
