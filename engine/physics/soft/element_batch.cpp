@@ -3,6 +3,8 @@
 #include "physics/soft/element_batch_kernel.h"
 
 #include <algorithm>
+#include <bit>
+#include <map>
 
 namespace substep {
 namespace {
@@ -36,7 +38,7 @@ std::vector<uint32_t> elementWaves(std::span<const HexElement> elements, size_t 
 }
 
 void appendBatches(const ElementArrays& arrays, std::span<const uint32_t> wave, uint32_t first,
-                   uint32_t count, std::vector<ElementBatch>& batches) {
+                   uint32_t count, std::vector<ElementBatch>& batches, std::vector<BatchShape>& shapes) {
     const uint32_t end = first + count;
     const size_t start = batches.size();  // this body's first batch
     const auto shares = [&](uint32_t e, uint32_t from, uint32_t to) {
@@ -45,6 +47,20 @@ void appendBatches(const ElementArrays& arrays, std::span<const uint32_t> wave, 
                 for (uint32_t o : arrays.elements[other])
                     if (p == o) return true;
         return false;
+    };
+    // This body's shapes, found by their bits (a tyre's 1104 elements have 24).
+    std::map<std::array<uint64_t, 26>, uint32_t> shapeIndex;
+    const auto shapeOf = [&](uint32_t element) {
+        BatchShape shape;
+        for (int j = 0; j < 8; ++j)
+            for (int r = 0; r < 3; ++r) shape.rest[r][j] = arrays.restOffsets[element][j][r];
+        shape.scale2 = arrays.scale2[element];
+        shape.compliance = arrays.compliance[element];
+        std::array<uint64_t, 26> bits;
+        for (int i = 0; i < 26; ++i) bits[i] = std::bit_cast<uint64_t>(*shape.row(i));
+        const auto [at, added] = shapeIndex.try_emplace(bits, static_cast<uint32_t>(shapes.size()));
+        if (added) shapes.push_back(shape);
+        return at->second;
     };
     for (uint32_t e = first; e < end;) {
         ElementBatch batch{};
@@ -57,32 +73,38 @@ void appendBatches(const ElementArrays& arrays, std::span<const uint32_t> wave, 
         for (int l = 0; l < kBatchLanes; ++l) {
             const uint32_t element =
                 e + static_cast<uint32_t>(l < static_cast<int>(batch.lanes) ? l : 0);
-            for (int j = 0; j < 8; ++j) {
-                for (int r = 0; r < 3; ++r)
-                    batch.rest[r][j][l] = arrays.restOffsets[element][j][r];
-                batch.invMass[j][l] = arrays.invMass[arrays.elements[element][j]];
-                batch.particle[j][l] = arrays.elements[element][j];
-            }
-            batch.scale2[l] = arrays.scale2[element];
-            batch.compliance[l] = arrays.compliance[element];
+            for (int j = 0; j < 8; ++j) batch.particle[j][l] = arrays.elements[element][j];
+            batch.shape[l] = shapeOf(element);
             batch.volume = batch.volume || arrays.volumeCompliance[element] >= 0.0;
         }
-        batch.contiguous = batch.lanes == kBatchLanes && !batch.volume;
+        batch.oneShape = true;
+        for (int l = 1; l < kBatchLanes; ++l) batch.oneShape = batch.oneShape && batch.shape[l] == batch.shape[0];
+        batch.contiguous = batch.lanes == kBatchLanes && !batch.volume && batch.oneShape;
         for (int j = 0; j < 8; ++j)
             for (int l = 1; l < kBatchLanes; ++l)
                 batch.contiguous = batch.contiguous && batch.particle[j][l] == batch.particle[j][0] + l;
         batches.push_back(batch);
         e += batch.lanes;
     }
-    // Each contiguous batch paired with the next unpaired contiguous one of its wave.
+    // Each contiguous batch paired with the next unpaired contiguous one of its wave, of its own
+    // shape where there is one (the kernel then broadcasts one shape to all eight lanes).
+    const auto free = [&](size_t b) {
+        return batches[b].contiguous && batches[b].partnerAhead == 0 && batches[b].partnerBehind == 0;
+    };
     for (size_t b = start; b < batches.size(); ++b) {
-        if (!batches[b].contiguous || batches[b].partnerAhead != 0 || batches[b].partnerBehind != 0) continue;
+        if (!free(b)) continue;
         const uint32_t ownWave = wave[batches[b].firstElement - first];
+        size_t partner = 0, sameShape = 0;
         for (size_t next = b + 1; next < batches.size() && wave[batches[next].firstElement - first] == ownWave; ++next) {
-            if (!batches[next].contiguous || batches[next].partnerBehind != 0) continue;
-            batches[b].partnerAhead = batches[next].partnerBehind = static_cast<uint32_t>(next - b);
-            break;
+            if (!free(next)) continue;
+            if (partner == 0) partner = next;
+            if (batches[next].shape[0] == batches[b].shape[0]) {
+                sameShape = next;
+                break;
+            }
         }
+        if (sameShape != 0) partner = sameShape;
+        if (partner != 0) batches[b].partnerAhead = batches[partner].partnerBehind = static_cast<uint32_t>(partner - b);
     }
 }
 

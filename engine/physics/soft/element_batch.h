@@ -13,6 +13,11 @@
 /// turns more than 1e-3 rad, as extractRotation does); the rare element that needs more (a turn
 /// over 0.1 rad, a second step over 1e-3 rad, an inverted or collapsed shape) and the optional
 /// volume constraint run through the scalar functions of shape_matching.h.
+///
+/// Each element's rest offsets q_j are its rest shape's (lattice.h) in that shape's own frame,
+/// and its rotation R maps them to the world: a tyre's 1104 cells are 24 shapes, each turned
+/// about the axis. The batches keep each shape once (BatchShape), so a sweep reads 24 records
+/// and the particles' inverse masses rather than 1.2 kB of rest data per batch.
 
 #include "physics/math.h"
 #include "physics/soft/lattice.h"
@@ -27,26 +32,38 @@ namespace substep {
 /// Elements projected side by side.
 inline constexpr int kBatchLanes = 4;
 
-/// Up to kBatchLanes consecutive elements of one wave, with their rest offsets and corner
-/// inverse masses laid out lane-innermost (lanes past `lanes` repeat lane 0 and are not
-/// written back).
+/// An element's rest data as the kernel reads it: the rest offsets q_j coordinate by coordinate,
+/// ℓ² and α_e. Elements of one rest shape (lattice.h) and compliance share one: the tyres of the
+/// RC car have 24 of them for 4416 elements, so the batches' rest data stays in the L1 cache
+/// instead of streaming 1.4 MB a sweep.
+struct BatchShape {
+    static constexpr int kScale2 = 24, kCompliance = 25;  ///< row() of ℓ² and α_e
+    alignas(64) double rest[3][8];  ///< q_j: component by corner
+    double scale2 = 0.0;
+    double compliance = 0.0;
+    /// The doubles in order, rest row by row then ℓ² and α_e: rest[r][j] is row(8 r + j).
+    const double* row(int index) const { return &rest[0][0] + index; }
+};
+static_assert(sizeof(BatchShape) == 256, "two and a half cache lines, padded to four");
+
+/// Up to kBatchLanes consecutive elements of one wave: their corners' particles lane-innermost
+/// (lanes past `lanes` repeat lane 0 and are not written back) and their rest shapes.
 struct ElementBatch {
-    alignas(32) double rest[3][8][kBatchLanes];  ///< q_j, component by corner by lane
-    alignas(32) double invMass[8][kBatchLanes];  ///< w_j
-    alignas(32) double scale2[kBatchLanes];      ///< ℓ²
-    alignas(32) double compliance[kBatchLanes];  ///< α_e (m/N)
-    uint32_t particle[8][kBatchLanes];           ///< the corners' particle indices
+    uint32_t particle[8][kBatchLanes];  ///< the corners' particle indices
+    uint32_t shape[kBatchLanes];        ///< each lane's BatchShape
     uint32_t firstElement = 0;
     uint32_t lanes = 0;
     bool volume = false;  ///< a lane has the volume constraint
-    /// Four lanes without the volume constraint, each corner's particles consecutive (lane l's
-    /// is lane 0's + l, as a tyre's are): the kernel loads corners and rotations as rows and
-    /// transposes them in registers instead of gathering them value by value.
+    bool oneShape = false;  ///< every lane has lane 0's shape
+    /// Four lanes of one shape without the volume constraint, each corner's particles
+    /// consecutive (lane l's is lane 0's + l, as a tyre's are): the kernel loads corners and
+    /// rotations as rows and transposes them in registers instead of gathering them value by value.
     bool contiguous = false;
     /// A contiguous batch of the same wave and body this many batches ahead (0: none) is
     /// projected with this one, side by side in eight lanes, on a CPU with AVX-512 (elements of
     /// one wave share no particle: projecting a later one early gives the same bits); the
-    /// partner records the distance back.
+    /// partner records the distance back. A batch pairs with one of its own shape where its
+    /// wave has one.
     uint32_t partnerAhead = 0, partnerBehind = 0;
 };
 
@@ -63,6 +80,8 @@ struct ElementArrays {
     std::span<double> lambda;
     std::span<double> volumeLambda;
     std::span<const double> invMass;  ///< per particle
+    /// The batches' shapes (appendBatches' `shapes`).
+    std::span<const BatchShape> shapes = {};
     /// Per particle: the unit normal of the contact holding it, zero for a free particle (empty:
     /// none held). A held particle does not take an element's correction along its normal into
     /// the contact: its inverse mass along the normal is 0 for it (W_j = w_j (1 − n nᵀ)), so the
@@ -81,9 +100,10 @@ struct ElementArrays {
 std::vector<uint32_t> elementWaves(std::span<const HexElement> elements, size_t particleCount);
 
 /// The batches of elements [first, first + count), which must be sorted by `wave`
-/// (wave[k] belongs to element first + k).
+/// (wave[k] belongs to element first + k), and their shapes appended to `shapes` (one per
+/// distinct rest offsets, ℓ² and α_e, bit for bit; arrays.shapes is not read).
 void appendBatches(const ElementArrays& arrays, std::span<const uint32_t> wave, uint32_t first,
-                   uint32_t count, std::vector<ElementBatch>& batches);
+                   uint32_t count, std::vector<ElementBatch>& batches, std::vector<BatchShape>& shapes);
 
 /// The vector width of a sweep: eight lanes (pairs of batches) where the CPU has x86-64-v4
 /// (AVX-512), else four; or four lanes whatever the CPU. Both give the same bits: elements of

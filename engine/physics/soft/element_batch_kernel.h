@@ -154,15 +154,29 @@ struct BatchKernel {
             v[l] = std::sqrt(v[l]);
     }
 
-    /// The batches' row at `row(batch)` (kBatchLanes doubles each) into the lanes.
-    template <class Row>
-    [[gnu::always_inline]] static void loadRows(Lanes& v, const ElementBatch* const* batches, Row row) {
+    /// Row `index` of the lanes' shapes (BatchShape::row): one shape's value broadcast to each
+    /// batch's four lanes where its lanes have one shape (always for two batches side by side;
+    /// `OneShape`: both batches have the same), else lane by lane.
+    template <bool OneShape>
+    [[gnu::always_inline]] static void loadShapeRow(Lanes& v, const ElementBatch* const* batches,
+                                                    const BatchShape* shapes, int index) {
         if constexpr (kHalves == 1) {
-            simd::load(v, row(*batches[0]));
+            const ElementBatch& batch = *batches[0];
+            if (OneShape || batch.oneShape) {
+                const double x = *shapes[batch.shape[0]].row(index);
+                v = Lanes{x, x, x, x};
+                return;
+            }
+            v = Lanes{*shapes[batch.shape[0]].row(index), *shapes[batch.shape[1]].row(index),
+                      *shapes[batch.shape[2]].row(index), *shapes[batch.shape[3]].row(index)};
         } else {
-            simd::Lanes lo, hi;
-            simd::load(lo, row(*batches[0])), simd::load(hi, row(*batches[1]));
-            join(v, lo, hi);
+            const double lo = *shapes[batches[0]->shape[0]].row(index);
+            if constexpr (OneShape) {
+                v = Lanes{lo, lo, lo, lo, lo, lo, lo, lo};
+                return;
+            }
+            const double hi = *shapes[batches[1]->shape[0]].row(index);
+            v = Lanes{lo, lo, lo, lo, hi, hi, hi, hi};
         }
     }
 
@@ -243,10 +257,11 @@ struct BatchKernel {
     /// that have no volume constraint and no held corner), every lane's arithmetic in vector
     /// registers: the corners gathered once from the particle array into lanes (the batch holds
     /// their indices; a contiguous batch loads them as rows and transposes them), the rest
-    /// offsets, inverse masses, ℓ² and α_e read from the batch, one warm-started Newton step of
+    /// offsets, ℓ² and α_e broadcast from the batches' shapes (`OneShape`: both batches side by
+    /// side have one), the inverse masses from the particles', one warm-started Newton step of
     /// the rotation extraction, the deviations and the XPBD update (Eq. 4), and the corners
     /// scattered back.
-    template <bool Contiguous, bool Held>
+    template <bool Contiguous, bool Held, bool OneShape = false>
     [[gnu::always_inline]] static uint32_t solve(const ElementBatch* const* batches, const ElementArrays& arrays,
                                                  double invH2);
 
@@ -255,13 +270,13 @@ struct BatchKernel {
                                                     double invH2) {
         const ElementBatch* const one[1] = {&batch};
         if (held) [[unlikely]]
-            return batch.contiguous ? solve<true, true>(one, arrays, invH2) : solve<false, true>(one, arrays, invH2);
-        return batch.contiguous ? solve<true, false>(one, arrays, invH2) : solve<false, false>(one, arrays, invH2);
+            return batch.contiguous ? solve<true, true, true>(one, arrays, invH2) : solve<false, true>(one, arrays, invH2);
+        return batch.contiguous ? solve<true, false, true>(one, arrays, invH2) : solve<false, false>(one, arrays, invH2);
     }
 };
 
 template <class Lanes>
-template <bool Contiguous, bool Held>
+template <bool Contiguous, bool Held, bool OneShape>
 [[gnu::always_inline]] inline uint32_t BatchKernel<Lanes>::solve(const ElementBatch* const* batches, const ElementArrays& arrays, double invH2) {
     static_assert(kHalves == 1 || (Contiguous && !Held), "two batches side by side: the common path only");
     const ElementBatch& batch = *batches[0];  // the one batch of the gathers and held corners
@@ -307,16 +322,27 @@ template <bool Contiguous, bool Held>
             lambda[l] = arrays.lambda[first + static_cast<uint32_t>(lane[l])];
         }
     }
-    loadRows(spread, batches, [](const ElementBatch& b) { return b.scale2; });
-    loadRows(alpha, batches, [](const ElementBatch& b) { return b.compliance; });
+    const BatchShape* const shapes = arrays.shapes.data();
+    loadShapeRow<OneShape>(spread, batches, shapes, BatchShape::kScale2);
+    loadShapeRow<OneShape>(alpha, batches, shapes, BatchShape::kCompliance);
     alpha *= invH2;
     const auto loadRest = [&](int j, Lanes& rx, Lanes& ry, Lanes& rz) {
-        loadRows(rx, batches, [j](const ElementBatch& b) { return b.rest[0][j]; });
-        loadRows(ry, batches, [j](const ElementBatch& b) { return b.rest[1][j]; });
-        loadRows(rz, batches, [j](const ElementBatch& b) { return b.rest[2][j]; });
+        loadShapeRow<OneShape>(rx, batches, shapes, j);
+        loadShapeRow<OneShape>(ry, batches, shapes, 8 + j);
+        loadShapeRow<OneShape>(rz, batches, shapes, 16 + j);
     };
+    // w_j: rows of the particles' inverse masses where the corners are consecutive.
+    const double* const invMass = arrays.invMass.data();
     const auto loadInvMass = [&](int j, Lanes& wj) {
-        loadRows(wj, batches, [j](const ElementBatch& b) { return b.invMass[j]; });
+        if constexpr (Contiguous && kHalves == 1) {
+            simd::load(wj, invMass + batch.particle[j][0]);
+        } else if constexpr (Contiguous) {
+            simd::Lanes lo, hi;
+            simd::load(lo, invMass + batches[0]->particle[j][0]), simd::load(hi, invMass + batches[1]->particle[j][0]);
+            join(wj, lo, hi);
+        } else {
+            for (int l = 0; l < kLanes; ++l) wj[l] = invMass[batch.particle[j][l]];
+        }
     };
 
     // A = Σ ⅛ x_j q_jᵀ (Σ q_j = 0 removes the centroid).

@@ -37,7 +37,8 @@ namespace substep {
         const size_t ahead = b + batch.partnerAhead;
         const ElementBatch* const pair[2] = {&batch, &batches[ahead]};
         if (!held(b) && batch.partnerAhead != 0 && !held(ahead))
-            handedOver += Eight::solve<true, false>(pair, arrays, invH2);
+            handedOver += batch.shape[0] == batches[ahead].shape[0] ? Eight::solve<true, false, true>(pair, arrays, invH2)
+                                                                    : Eight::solve<true, false>(pair, arrays, invH2);
         else
             handedOver += Four::solveOne(batch, held(b), arrays, invH2);
     }

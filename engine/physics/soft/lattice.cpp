@@ -36,6 +36,8 @@ Lattice buildBoxLattice(const Vec3& size, const std::array<int, 3>& cells) {
                 for (int n = 0; n < 8; ++n) e[n] = index(i + (n & 1), j + ((n >> 1) & 1), k + ((n >> 2) & 1));
                 lattice.elements.push_back(e);
             }
+    lattice.shape.assign(lattice.elements.size(), 0);
+    lattice.shapeTurn.assign(lattice.elements.size(), Quat::Identity());
     return lattice;
 }
 
@@ -80,8 +82,29 @@ Lattice buildTyreLattice(double outerRadius, double innerRadius, double width,
                     for (int n = 0; n < 8; ++n)
                         e[n] = index(a + (n & 1), r + ((n >> 1) & 1), c + ((n >> 2) & 1));
                     lattice.elements.push_back(e);
+                    // Cell a is cell 0 of its ring turned by θ_a about y: (r cos θ, r sin θ)
+                    // in (x, z) goes to (r cos(θ + θ_a), r sin(θ + θ_a)), a turn by −θ_a about y.
+                    lattice.shape.push_back(static_cast<uint32_t>(r + radial * c));
+                    lattice.shapeTurn.emplace_back(Eigen::AngleAxisd(-2.0 * M_PI * a / around, Vec3::UnitY()));
                 }
     return lattice;
+}
+
+std::vector<std::array<Vec3, 8>> restShapes(const Lattice& lattice) {
+    std::vector<std::array<Vec3, 8>> shapes;
+    std::vector<uint8_t> made;
+    for (size_t k = 0; k < lattice.elements.size(); ++k) {
+        const uint32_t s = lattice.shape[k];
+        if (s >= shapes.size()) shapes.resize(s + 1), made.resize(s + 1, 0);
+        if (made[s] != 0) continue;
+        made[s] = 1;
+        Vec3 centre = Vec3::Zero();
+        for (uint32_t p : lattice.elements[k]) centre += lattice.positions[p];
+        centre *= 0.125;
+        const Quat back = lattice.shapeTurn[k].conjugate();
+        for (int j = 0; j < 8; ++j) shapes[s][j] = back * (lattice.positions[lattice.elements[k][j]] - centre);
+    }
+    return shapes;
 }
 
 double hexVolume(const std::array<Vec3, 8>& x) {

@@ -56,10 +56,14 @@ SoftBodyId SoftSystem::create(const SoftBodyDef& def, std::span<const Body> bodi
     mass_.resize(particleCount, 0.0);
     invMass_.resize(particleCount, 0.0);
 
-    // Elements: rest offsets from the rest centroid in the world frame at creation (so the
-    // extracted rotation starts at the identity), their scale, compliance and mass.
+    // Each element's rest offsets are its shape's (lattice.h), and its rotation maps them to
+    // the world: it starts at the body's orientation times the shape's turn to the element.
+    // Cells of one shape so share their offsets, scale and compliance bit for bit, and the
+    // batches read them once (element_batch.h).
+    const std::vector<std::array<Vec3, 8>> shapes = restShapes(lattice);
     // Elements wave by wave: the lattice's sweep order, with runs of independent elements to
-    // project side by side (element_batch.h).
+    // project side by side (element_batch.h); their scale, compliance and mass from their shape.
+    const Quat bodyTurn = def.orientation.normalized();
     const std::vector<uint32_t> waves = elementWaves(lattice.elements, lattice.positions.size());
     std::vector<uint32_t> order(lattice.elements.size());
     for (uint32_t k = 0; k < order.size(); ++k)
@@ -68,37 +72,34 @@ SoftBodyId SoftSystem::create(const SoftBodyDef& def, std::span<const Body> bodi
                      [&](uint32_t a, uint32_t b) { return waves[a] < waves[b]; });
     for (const uint32_t k : order) {
         const HexElement& local = lattice.elements[k];
+        const std::array<Vec3, 8>& rest = shapes[lattice.shape[k]];
+        double scale2 = 0.0;
+        for (const Vec3& q : rest) scale2 += 0.125 * q.squaredNorm();
         elementWave_.push_back(waves[k]);
         HexElement e;
         for (int j = 0; j < 8; ++j) e[j] = local[j] + data.firstParticle;
+        // The volume constraint's gradients (shape_matching.h), in the world frame.
         const std::array<Vec3, 8> x = corners(x_, e);
-        const double volume = hexVolume(x);
         Vec3 centre = Vec3::Zero();
         for (const Vec3& p : x) centre += p;
         centre *= 0.125;
-        std::array<Vec3, 8> rest;
         Mat3 aqq = Mat3::Zero();
-        double scale2 = 0.0;
-        for (int j = 0; j < 8; ++j) {
-            rest[j] = x[j] - centre;
-            aqq.noalias() += 0.125 * rest[j] * rest[j].transpose();
-            scale2 += 0.125 * rest[j].squaredNorm();
-        }
+        for (int j = 0; j < 8; ++j) aqq.noalias() += 0.125 * (x[j] - centre) * (x[j] - centre).transpose();
         // A degenerate cell (validation keeps sizes positive) still gets a finite mass and
         // compliance rather than a division by zero.
-        const double safeVolume = std::max(std::abs(volume), 1e-18);
+        const double safeVolume = std::max(std::abs(hexVolume(rest)), 1e-18);
         std::array<Vec3, 8> gradients{};
         Eigen::FullPivLU<Mat3> lu(aqq);
         if (lu.isInvertible()) {
             const Mat3 aqqInverse = lu.inverse();
-            for (int j = 0; j < 8; ++j) gradients[j] = 0.125 * (aqqInverse * rest[j]);
+            for (int j = 0; j < 8; ++j) gradients[j] = 0.125 * (aqqInverse * (x[j] - centre));
         }
         const double elementMass = std::max(def.density * safeVolume, 1e-12);
         for (int j = 0; j < 8; ++j) mass_[e[j]] += 0.125 * elementMass;
         elements_.push_back(e);
         restOffsets_.push_back(rest);
         volumeGradients_.push_back(gradients);
-        rotations_.push_back(Quat::Identity());
+        rotations_.push_back(bodyTurn * lattice.shapeTurn[k]);
         scale2_.push_back(std::max(scale2, 1e-18));
         compliance_.push_back(def.compliance * scale2 / safeVolume);
         volumeCompliance_.push_back(def.preserveVolume ? def.volumeCompliance / safeVolume : -1.0);
@@ -112,7 +113,7 @@ SoftBodyId SoftSystem::create(const SoftBodyDef& def, std::span<const Body> bodi
         data.mass += mass_[i];
     }
     appendBatches(elementArrays(), std::span(elementWave_).subspan(data.firstElement),
-                  data.firstElement, data.elementCount, batches_);
+                  data.firstElement, data.elementCount, batches_, batchShapes_);
     indexParticleBatches();
     addAttachments(def, data, lattice, bodies);
 
@@ -183,6 +184,7 @@ ElementArrays SoftSystem::elementArrays() {
             .lambda = lambda_,
             .volumeLambda = volumeLambda_,
             .invMass = invMass_,
+            .shapes = batchShapes_,
             .holdNormals = holdNormal_,
             .heldBatches = heldBatches_,
             .heldImpulse = heldImpulse_};
@@ -190,11 +192,12 @@ ElementArrays SoftSystem::elementArrays() {
 
 void SoftSystem::rebuildBatches() {
     batches_.clear();
+    batchShapes_.clear();
     const ElementArrays arrays = elementArrays();
     for (const SoftBodyData& body : bodies_)
         if (body.alive)
             appendBatches(arrays, std::span(elementWave_).subspan(body.firstElement),
-                          body.firstElement, body.elementCount, batches_);
+                          body.firstElement, body.elementCount, batches_, batchShapes_);
     indexParticleBatches();
 }
 

@@ -249,9 +249,13 @@ private:
     std::vector<double> mass_, invMass_;
     // Elements.
     std::vector<HexElement> elements_;
-    std::vector<std::array<Vec3, 8>> restOffsets_;     ///< q_j, world rest frame at creation
+    /// q_j: the element's rest shape (lattice.h), the same bits for every element of a shape, in
+    /// that shape's own frame; rotations_ map it to the world.
+    std::vector<std::array<Vec3, 8>> restOffsets_;
     std::vector<std::array<Vec3, 8>> volumeGradients_; ///< b_j = ⅛ A_qq⁻¹ q_j
-    std::vector<Quat> rotations_;                      ///< warm start of the rotation extraction
+    /// The rotation extracted last (the next extraction's warm start), from the element's rest
+    /// frame to the world; at creation the body's orientation times the shape's turn.
+    std::vector<Quat> rotations_;
     std::vector<double> scale2_;                       ///< ℓ² = Σ ⅛ |q_j|²
     std::vector<double> compliance_;                   ///< α_e = α ℓ² / V (m/N)
     std::vector<double> volumeCompliance_;             ///< α_V / V; negative: no volume constraint
@@ -259,7 +263,8 @@ private:
     std::vector<double> lambda_, volumeLambda_;
     /// Per element: its wave (element_batch.h); each body's elements are stored wave by wave.
     std::vector<uint32_t> elementWave_;
-    std::vector<ElementBatch> batches_;  ///< the projection's batches (element_batch.h)
+    std::vector<ElementBatch> batches_;     ///< the projection's batches (element_batch.h)
+    std::vector<BatchShape> batchShapes_;  ///< their rest shapes
     // Bodies, couplings, contacts.
     std::vector<SoftBodyData> bodies_;
     std::vector<uint32_t> freeBodies_;

@@ -57,6 +57,7 @@ struct Elements {
     std::vector<std::array<Vec3, 8>> rest, volumeGradients;
     std::vector<Quat> rotations;
     std::vector<double> scale2, compliance, volumeCompliance, lambda, volumeLambda, invMass;
+    std::vector<BatchShape> shapes;  ///< appendBatches' (batch(), below)
 
     Elements(const Lattice& lattice, bool byWave, bool someKeepVolume = true) : x(lattice.positions) {
         const std::vector<uint32_t> waves = elementWaves(lattice.elements, x.size());
@@ -68,6 +69,9 @@ struct Elements {
                              [&](size_t a, size_t b) { return waves[a] < waves[b]; });
         for (size_t i = 0; i < x.size(); ++i)
             invMass.push_back(1.0 + 0.37 * double(i % 5));  // uneven masses
+        // As SoftSystem keeps them: each element's rest offsets its shape's, its rotation the
+        // shape's turn to it.
+        const std::vector<std::array<Vec3, 8>> restOfShape = restShapes(lattice);
         for (const size_t k : order) {
             const HexElement& e = lattice.elements[k];
             elements.push_back(e);
@@ -75,21 +79,24 @@ struct Elements {
             Vec3 centre = Vec3::Zero();
             for (uint32_t p : e)
                 centre += 0.125 * x[p];
-            std::array<Vec3, 8> q, b;
+            std::array<Vec3, 8> b;
             Mat3 aqq = Mat3::Zero();
-            double l2 = 0.0;
-            for (int j = 0; j < 8; ++j) {
-                q[j] = x[e[j]] - centre;
-                aqq += 0.125 * q[j] * q[j].transpose();
-                l2 += 0.125 * q[j].squaredNorm();
-            }
             for (int j = 0; j < 8; ++j)
-                b[j] = 0.125 * (aqq.inverse() * q[j]);
+                aqq += 0.125 * (x[e[j]] - centre) * (x[e[j]] - centre).transpose();
+            for (int j = 0; j < 8; ++j)
+                b[j] = 0.125 * (aqq.inverse() * (x[e[j]] - centre));
+            const std::array<Vec3, 8>& q = restOfShape[lattice.shape[k]];
+            double l2 = 0.0;
+            for (int j = 0; j < 8; ++j)
+                l2 += 0.125 * q[j].squaredNorm();
             rest.push_back(q);
             volumeGradients.push_back(b);
-            rotations.push_back(Quat::Identity());
+            rotations.push_back(lattice.shapeTurn[k]);
             scale2.push_back(l2);
-            compliance.push_back(k % 3 == 0 ? 0.0 : 1e-7 * double(k % 3));  // rigid and soft
+            // Rigid and soft, in runs of 16 elements of the lattice's order: most batches have one
+            // shape, some two or more (gathered lane by lane).
+            const size_t softness = (k / 16 + lattice.shape[k]) % 3;
+            compliance.push_back(softness == 0 ? 0.0 : 1e-7 * double(softness));
             volumeCompliance.push_back(someKeepVolume && k % 4 == 1 ? 1e-6 : -1.0);
             lambda.push_back(0.0);
             volumeLambda.push_back(0.0);
@@ -106,7 +113,16 @@ struct Elements {
         ElementArrays a{x,          elements,         rest,   volumeGradients, rotations, scale2,
                         compliance, volumeCompliance, lambda, volumeLambda,    invMass};
         a.holdNormals = holdNormals, a.heldImpulse = heldImpulse, a.heldBatches = heldBatches;
+        a.shapes = shapes;
         return a;
+    }
+
+    /// The batches of elements [first, first + count), their shapes kept in `shapes`.
+    std::vector<ElementBatch> batch(uint32_t first = 0, uint32_t count = UINT32_MAX) {
+        count = std::min<uint32_t>(count, static_cast<uint32_t>(elements.size()) - first);
+        std::vector<ElementBatch> batches;
+        appendBatches(arrays(), std::span(wave).subspan(first), first, count, batches, shapes);
+        return batches;
     }
 };
 
@@ -201,9 +217,7 @@ double expectBatchesProjectLikeTheScalarSweep(const Lattice& lattice, bool someK
         for (uint32_t p : lattice.elements[0])
             batched.x[p].y() = 0.0;
         scalar.x = batched.x;
-        std::vector<ElementBatch> batches;
-        appendBatches(batched.arrays(), batched.wave, 0,
-                      static_cast<uint32_t>(batched.elements.size()), batches);
+        const std::vector<ElementBatch> batches = batched.batch();
         const std::vector<Vec3> start = batched.x;
         double size = 0.0;
         for (const Vec3& p : batched.x)
@@ -269,8 +283,7 @@ TEST(ElementBatch, TurnsOfARollingWheelStayInTheLanes) {
                 size = std::max(size, p.norm());
             }
             scalar.x = batched.x;
-            std::vector<ElementBatch> batches;
-            appendBatches(batched.arrays(), batched.wave, 0, static_cast<uint32_t>(batched.elements.size()), batches);
+            const std::vector<ElementBatch> batches = batched.batch();
             const double invH2 = 1200.0 * 1200.0;
             const uint32_t handedOver = solveElementBatches(batches, batched.arrays(), invH2);
             scalarSweep(scalar, invH2);
@@ -316,8 +329,7 @@ TEST(ElementBatch, HeldCornersTakeNoCorrectionIntoTheirContact) {
             ASSERT_GT(held, 0);
             Elements scalar(lattice, false, volume);
             scalar.x = batched.x, scalar.holdNormals = batched.holdNormals, scalar.heldImpulse = batched.heldImpulse;
-            std::vector<ElementBatch> batches;
-            appendBatches(batched.arrays(), batched.wave, 0, static_cast<uint32_t>(batched.elements.size()), batches);
+            const std::vector<ElementBatch> batches = batched.batch();
             markHeldBatches(batched, batches);
             const double invH2 = 1200.0 * 1200.0;
             double deepest = 0.0, moved = 0.0;
@@ -365,12 +377,11 @@ TEST(ElementBatch, PairedBatchesAreContiguousAndOfOneWave) {
     for (const Lattice& lattice : lattices()) {
         for (const bool volume : {false, true}) {
             Elements s(lattice, true, volume);
-            std::vector<ElementBatch> batches;
             const uint32_t half = static_cast<uint32_t>(s.elements.size() / 2);
-            appendBatches(s.arrays(), s.wave, 0, half, batches);  // two "bodies"
+            std::vector<ElementBatch> batches = s.batch(0, half);  // two "bodies"
             const size_t firstOfSecond = batches.size();
-            appendBatches(s.arrays(), std::span(s.wave).subspan(half), half,
-                          static_cast<uint32_t>(s.elements.size()) - half, batches);
+            const std::vector<ElementBatch> second = s.batch(half);
+            batches.insert(batches.end(), second.begin(), second.end());
             for (size_t b = 0; b < batches.size(); ++b) {
                 const ElementBatch& batch = batches[b];
                 EXPECT_TRUE(batch.partnerAhead == 0 || batch.partnerBehind == 0);
@@ -397,12 +408,23 @@ TEST(ElementBatch, PairedBatchesAreContiguousAndOfOneWave) {
     // The car's tyre without volume: every contiguous batch but those alone in their wave's
     // count (one ring of 22 cells: five) is paired, over 90 % of them.
     Elements tyre(buildTyreLattice(0.3, 0.2, 0.15, {44, 5, 5}), true, false);
-    std::vector<ElementBatch> batches;
-    appendBatches(tyre.arrays(), tyre.wave, 0, static_cast<uint32_t>(tyre.elements.size()), batches);
-    size_t contiguous = 0, paired = 0;
-    for (const ElementBatch& batch : batches)
+    const std::vector<ElementBatch> batches = tyre.batch();
+    size_t contiguous = 0, paired = 0, pairsOfOneShape = 0, pairs = 0;
+    for (size_t b = 0; b < batches.size(); ++b) {
+        const ElementBatch& batch = batches[b];
         contiguous += batch.contiguous ? 1 : 0, paired += batch.partnerAhead + batch.partnerBehind != 0 ? 1 : 0;
+        if (batch.contiguous) {
+            EXPECT_TRUE(batch.oneShape);
+        }
+        if (batch.partnerAhead == 0) continue;
+        ++pairs;
+        pairsOfOneShape += batch.shape[0] == batches[b + batch.partnerAhead].shape[0] ? 1 : 0;
+    }
     EXPECT_GT(10 * paired, 9 * contiguous) << paired << " of " << contiguous;
+    // Its shapes: 25 places across and out, each in up to three compliances (Elements), one
+    // record each for its 1100 elements; most pairs have one shape in all eight lanes.
+    EXPECT_LE(tyre.shapes.size(), 75u);
+    EXPECT_GT(2 * pairsOfOneShape, pairs) << pairsOfOneShape << " of " << pairs;
 }
 
 TEST(ElementBatch, EightLanesGiveTheBitsOfFour) {
@@ -422,8 +444,7 @@ TEST(ElementBatch, EightLanesGiveTheBitsOfFour) {
             wide.heldImpulse.assign(wide.x.size(), 0.0);
             for (size_t i = 0; i < wide.x.size(); i += 37)
                 wide.holdNormals[i] = Vec3(0.1, 1, 0).normalized();
-            std::vector<ElementBatch> batches;
-            appendBatches(wide.arrays(), wide.wave, 0, static_cast<uint32_t>(wide.elements.size()), batches);
+            const std::vector<ElementBatch> batches = wide.batch();
             markHeldBatches(wide, batches);
             Elements four = wide;
             uint32_t handedWide = 0, handedFour = 0;

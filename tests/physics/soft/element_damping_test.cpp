@@ -40,7 +40,8 @@ struct Damped {
         }
         ElementArrays arrays{.elements = elements, .restOffsets = rest, .scale2 = scale2,
                              .compliance = compliance, .volumeCompliance = volumeCompliance, .invMass = invMass};
-        appendBatches(arrays, wave, 0, static_cast<uint32_t>(elements.size()), batches);
+        std::vector<BatchShape> shapes;
+        appendBatches(arrays, wave, 0, static_cast<uint32_t>(elements.size()), batches, shapes);
     }
 
     void damp(double dt) { dampElementBatches(batches, {.positions = x, .velocities = v, .mass = mass, .damping = damping}, dt); }

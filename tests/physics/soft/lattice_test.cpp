@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace substep {
@@ -78,6 +79,40 @@ TEST(Lattice, HexVolumeOfASkewedCellAndAnInvertedOne) {
     EXPECT_NEAR(hexVolume(c), u.dot(v.cross(w)), 1e-14);
     for (Vec3& p : c) p.z() = -p.z();
     EXPECT_NEAR(hexVolume(c), -u.dot(v.cross(w)), 1e-14);
+}
+
+TEST(Lattice, ElementsAreTheirShapeTurned) {
+    // Every element's rest offsets from its centroid are its shape's turned by its shapeTurn,
+    // to rounding; a box has one shape, a tyre one per radial layer and place across (the ring
+    // turned about its axis), whatever the counts.
+    struct Case {
+        Lattice lattice;
+        size_t shapes;
+    };
+    const Case cases[] = {{buildBoxLattice(Vec3(0.3, 0.2, 0.4), {3, 2, 4}), 1},
+                          {buildBoxLattice(Vec3(1, 1, 1), {1, 1, 1}), 1},
+                          {buildTyreLattice(0.07, 0.05, 0.06, {46, 4, 6}), 24},
+                          {buildTyreLattice(0.3, 0.2, 0.15, {7, 2, 3}), 6},
+                          {buildTyreLattice(0.3, 0.1, 0.1, {3, 1, 1}), 1}};
+    for (const Case& c : cases) {
+        const Lattice& lattice = c.lattice;
+        ASSERT_EQ(lattice.shape.size(), lattice.elements.size());
+        ASSERT_EQ(lattice.shapeTurn.size(), lattice.elements.size());
+        const std::vector<std::array<Vec3, 8>> shapes = restShapes(lattice);
+        EXPECT_EQ(shapes.size(), c.shapes);
+        double size = 0.0, worst = 0.0;
+        for (const Vec3& p : lattice.positions) size = std::max(size, p.norm());
+        for (size_t k = 0; k < lattice.elements.size(); ++k) {
+            ASSERT_LT(lattice.shape[k], shapes.size());
+            Vec3 centre = Vec3::Zero();
+            for (uint32_t p : lattice.elements[k]) centre += 0.125 * lattice.positions[p];
+            for (int j = 0; j < 8; ++j) {
+                const Vec3 own = lattice.positions[lattice.elements[k][j]] - centre;
+                worst = std::max(worst, (lattice.shapeTurn[k] * shapes[lattice.shape[k]][j] - own).norm());
+            }
+        }
+        EXPECT_LT(worst, 1e-14 * size) << lattice.elements.size() << " elements";
+    }
 }
 
 }  // namespace
