@@ -425,7 +425,7 @@ void World::solvePositions(double h) {
     // Soft bodies after the rigid ones: elements, attachments, then their contacts.
     if (hasSoftBodies()) {
         if (corrections_) [[unlikely]] corrections_->solveSoftRecorded(*soft_, bodies_.size(), ctx);
-        else soft_->solvePositions(ctx);
+        else soft_->solvePositions(ctx, workerPool());
     }
     // Jacobi: every constraint saw the iteration's starting state; the gathered corrections
     // are summed. Averaging them, or splitting a body's mass among its joints, shifts the fixed

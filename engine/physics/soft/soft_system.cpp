@@ -3,6 +3,7 @@
 #include "physics/soft/element_damping.h"
 #include "physics/soft/rigid_mode.h"
 #include "physics/soft/shape_matching.h"
+#include "physics/worker_pool.h"
 
 #include <Eigen/LU>
 
@@ -112,8 +113,10 @@ SoftBodyId SoftSystem::create(const SoftBodyDef& def, std::span<const Body> bodi
         invMass_[i] = 1.0 / mass_[i];
         data.mass += mass_[i];
     }
+    const auto firstBatch = static_cast<uint32_t>(batches_.size());
     appendBatches(elementArrays(), std::span(elementWave_).subspan(data.firstElement),
                   data.firstElement, data.elementCount, batches_, batchShapes_);
+    bodyBatches_.emplace_back(firstBatch, static_cast<uint32_t>(batches_.size()));
     indexParticleBatches();
     addAttachments(def, data, lattice, bodies);
 
@@ -193,11 +196,15 @@ ElementArrays SoftSystem::elementArrays() {
 void SoftSystem::rebuildBatches() {
     batches_.clear();
     batchShapes_.clear();
+    bodyBatches_.clear();
     const ElementArrays arrays = elementArrays();
-    for (const SoftBodyData& body : bodies_)
-        if (body.alive)
-            appendBatches(arrays, std::span(elementWave_).subspan(body.firstElement),
-                          body.firstElement, body.elementCount, batches_, batchShapes_);
+    for (const SoftBodyData& body : bodies_) {
+        if (!body.alive) continue;
+        const auto firstBatch = static_cast<uint32_t>(batches_.size());
+        appendBatches(arrays, std::span(elementWave_).subspan(body.firstElement), body.firstElement,
+                      body.elementCount, batches_, batchShapes_);
+        bodyBatches_.emplace_back(firstBatch, static_cast<uint32_t>(batches_.size()));
+    }
     indexParticleBatches();
 }
 
@@ -301,14 +308,24 @@ void SoftSystem::integrate(double h, const Vec3& gravity) {
     for (Attachment& a : attachments_) a.lambda = 0.0;
 }
 
-void SoftSystem::solvePositions(SolverContext& ctx) {
-    solveElements(ctx.invH2);
+void SoftSystem::solvePositions(SolverContext& ctx, WorkerPool* pool) {
+    solveElements(ctx.invH2, ElementLanes::Widest, pool);
     solveAttachments(ctx);
     solveContacts(ctx);
 }
 
-void SoftSystem::solveElements(double invH2, ElementLanes lanes) {
-    solveElementBatches(batches_, elementArrays(), invH2, lanes);
+void SoftSystem::solveElements(double invH2, ElementLanes lanes, WorkerPool* pool) {
+    const ElementArrays arrays = elementArrays();
+    if (!pool || bodyBatches_.size() < 2) {
+        solveElementBatches(batches_, arrays, invH2, lanes);
+        return;
+    }
+    pool->parallelFor(static_cast<int>(bodyBatches_.size()), [&](int block) {
+        const auto [first, end] = bodyBatches_[static_cast<size_t>(block)];
+        ElementArrays own = arrays;  // the held flags are per batch
+        if (!own.heldBatches.empty()) own.heldBatches = own.heldBatches.subspan(first, end - first);
+        solveElementBatches(std::span(batches_).subspan(first, end - first), own, invH2, lanes);
+    });
 }
 
 void SoftSystem::deriveVelocities(double h) {

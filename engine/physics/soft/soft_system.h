@@ -29,6 +29,8 @@
 
 namespace substep {
 
+class WorkerPool;
+
 /// The soft bodies' share of the world's energies (J).
 struct SoftEnergies {
     double kinetic = 0.0;    ///< Σ ½ m v² over particles
@@ -59,8 +61,10 @@ public:
     /// along which the element projection does not push them (element_batch.h;
     /// docs/SOFT_BODIES.md, "Loaded particles sink into the ground"). Off: none.
     void holdContactParticles();
-    /// Elements, then attachments, then contacts (hard inequalities last).
-    void solvePositions(SolverContext& ctx);
+    /// Elements, then attachments, then contacts (hard inequalities last). With a pool, each
+    /// soft body's elements on a thread of their own (the bodies share no particle: the same
+    /// bits as one after the other).
+    void solvePositions(SolverContext& ctx, WorkerPool* pool = nullptr);
     /// solvePositions' last two stages alone (what the world calls while recording each
     /// stage's corrections, substep_corrections.h).
     void solveAttachments(SolverContext& ctx);
@@ -110,7 +114,7 @@ public:
 
     /// One Gauss-Seidel sweep over every element's shape-matching (and volume) constraint;
     /// public for the benchmarks of the projection cost (`lanes`: element_batch.h).
-    void solveElements(double invH2, ElementLanes lanes = ElementLanes::Widest);
+    void solveElements(double invH2, ElementLanes lanes = ElementLanes::Widest, WorkerPool* pool = nullptr);
 
 private:
     struct SoftBodyData {
@@ -265,6 +269,8 @@ private:
     std::vector<uint32_t> elementWave_;
     std::vector<ElementBatch> batches_;     ///< the projection's batches (element_batch.h)
     std::vector<BatchShape> batchShapes_;  ///< their rest shapes
+    /// Each live body's batches, [first, end) in batches_ (bodies in batches_' order).
+    std::vector<std::pair<uint32_t, uint32_t>> bodyBatches_;
     // Bodies, couplings, contacts.
     std::vector<SoftBodyData> bodies_;
     std::vector<uint32_t> freeBodies_;

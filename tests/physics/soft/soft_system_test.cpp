@@ -8,6 +8,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cstring>
+#include <vector>
+
 namespace substep::test {
 namespace {
 
@@ -252,6 +255,77 @@ TEST(SoftSystem, DestroyKeepsTheOtherBodies) {
     EXPECT_EQ(d.index, a.index);
     EXPECT_NE(d.generation, a.generation);
     EXPECT_EQ(world.softBodySurface(b).triangles.size(), 12u);
+}
+
+TEST(SoftSystem, TurnedBodiesAtRestStayAtRest) {
+    // Each element's rotation starts as the body's orientation times its shape's turn
+    // (lattice.h): boxes and tyres created turned every which way, without gravity, keep every
+    // particle where it was. An element whose rotation did not map its rest offsets to its
+    // corners would pull them towards another shape.
+    World world = worldWithGround(20, false);
+    world.setSettings([&] {
+        WorldSettings settings = world.settings();
+        settings.gravity = Vec3::Zero();
+        return settings;
+    }());
+    std::vector<SoftBodyId> bodies;
+    std::vector<std::vector<Vec3>> start;
+    for (int k = 0; k < 6; ++k) {
+        const Quat orientation(Eigen::AngleAxisd(0.9 * k + 0.3, Vec3(1.0, 0.5 * k - 1.0, 0.7).normalized()));
+        SoftBodyDef def = k % 2 == 0 ? SoftBodyDef{.size = Vec3(0.3, 0.2, 0.4), .cells = {3, 2, 4}}
+                                     : SoftBodyDef{.type = SoftBodyType::Tyre, .outerRadius = 0.3, .innerRadius = 0.2,
+                                                   .width = 0.15, .cells = {7 + 4 * k, 2, 3}};
+        def.position = Vec3(2.0 * k, 1.0, 0.0), def.orientation = orientation, def.compliance = 1e-6;
+        bodies.push_back(world.createSoftBody(def));
+        const auto x = world.softBodyPositions(bodies.back());
+        start.emplace_back(x.begin(), x.end());
+    }
+    runFor(world, 0.5);
+    for (size_t k = 0; k < bodies.size(); ++k) {
+        const auto x = world.softBodyPositions(bodies[k]);
+        double moved = 0.0;
+        for (size_t i = 0; i < x.size(); ++i) moved = std::max(moved, (x[i] - start[k][i]).norm());
+        EXPECT_LT(moved, 1e-12) << "body " << k;
+    }
+}
+
+TEST(SoftSystem, SameBytesForEveryThreadCount) {
+    // With a worker pool each soft body's elements are projected on a thread of their own: a
+    // box and three tyres dropped on the ground give the same particles, bit for bit, at 1, 2
+    // and 3 threads.
+    std::vector<World> worlds;
+    std::vector<std::vector<SoftBodyId>> ids;
+    for (const int threads : {1, 2, 3}) {
+        World world = worldWithGround();
+        WorldSettings settings = world.settings();
+        settings.threads = threads;
+        world.setSettings(settings);
+        std::vector<SoftBodyId> own;
+        own.push_back(world.createSoftBody({.size = Vec3(0.3, 0.2, 0.4), .cells = {3, 2, 4},
+                                            .position = Vec3(0.0, 0.3, 0.0), .compliance = 1e-6}));
+        for (int k = 0; k < 3; ++k)
+            own.push_back(world.createSoftBody({.type = SoftBodyType::Tyre, .outerRadius = 0.3, .innerRadius = 0.2,
+                                                .width = 0.15, .cells = {24, 2, 3},
+                                                .position = Vec3(1.0 + k, 0.35, 0.0),
+                                                .orientation = Quat(Eigen::AngleAxisd(M_PI / 2, Vec3::UnitX())),
+                                                .angularVelocity = Vec3(0, 0, -3.0 * k),
+                                                .compliance = 1e-5 * (k + 1)}));
+        worlds.push_back(std::move(world));
+        ids.push_back(own);
+    }
+    for (int frame = 0; frame < 45; ++frame) {
+        for (World& world : worlds) world.step(kDt);
+        for (size_t w = 1; w < worlds.size(); ++w)
+            for (size_t b = 0; b < ids[w].size(); ++b) {
+                const auto one = worlds[0].softBodyPositions(ids[0][b]);
+                const auto other = worlds[w].softBodyPositions(ids[w][b]);
+                ASSERT_EQ(one.size(), other.size());
+                ASSERT_EQ(std::memcmp(one.data(), other.data(), one.size() * sizeof(Vec3)), 0)
+                    << w + 1 << " threads, body " << b << ", frame " << frame;
+            }
+    }
+    EXPECT_GT(worlds[0].activeContactCount(), 20);
+    EXPECT_TRUE(worlds[0].isFinite());
 }
 
 }  // namespace
