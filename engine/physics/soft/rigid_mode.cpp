@@ -164,7 +164,7 @@ rigidModeMoments(const Vec3* x, const Vec3* v, const double* m, uint32_t count) 
 }
 
 [[gnu::target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")]] RigidModeMoments deriveOnArc(
-    const Vec3* x, const Vec3* xPrev, Vec3* v, Vec3* vPrev, uint32_t count, double invH,
+    const Vec3* x, const Vec3* xPrev, Vec3* v, uint32_t count, double invH,
     const Mat3& spin, const Vec3& centre, const Mat3& turnBack, const Vec3& centrePrev, const double* m) {
     if (count == 0) return {};
     const Vec3 origin = x[0];
@@ -174,7 +174,6 @@ rigidModeMoments(const Vec3* x, const Vec3* v, const double* m, uint32_t count) 
         Lanes px, py, pz, qx, qy, qz, vx, vy, vz;
         loadBlock(x + i, n, Vec3::Zero(), px, py, pz);
         loadBlock(xPrev + i, n, Vec3::Zero(), qx, qy, qz);
-        copyBlock(vPrev + i, v + i, n);
         loadBlock(v + i, n, Vec3::Zero(), vx, vy, vz);
         const Lanes rx = px - centre.x(), ry = py - centre.y(), rz = pz - centre.z();
         const Lanes sx = qx - centrePrev.x(), sy = qy - centrePrev.y(), sz = qz - centrePrev.z();

@@ -52,10 +52,10 @@ TurnSums turnSums(const Vec3* x, const Vec3* xPrev, const double* m, uint32_t co
                   const Vec3& origin);
 
 /// The velocity derivation with the rigid turn on its arc (SoftSystem::deriveVelocities):
-/// v_prev = v, v = (x − x_prev) invH + spin (x − centre) − turnBack (x_prev − centrePrev).
+/// v = (x − x_prev) invH + spin (x − centre) − turnBack (x_prev − centrePrev).
 /// Returns the moments of x and the new v (rigidModeMoments' sums, in the same pass): the next
 /// substep's prediction needs them, and x does not move before it.
-RigidModeMoments deriveOnArc(const Vec3* x, const Vec3* xPrev, Vec3* v, Vec3* vPrev, uint32_t count,
+RigidModeMoments deriveOnArc(const Vec3* x, const Vec3* xPrev, Vec3* v, uint32_t count,
                              double invH, const Mat3& spin, const Vec3& centre, const Mat3& turnBack,
                              const Vec3& centrePrev, const double* m);
 

@@ -315,6 +315,9 @@ void SoftSystem::deriveVelocities(double h) {
     // gets its exact spin back, the momentum is the chord's, and the angular momentum about
     // the centre is I ω, since R zeroes Σ m r × R r_prev.
     const double invH = 1.0 / h;
+    // Eq. 34's v̄_n in the velocity pass reads the contacts' particles' velocities from before
+    // the derivation: kept for those particles only, not copied for every particle.
+    for (const ParticleContact& c : contacts_) vPrev_[c.particle] = v_[c.particle];
     for (SoftBodyData& body : bodies_) {
         if (!body.alive) continue;
         const uint32_t first = body.firstParticle;
@@ -334,8 +337,8 @@ void SoftSystem::deriveVelocities(double h) {
             correction = crossMatrix(spin);
             turnBack = (r - Mat3::Identity()) * invH;
         }
-        body.moments = deriveOnArc(x_.data() + first, xPrev_.data() + first, v_.data() + first, vPrev_.data() + first,
-                                   body.particleCount, invH, correction, centre, turnBack, centrePrev, mass_.data() + first);
+        body.moments = deriveOnArc(x_.data() + first, xPrev_.data() + first, v_.data() + first, body.particleCount,
+                                   invH, correction, centre, turnBack, centrePrev, mass_.data() + first);
         body.momentsKept = true;
     }
 }
@@ -351,16 +354,24 @@ void SoftSystem::solveVelocities(Body* bodies, double h, double gravity) {
         passedVelocities_.emplace_back(c.particle, v_[c.particle]);
     }
     solveContactVelocities(bodies, h, gravity);
+    // The particles come grouped by soft body (the candidates' order): the last one's body is
+    // searched for again only when a particle lies outside it.
+    SoftBodyData* owner = nullptr;
     for (const auto& [i, before] : passedVelocities_) {
         passed_[i] = 0;
         const Vec3 change = mass_[i] * (v_[i] - before);
-        for (SoftBodyData& body : bodies_) {
-            if (!body.alive || i < body.firstParticle || i >= body.firstParticle + body.particleCount) continue;
-            RigidModeMoments& moments = body.moments;
-            if (moments.mass > 0.0) moments.velocity += change / moments.mass;
-            moments.angularMomentum += (x_[i] - moments.centre).cross(change);
-            break;
+        if (owner == nullptr || i < owner->firstParticle || i >= owner->firstParticle + owner->particleCount) {
+            owner = nullptr;
+            for (SoftBodyData& body : bodies_)
+                if (body.alive && i >= body.firstParticle && i < body.firstParticle + body.particleCount) {
+                    owner = &body;
+                    break;
+                }
+            if (owner == nullptr) continue;
         }
+        RigidModeMoments& moments = owner->moments;
+        if (moments.mass > 0.0) moments.velocity += change / moments.mass;
+        moments.angularMomentum += (x_[i] - moments.centre).cross(change);
     }
 }
 

@@ -245,7 +245,10 @@ private:
                         std::span<const Body> bodies);
 
     // Particles (structure of arrays).
-    std::vector<Vec3> x_, xPrev_, v_, vPrev_;
+    std::vector<Vec3> x_, xPrev_, v_;
+    /// Per particle: its velocity before the substep's derivation, written for the contacts'
+    /// particles only (deriveVelocities; the velocity pass's Eq. 34 reads no other).
+    std::vector<Vec3> vPrev_;
     std::vector<double> mass_, invMass_;
     // Elements.
     std::vector<HexElement> elements_;
