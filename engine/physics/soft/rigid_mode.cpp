@@ -112,7 +112,7 @@ rigidModeMoments(const Vec3* x, const Vec3* v, const double* m, uint32_t count) 
 }
 
 [[gnu::target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")]] void predictOnArc(
-    Vec3* x, Vec3* xPrev, Vec3* v, uint32_t count, const Vec3& gravityStep, double h,
+    Vec3* x, Vec3* xPrev, const Vec3* v, uint32_t count, const Vec3& gravityStep, double h,
     const Mat3& arc, const Vec3& centre) {
     for (uint32_t i = 0; i < count; i += kLanes) {
         const uint32_t n = std::min<uint32_t>(kLanes, count - i);
@@ -125,7 +125,6 @@ rigidModeMoments(const Vec3* x, const Vec3* v, const double* m, uint32_t count) 
         px += h * vx + (arc(0, 0) * rx + arc(0, 1) * ry + arc(0, 2) * rz);
         py += h * vy + (arc(1, 0) * rx + arc(1, 1) * ry + arc(1, 2) * rz);
         pz += h * vz + (arc(2, 0) * rx + arc(2, 1) * ry + arc(2, 2) * rz);
-        storeBlock(v + i, n, vx, vy, vz);
         storeBlock(x + i, n, px, py, pz);
     }
 }

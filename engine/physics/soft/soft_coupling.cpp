@@ -333,7 +333,8 @@ void SoftSystem::solveContactsPerParticle(SolverContext& ctx) {
         const double held = takeHeldImpulse(ctx, c);
         if (c.still) {
             // The ground and the obstacles: the same steps with the body's terms left out.
-            const double pushed = pushOutOfStill(ctx, c.anchor, n, c.radius, x, w, v_[c.particle]);
+            const double pushed =
+                pushOutOfStill(ctx, c.anchor, n, c.radius, x, w, v_[c.particle] + gravityStep_);
             if (!(pushed > 0.0) && !(held > 0.0)) continue;
             if (pushed > 0.0) c.lambdaNormal += pushed;
             if (!(c.staticFriction > 0.0)) continue;
@@ -346,7 +347,8 @@ void SoftSystem::solveContactsPerParticle(SolverContext& ctx) {
             x -= (w * deltaTangent) * t;
             continue;
         }
-        const double pushed = pushOut(ctx, c.body, c.local1, n, c.radius, x, w, v_[c.particle]);
+        const double pushed =
+            pushOut(ctx, c.body, c.local1, n, c.radius, x, w, v_[c.particle] + gravityStep_);
         if (!(pushed > 0.0) && !(held > 0.0)) continue;
         if (pushed > 0.0) c.lambdaNormal += pushed;
         if (!(c.staticFriction > 0.0)) continue;
@@ -371,7 +373,8 @@ void SoftSystem::solveContactsPerPatch(SolverContext& ctx) {
     for (ParticleContact& c : contacts_) {
         takeHeldImpulse(ctx, c);
         const double pushed =
-            pushOut(ctx, c.body, c.local1, c.normal, c.radius, x_[c.particle], invMass_[c.particle], v_[c.particle]);
+            pushOut(ctx, c.body, c.local1, c.normal, c.radius, x_[c.particle], invMass_[c.particle],
+                    v_[c.particle] + gravityStep_);
         if (pushed > 0.0) c.lambdaNormal += pushed;
     }
     // Each patch's load: Σ λ_n, its λ_n-weighted centre and normal, and Σ λ_n ρ (ρ a particle's

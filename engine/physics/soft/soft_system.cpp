@@ -266,6 +266,7 @@ void SoftSystem::integrate(double h, const Vec3& gravity) {
     // spin in the velocities and ω the turn that keeps L. λ is zeroed before each substep's
     // solve.
     const Vec3 gravityStep = h * gravity;
+    gravityStep_ = gravityStep;
     for (SoftBodyData& body : bodies_) {
         if (!body.alive) continue;
         const uint32_t first = body.firstParticle;
@@ -316,8 +317,9 @@ void SoftSystem::deriveVelocities(double h) {
     // the centre is I ω, since R zeroes Σ m r × R r_prev.
     const double invH = 1.0 / h;
     // Eq. 34's v̄_n in the velocity pass reads the contacts' particles' velocities from before
-    // the derivation: kept for those particles only, not copied for every particle.
-    for (const ParticleContact& c : contacts_) vPrev_[c.particle] = v_[c.particle];
+    // the derivation, the prediction's v + g h (predictOnArc does not store it): kept for those
+    // particles only.
+    for (const ParticleContact& c : contacts_) vPrev_[c.particle] = v_[c.particle] + gravityStep_;
     for (SoftBodyData& body : bodies_) {
         if (!body.alive) continue;
         const uint32_t first = body.firstParticle;
@@ -354,13 +356,24 @@ void SoftSystem::solveVelocities(Body* bodies, double h, double gravity) {
         passedVelocities_.emplace_back(c.particle, v_[c.particle]);
     }
     solveContactVelocities(bodies, h, gravity);
-    // The particles come grouped by soft body (the candidates' order): the last one's body is
-    // searched for again only when a particle lies outside it.
+    // The particles come grouped by soft body (the candidates' order): the sums of the last
+    // one's body are kept in registers (not a load and a store per particle through memory the
+    // byte stores to passed_ may alias), its body searched for again only when a particle lies
+    // outside it. The same additions in the same order.
     SoftBodyData* owner = nullptr;
+    uint32_t ownerFirst = 0, ownerEnd = 0;
+    double mass = 0.0;
+    Vec3 centre = Vec3::Zero(), velocity = Vec3::Zero(), angular = Vec3::Zero();
+    const auto keep = [&] {
+        if (owner == nullptr) return;
+        owner->moments.velocity = velocity;
+        owner->moments.angularMomentum = angular;
+    };
     for (const auto& [i, before] : passedVelocities_) {
         passed_[i] = 0;
         const Vec3 change = mass_[i] * (v_[i] - before);
-        if (owner == nullptr || i < owner->firstParticle || i >= owner->firstParticle + owner->particleCount) {
+        if (owner == nullptr || i < ownerFirst || i >= ownerEnd) {
+            keep();
             owner = nullptr;
             for (SoftBodyData& body : bodies_)
                 if (body.alive && i >= body.firstParticle && i < body.firstParticle + body.particleCount) {
@@ -368,11 +381,14 @@ void SoftSystem::solveVelocities(Body* bodies, double h, double gravity) {
                     break;
                 }
             if (owner == nullptr) continue;
+            ownerFirst = owner->firstParticle, ownerEnd = owner->firstParticle + owner->particleCount;
+            mass = owner->moments.mass, centre = owner->moments.centre;
+            velocity = owner->moments.velocity, angular = owner->moments.angularMomentum;
         }
-        RigidModeMoments& moments = owner->moments;
-        if (moments.mass > 0.0) moments.velocity += change / moments.mass;
-        moments.angularMomentum += (x_[i] - moments.centre).cross(change);
+        if (mass > 0.0) velocity += change / mass;
+        angular += (x_[i] - centre).cross(change);
     }
+    keep();
 }
 
 void SoftSystem::damp(double dt) {

@@ -127,17 +127,17 @@ TEST(RigidMode, PassesInLanesMatchTheirFormulasForEveryRemainder) {
         EXPECT_NEAR(sums.spread, expected.spread, 1e-14) << count;
 
         // Prediction and velocities: each particle's formula, to rounding (1e-15 m at 300 m
-        // from the origin is below its last bit); particles past `count` are never written.
+        // from the origin is below its last bit); particles past `count` are never written, and
+        // the prediction does not store v + gravityStep.
         Particles lanes(count + 1), scalar(count + 1);
         predictOnArc(lanes.x.data(), lanes.xPrev.data(), lanes.v.data(), count, gravityStep, h, arc, centre);
         for (int i = 0; i < count; ++i) {
             scalar.xPrev[i] = scalar.x[i];
-            scalar.v[i] += gravityStep;
-            scalar.x[i] += h * scalar.v[i] + arc * (scalar.xPrev[i] - centre);
+            scalar.x[i] += h * Vec3(scalar.v[i] + gravityStep) + arc * (scalar.xPrev[i] - centre);
         }
         for (int i = 0; i <= count; ++i) {
             EXPECT_LT((lanes.x[i] - scalar.x[i]).norm(), 1e-12) << count << " " << i;
-            EXPECT_LT((lanes.v[i] - scalar.v[i]).norm(), 1e-15) << count << " " << i;
+            EXPECT_EQ(lanes.v[i], scalar.v[i]) << count << " " << i;
             EXPECT_EQ(lanes.xPrev[i], scalar.xPrev[i]) << count << " " << i;
         }
         const double invH = 1.0 / h;
