@@ -112,7 +112,7 @@ rigidModeMoments(const Vec3* x, const Vec3* v, const double* m, uint32_t count) 
 }
 
 [[gnu::target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")]] void predictOnArc(
-    Vec3* x, Vec3* xPrev, Vec3* v, uint32_t count, const Vec3& gravityStep, double h,
+    Vec3* x, Vec3* xPrev, const Vec3* v, uint32_t count, const Vec3& gravityStep, double h,
     const Mat3& arc, const Vec3& centre) {
     for (uint32_t i = 0; i < count; i += kLanes) {
         const uint32_t n = std::min<uint32_t>(kLanes, count - i);
@@ -125,7 +125,6 @@ rigidModeMoments(const Vec3* x, const Vec3* v, const double* m, uint32_t count) 
         px += h * vx + (arc(0, 0) * rx + arc(0, 1) * ry + arc(0, 2) * rz);
         py += h * vy + (arc(1, 0) * rx + arc(1, 1) * ry + arc(1, 2) * rz);
         pz += h * vz + (arc(2, 0) * rx + arc(2, 1) * ry + arc(2, 2) * rz);
-        storeBlock(v + i, n, vx, vy, vz);
         storeBlock(x + i, n, px, py, pz);
     }
 }
@@ -164,7 +163,7 @@ rigidModeMoments(const Vec3* x, const Vec3* v, const double* m, uint32_t count) 
 }
 
 [[gnu::target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")]] RigidModeMoments deriveOnArc(
-    const Vec3* x, const Vec3* xPrev, Vec3* v, Vec3* vPrev, uint32_t count, double invH,
+    const Vec3* x, const Vec3* xPrev, Vec3* v, uint32_t count, double invH,
     const Mat3& spin, const Vec3& centre, const Mat3& turnBack, const Vec3& centrePrev, const double* m) {
     if (count == 0) return {};
     const Vec3 origin = x[0];
@@ -174,7 +173,6 @@ rigidModeMoments(const Vec3* x, const Vec3* v, const double* m, uint32_t count) 
         Lanes px, py, pz, qx, qy, qz, vx, vy, vz;
         loadBlock(x + i, n, Vec3::Zero(), px, py, pz);
         loadBlock(xPrev + i, n, Vec3::Zero(), qx, qy, qz);
-        copyBlock(vPrev + i, v + i, n);
         loadBlock(v + i, n, Vec3::Zero(), vx, vy, vz);
         const Lanes rx = px - centre.x(), ry = py - centre.y(), rz = pz - centre.z();
         const Lanes sx = qx - centrePrev.x(), sy = qy - centrePrev.y(), sz = qz - centrePrev.z();

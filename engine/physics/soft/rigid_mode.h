@@ -34,9 +34,10 @@ struct RigidModeMoments {
 RigidModeMoments rigidModeMoments(const Vec3* x, const Vec3* v, const double* m, uint32_t count);
 
 /// The prediction of Algorithm 2 for `count` particles with the rigid mode's arc
-/// (SoftSystem::integrate): x_prev = x, v += gravityStep, x += h v + arc (x_prev − centre).
-/// arc = 0 moves them on straight lines.
-void predictOnArc(Vec3* x, Vec3* xPrev, Vec3* v, uint32_t count, const Vec3& gravityStep,
+/// (SoftSystem::integrate): x_prev = x, x += h (v + gravityStep) + arc (x_prev − centre).
+/// arc = 0 moves them on straight lines. v + gravityStep is not stored: the velocity derivation
+/// overwrites v, and only the contacts read it before (they add gravityStep themselves).
+void predictOnArc(Vec3* x, Vec3* xPrev, const Vec3* v, uint32_t count, const Vec3& gravityStep,
                   double h, const Mat3& arc, const Vec3& centre);
 
 /// The sums the best-fit turn from x_prev to x needs (SoftSystem::deriveVelocities), over
@@ -52,10 +53,10 @@ TurnSums turnSums(const Vec3* x, const Vec3* xPrev, const double* m, uint32_t co
                   const Vec3& origin);
 
 /// The velocity derivation with the rigid turn on its arc (SoftSystem::deriveVelocities):
-/// v_prev = v, v = (x − x_prev) invH + spin (x − centre) − turnBack (x_prev − centrePrev).
+/// v = (x − x_prev) invH + spin (x − centre) − turnBack (x_prev − centrePrev).
 /// Returns the moments of x and the new v (rigidModeMoments' sums, in the same pass): the next
 /// substep's prediction needs them, and x does not move before it.
-RigidModeMoments deriveOnArc(const Vec3* x, const Vec3* xPrev, Vec3* v, Vec3* vPrev, uint32_t count,
+RigidModeMoments deriveOnArc(const Vec3* x, const Vec3* xPrev, Vec3* v, uint32_t count,
                              double invH, const Mat3& spin, const Vec3& centre, const Mat3& turnBack,
                              const Vec3& centrePrev, const double* m);
 

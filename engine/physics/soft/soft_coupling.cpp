@@ -123,13 +123,14 @@ inline void changeVelocityOnStill(Vec3& v, double w, const Vec3& change) {
 /// the impulse Δλ n = Δλ delta / c = f delta. Written over c² (Δλ = c² (c − α̃ λ) /
 /// ((wLinear + α̃) c² + angular)), a hard attachment's impulse waits for one division and no
 /// square root: the rim's run of attachments is a chain, each correction moving the body the
-/// next one starts from.
+/// next one starts from. A hard attachment (α̃ = 0) leaves λ alone: with no α̃ λ term and no
+/// force readout nothing reads it, so its link costs one division, not two and a square root.
 inline double attachmentImpulse(double& lambda, double alphaTilde, double c2, double wLinear, double angular) {
     const double denominator = (wLinear + alphaTilde) * c2 + angular;
+    if (alphaTilde == 0.0) return c2 / denominator;  // Eq. 4 with α̃ = 0: Δλ = c / (w + w_body)
     const double c = std::sqrt(c2);
     const double deltaLambda = c2 * (c - alphaTilde * lambda) / denominator;  // Eq. 4
-    const double factor =
-        alphaTilde == 0.0 ? c2 / denominator : (c2 - alphaTilde * lambda * c) / denominator;
+    const double factor = (c2 - alphaTilde * lambda * c) / denominator;
     lambda += deltaLambda;
     return factor;
 }
@@ -332,7 +333,8 @@ void SoftSystem::solveContactsPerParticle(SolverContext& ctx) {
         const double held = takeHeldImpulse(ctx, c);
         if (c.still) {
             // The ground and the obstacles: the same steps with the body's terms left out.
-            const double pushed = pushOutOfStill(ctx, c.anchor, n, c.radius, x, w, v_[c.particle]);
+            const double pushed =
+                pushOutOfStill(ctx, c.anchor, n, c.radius, x, w, v_[c.particle] + gravityStep_);
             if (!(pushed > 0.0) && !(held > 0.0)) continue;
             if (pushed > 0.0) c.lambdaNormal += pushed;
             if (!(c.staticFriction > 0.0)) continue;
@@ -345,7 +347,8 @@ void SoftSystem::solveContactsPerParticle(SolverContext& ctx) {
             x -= (w * deltaTangent) * t;
             continue;
         }
-        const double pushed = pushOut(ctx, c.body, c.local1, n, c.radius, x, w, v_[c.particle]);
+        const double pushed =
+            pushOut(ctx, c.body, c.local1, n, c.radius, x, w, v_[c.particle] + gravityStep_);
         if (!(pushed > 0.0) && !(held > 0.0)) continue;
         if (pushed > 0.0) c.lambdaNormal += pushed;
         if (!(c.staticFriction > 0.0)) continue;
@@ -370,7 +373,8 @@ void SoftSystem::solveContactsPerPatch(SolverContext& ctx) {
     for (ParticleContact& c : contacts_) {
         takeHeldImpulse(ctx, c);
         const double pushed =
-            pushOut(ctx, c.body, c.local1, c.normal, c.radius, x_[c.particle], invMass_[c.particle], v_[c.particle]);
+            pushOut(ctx, c.body, c.local1, c.normal, c.radius, x_[c.particle], invMass_[c.particle],
+                    v_[c.particle] + gravityStep_);
         if (pushed > 0.0) c.lambdaNormal += pushed;
     }
     // Each patch's load: Σ λ_n, its λ_n-weighted centre and normal, and Σ λ_n ρ (ρ a particle's

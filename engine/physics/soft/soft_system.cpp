@@ -276,6 +276,7 @@ void SoftSystem::integrate(double h, const Vec3& gravity) {
     // spin in the velocities and ω the turn that keeps L. λ is zeroed before each substep's
     // solve.
     const Vec3 gravityStep = h * gravity;
+    gravityStep_ = gravityStep;
     for (SoftBodyData& body : bodies_) {
         if (!body.alive) continue;
         const uint32_t first = body.firstParticle;
@@ -335,6 +336,10 @@ void SoftSystem::deriveVelocities(double h) {
     // gets its exact spin back, the momentum is the chord's, and the angular momentum about
     // the centre is I ω, since R zeroes Σ m r × R r_prev.
     const double invH = 1.0 / h;
+    // Eq. 34's v̄_n in the velocity pass reads the contacts' particles' velocities from before
+    // the derivation, the prediction's v + g h (predictOnArc does not store it): kept for those
+    // particles only.
+    for (const ParticleContact& c : contacts_) vPrev_[c.particle] = v_[c.particle] + gravityStep_;
     for (SoftBodyData& body : bodies_) {
         if (!body.alive) continue;
         const uint32_t first = body.firstParticle;
@@ -354,8 +359,8 @@ void SoftSystem::deriveVelocities(double h) {
             correction = crossMatrix(spin);
             turnBack = (r - Mat3::Identity()) * invH;
         }
-        body.moments = deriveOnArc(x_.data() + first, xPrev_.data() + first, v_.data() + first, vPrev_.data() + first,
-                                   body.particleCount, invH, correction, centre, turnBack, centrePrev, mass_.data() + first);
+        body.moments = deriveOnArc(x_.data() + first, xPrev_.data() + first, v_.data() + first, body.particleCount,
+                                   invH, correction, centre, turnBack, centrePrev, mass_.data() + first);
         body.momentsKept = true;
     }
 }
@@ -371,17 +376,39 @@ void SoftSystem::solveVelocities(Body* bodies, double h, double gravity) {
         passedVelocities_.emplace_back(c.particle, v_[c.particle]);
     }
     solveContactVelocities(bodies, h, gravity);
+    // The particles come grouped by soft body (the candidates' order): the sums of the last
+    // one's body are kept in registers (not a load and a store per particle through memory the
+    // byte stores to passed_ may alias), its body searched for again only when a particle lies
+    // outside it. The same additions in the same order.
+    SoftBodyData* owner = nullptr;
+    uint32_t ownerFirst = 0, ownerEnd = 0;
+    double mass = 0.0;
+    Vec3 centre = Vec3::Zero(), velocity = Vec3::Zero(), angular = Vec3::Zero();
+    const auto keep = [&] {
+        if (owner == nullptr) return;
+        owner->moments.velocity = velocity;
+        owner->moments.angularMomentum = angular;
+    };
     for (const auto& [i, before] : passedVelocities_) {
         passed_[i] = 0;
         const Vec3 change = mass_[i] * (v_[i] - before);
-        for (SoftBodyData& body : bodies_) {
-            if (!body.alive || i < body.firstParticle || i >= body.firstParticle + body.particleCount) continue;
-            RigidModeMoments& moments = body.moments;
-            if (moments.mass > 0.0) moments.velocity += change / moments.mass;
-            moments.angularMomentum += (x_[i] - moments.centre).cross(change);
-            break;
+        if (owner == nullptr || i < ownerFirst || i >= ownerEnd) {
+            keep();
+            owner = nullptr;
+            for (SoftBodyData& body : bodies_)
+                if (body.alive && i >= body.firstParticle && i < body.firstParticle + body.particleCount) {
+                    owner = &body;
+                    break;
+                }
+            if (owner == nullptr) continue;
+            ownerFirst = owner->firstParticle, ownerEnd = owner->firstParticle + owner->particleCount;
+            mass = owner->moments.mass, centre = owner->moments.centre;
+            velocity = owner->moments.velocity, angular = owner->moments.angularMomentum;
         }
+        if (mass > 0.0) velocity += change / mass;
+        angular += (x_[i] - centre).cross(change);
     }
+    keep();
 }
 
 void SoftSystem::damp(double dt) {

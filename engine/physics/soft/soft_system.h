@@ -248,8 +248,14 @@ private:
     void addAttachments(const SoftBodyDef& def, SoftBodyData& data, const Lattice& lattice,
                         std::span<const Body> bodies);
 
-    // Particles (structure of arrays).
-    std::vector<Vec3> x_, xPrev_, v_, vPrev_;
+    // Particles (structure of arrays). Between integrate and deriveVelocities v_ holds the
+    // velocities the substep started from: the prediction's v + g h (gravityStep_ added) is
+    // formed where it is read, by the contacts, not stored for every particle.
+    std::vector<Vec3> x_, xPrev_, v_;
+    Vec3 gravityStep_ = Vec3::Zero();  ///< g h of the substep (integrate)
+    /// Per particle: its velocity before the substep's derivation, written for the contacts'
+    /// particles only (deriveVelocities; the velocity pass's Eq. 34 reads no other).
+    std::vector<Vec3> vPrev_;
     std::vector<double> mass_, invMass_;
     // Elements.
     std::vector<HexElement> elements_;

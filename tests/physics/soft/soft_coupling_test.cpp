@@ -280,8 +280,9 @@ TEST(SoftCoupling, AttachmentsOneAfterTheOtherHoldALightBodyAsAHeavyOne) {
 }
 
 /// A rim hinged above its centre at `pivot`, tilted by `tilt` about z, carrying a tyre of `around`
-/// cells attached by its inner particles; returns the rim and the tyre.
-std::pair<BodyId, SoftBodyId> addSwingingTyre(World& world, const Vec3& pivot, double tilt, int around) {
+/// cells attached by its inner particles (`compliance` each); returns the rim and the tyre.
+std::pair<BodyId, SoftBodyId> addSwingingTyre(World& world, const Vec3& pivot, double tilt, int around,
+                                              double compliance = 0.0) {
     const double ro = 0.35, ri = 0.25, width = 0.1, d = 0.15;
     const Quat turn(Eigen::AngleAxisd(tilt, Vec3::UnitZ()));
     const Vec3 centre = pivot + turn * Vec3(0, -d, 0);
@@ -292,8 +293,58 @@ std::pair<BodyId, SoftBodyId> addSwingingTyre(World& world, const Vec3& pivot, d
     SoftBodyDef tyre{.type = SoftBodyType::Tyre, .outerRadius = ro, .innerRadius = ri, .width = width,
                      .cells = {around, 2, 2}, .position = centre, .orientation = turn * kAxisAlongZ,
                      .density = 500.0, .compliance = 1e-7, .collide = false};
-    tyre.attachments.push_back({.body = rim, .particles = SoftAttachmentParticles::Inner});
+    tyre.attachments.push_back({.body = rim, .particles = SoftAttachmentParticles::Inner, .compliance = compliance});
     return {rim, world.createSoftBody(tyre)};
+}
+
+TEST(SoftCoupling, HardAttachmentsTakeTheCompliantStepsBits) {
+    // A hard attachment's step skips Eq. 4's λ (nothing reads it): its impulse must be the
+    // general step's bit for bit. With α = 1e-300 m/N the general step runs, and α̃ vanishes
+    // against w and α̃ λ c against c²: a swinging rim and its tyre end on the same bits.
+    const auto swing = [](double compliance) {
+        World world = worldWithGround(20, false);
+        const auto [rim, tyre] = addSwingingTyre(world, Vec3(0, 1, 0), 0.2, 30, compliance);
+        for (int frame = 0; frame < 30; ++frame) world.step(1.0 / 60.0);
+        const auto x = world.softBodyPositions(tyre);
+        return std::pair(world.body(rim), std::vector<Vec3>(x.begin(), x.end()));
+    };
+    const auto [hardRim, hardTyre] = swing(0.0);
+    const auto [rim, tyre] = swing(1e-300);
+    EXPECT_GT(std::abs(hardRim.omega.z()), 0.1);  // it swings
+    EXPECT_TRUE(hardRim.x == rim.x && hardRim.q.coeffs() == rim.q.coeffs());
+    EXPECT_TRUE(hardTyre == tyre);
+    // A compliance that counts gives other bits (the comparison can tell).
+    EXPECT_FALSE(swing(1e-6).second == hardTyre);
+}
+
+TEST(SoftCoupling, LandingParticlesBounceWithTheirRestitution) {
+    // Eq. 34 on the still ground: a contact particle's normal velocity after the velocity pass
+    // is −e v̄_n, v̄_n its velocity before the substep's derivation (the last substep's, plus
+    // g h). A box dropped flat from rest: its bottom layer bounces so in the substep it lands
+    // (e is the mean of the box's and the ground's).
+    const double e = 0.5, dt = 1.0 / 60.0, h = dt / 20;
+    World world = worldWithGround(20, false);
+    world.createBody({.shape = planeShape(Vec3::UnitY(), 0.0), .type = BodyType::Static, .restitution = e});
+    const SoftBodyId box = world.createSoftBody({.size = Vec3(0.2, 0.2, 0.2), .cells = {2, 2, 2},
+                                                 .position = Vec3(0, 0.3, 0), .compliance = 1e-8,
+                                                 .restitution = e});
+    int bounced = 0;
+    for (int frame = 0; frame < 30 && bounced == 0; ++frame) {
+        world.beginFrame(dt);
+        while (true) {
+            const auto v = world.softBodies()->velocities(box);
+            const std::vector<Vec3> before(v.begin(), v.end());
+            if (!world.substep()) break;
+            const auto x = world.softBodyPositions(box);
+            for (size_t i = 0; i < before.size(); ++i) {
+                if (!(x[i].y() < 0.05 && before[i].y() < -1.0 && v[i].y() > 0.0)) continue;
+                EXPECT_NEAR(v[i].y(), -e * (before[i].y() - kG * h), 1e-12) << i;
+                ++bounced;
+            }
+        }
+        world.endFrame();
+    }
+    EXPECT_EQ(bounced, 9);  // the 3 x 3 bottom particles, all in one substep
 }
 
 TEST(SoftCoupling, RimsSolvedSideBySideMoveAsEachAlone) {
