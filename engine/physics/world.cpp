@@ -294,7 +294,7 @@ bool World::substep() {
     for (Joint& joint : joints_)
         if (!sleeps(joint)) beginJointSubstep(joint, h);
     integrate(h);
-    if (soft) soft_->integrate(h, settings_.gravity);
+    if (soft) soft_->integrate(h, settings_.gravity, workerPool());
     lap(stepTimes_.integrate);
     if (!contactPairs_.empty()) findContacts(frame_.sleeping);
     else touchingPairs_.clear();
@@ -308,7 +308,7 @@ bool World::substep() {
     for (int i = 0; i < settings_.iterations; ++i) solvePositions(h);
     lap(stepTimes_.solve);
     deriveVelocities(h);
-    if (soft) soft_->deriveVelocities(h);
+    if (soft) soft_->deriveVelocities(h, workerPool());
     lap(stepTimes_.integrate);
     if (settings_.velocityPass && (anyDamping_ || !contacts_.empty())) solveVelocities(h);
     if (soft && settings_.velocityPass) {

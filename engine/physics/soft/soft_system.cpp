@@ -270,15 +270,14 @@ void SoftSystem::forgetBody(uint32_t bodyIndex) {
     std::erase_if(contacts_, [&](const ParticleContact& c) { return c.body == bodyIndex; });
 }
 
-void SoftSystem::integrate(double h, const Vec3& gravity) {
+void SoftSystem::integrate(double h, const Vec3& gravity, WorkerPool* pool) {
     // Algorithm 2 without the rotation, except that each soft body's rigid mode turns on an
     // arc (rigid_mode.h): x += h v + (Rot(h ω) − 1 − h [ω₀]×)(x − c), where ω₀ = I⁻¹ L is the
     // spin in the velocities and ω the turn that keeps L. λ is zeroed before each substep's
     // solve.
     const Vec3 gravityStep = h * gravity;
     gravityStep_ = gravityStep;
-    for (SoftBodyData& body : bodies_) {
-        if (!body.alive) continue;
+    forEachBody(pool, [&](SoftBodyData& body) {
         const uint32_t first = body.firstParticle;
         // The moments the last velocity derivation summed (the velocity pass's changes added),
         // or afresh after damping and at the start.
@@ -293,7 +292,7 @@ void SoftSystem::integrate(double h, const Vec3& gravity) {
         if (!(h * h * spin.squaredNorm() >= 1e-14) || !spin.allFinite()) {
             predictOnArc(x_.data() + first, xPrev_.data() + first, v_.data() + first, body.particleCount, gravityStep,
                          h, Mat3::Zero(), moments.centre);
-            continue;
+            return;
         }
         integrateRotation(body.turn, h * spin);
         const Vec3 linearSpin = moments.inertia.inverse() * moments.angularMomentum;
@@ -303,7 +302,7 @@ void SoftSystem::integrate(double h, const Vec3& gravity) {
                      arc, moments.centre);
         // The elements turn with the body: their rotations' warm start.
         turnRotations(rotations_.data() + body.firstElement, body.elementCount, body.turn);
-    }
+    });
     std::fill(lambda_.begin(), lambda_.end(), 0.0);
     std::fill(volumeLambda_.begin(), volumeLambda_.end(), 0.0);
     for (Attachment& a : attachments_) a.lambda = 0.0;
@@ -313,6 +312,19 @@ void SoftSystem::solvePositions(SolverContext& ctx, WorkerPool* pool) {
     solveElements(ctx.invH2, ElementLanes::Widest, pool);
     solveAttachments(ctx);
     solveContacts(ctx);
+}
+
+template <class Visit>
+void SoftSystem::forEachBody(WorkerPool* pool, Visit&& visit) {
+    if (!pool || liveBodies_ < 2) {
+        for (SoftBodyData& body : bodies_)
+            if (body.alive) visit(body);
+        return;
+    }
+    pool->parallelFor(static_cast<int>(bodies_.size()), [&](int index) {
+        SoftBodyData& body = bodies_[static_cast<size_t>(index)];
+        if (body.alive) visit(body);
+    });
 }
 
 void SoftSystem::solveElements(double invH2, ElementLanes lanes, WorkerPool* pool) {
@@ -329,7 +341,7 @@ void SoftSystem::solveElements(double invH2, ElementLanes lanes, WorkerPool* poo
     });
 }
 
-void SoftSystem::deriveVelocities(double h) {
+void SoftSystem::deriveVelocities(double h, WorkerPool* pool) {
     // v = (x − x_prev) / h, with each soft body's rigid turn R over the substep (the best-fit
     // rotation from x_prev to x about the centres of mass) counted on its arc rather than its
     // chord: v = v̄ + ω × r + (r − R r_prev) / h, ω = log(R) / h (rigid_mode.h). A rigid motion
@@ -340,8 +352,7 @@ void SoftSystem::deriveVelocities(double h) {
     // the derivation, the prediction's v + g h (predictOnArc does not store it): kept for those
     // particles only.
     for (const ParticleContact& c : contacts_) vPrev_[c.particle] = v_[c.particle] + gravityStep_;
-    for (SoftBodyData& body : bodies_) {
-        if (!body.alive) continue;
+    forEachBody(pool, [&](SoftBodyData& body) {
         const uint32_t first = body.firstParticle;
         Mat3 correction = Mat3::Zero();
         Mat3 turnBack = Mat3::Zero();
@@ -362,7 +373,7 @@ void SoftSystem::deriveVelocities(double h) {
         body.moments = deriveOnArc(x_.data() + first, xPrev_.data() + first, v_.data() + first, body.particleCount,
                                    invH, correction, centre, turnBack, centrePrev, mass_.data() + first);
         body.momentsKept = true;
-    }
+    });
 }
 
 void SoftSystem::solveVelocities(Body* bodies, double h, double gravity) {

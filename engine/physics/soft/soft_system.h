@@ -53,7 +53,9 @@ public:
     // The stages of World::step, in order.
     /// Once per frame: the (particle, rigid body) pairs that may touch during the frame.
     void collectCandidates(std::span<const Body> bodies, double dt, double margin, const Vec3& gravity);
-    void integrate(double h, const Vec3& gravity);
+    /// Every substep: the prediction and the velocity derivation (with a pool, body by body on
+    /// its threads).
+    void integrate(double h, const Vec3& gravity, WorkerPool* pool = nullptr);
     /// Every substep: the candidates' contact points on the current poses.
     void findContacts(std::span<const Body> bodies, double margin);
     /// Every substep, after findContacts, with setHeldContacts on: the particles a contact
@@ -78,7 +80,7 @@ public:
     /// (docs/SOFT_BODIES.md, "Loaded particles sink into the ground"). The world sets it every
     /// frame from WorldSettings::softHeldContacts.
     void setHeldContacts(bool on) { heldContacts_ = on; }
-    void deriveVelocities(double h);
+    void deriveVelocities(double h, WorkerPool* pool = nullptr);
     /// The contacts' restitution and dynamic friction.
     void solveVelocities(Body* bodies, double h, double gravity);
 
@@ -234,6 +236,10 @@ private:
     void solveContactsPerParticle(SolverContext& ctx);
     void solveContactsPerPatch(SolverContext& ctx);
     void solveContactVelocities(Body* bodies, double h, double gravity);
+    /// visit(body) for every live body; with a pool, each on a thread of its own (the bodies'
+    /// particles, elements and moments are their own: the same bits in any order).
+    template <class Visit>
+    void forEachBody(WorkerPool* pool, Visit&& visit);
     /// The element arrays as the batch kernel reads them.
     ElementArrays elementArrays();
     /// Rebuilds batches_ from every live body's elements.
