@@ -324,7 +324,7 @@ bool World::substep() {
 
 void World::endFrame() {
     if (!frame_.open) return;
-    if (frame_.soft) soft_->damp(frame_.dt);
+    if (frame_.soft) soft_->damp(frame_.dt, workerPool());
     if (frame_.sleeping) {
         touching_.clear();
         for (size_t i = 0; i < contactPairs_.size(); ++i)

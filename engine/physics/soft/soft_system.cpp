@@ -422,10 +422,19 @@ void SoftSystem::solveVelocities(Body* bodies, double h, double gravity) {
     keep();
 }
 
-void SoftSystem::damp(double dt) {
+void SoftSystem::damp(double dt, WorkerPool* pool) {
     for (SoftBodyData& body : bodies_) body.momentsKept = false;  // the velocities change
-    // Each element's deformation rate, its batches' lanes side by side (element_damping.h).
-    dampElementBatches(batches_, {.positions = x_, .velocities = v_, .mass = mass_, .damping = elementDamping_}, dt);
+    // Each element's deformation rate, its batches' lanes side by side (element_damping.h);
+    // with a pool, each body's batches on a thread of their own.
+    const DampingArrays arrays{.positions = x_, .velocities = v_, .mass = mass_, .damping = elementDamping_};
+    if (!pool || bodyBatches_.size() < 2) {
+        dampElementBatches(batches_, arrays, dt);
+        return;
+    }
+    pool->parallelFor(static_cast<int>(bodyBatches_.size()), [&](int block) {
+        const auto [first, end] = bodyBatches_[static_cast<size_t>(block)];
+        dampElementBatches(std::span(batches_).subspan(first, end - first), arrays, dt);
+    });
 }
 
 SoftEnergies SoftSystem::energies(const Vec3& gravity) const {

@@ -85,7 +85,7 @@ public:
     void solveVelocities(Body* bodies, double h, double gravity);
 
     /// Once per frame, after the substeps: damps each element's deformation rate (elementDamping_).
-    void damp(double dt);
+    void damp(double dt, WorkerPool* pool = nullptr);
 
     SoftEnergies energies(const Vec3& gravity) const;
     bool isFinite() const;
