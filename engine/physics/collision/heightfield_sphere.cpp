@@ -117,7 +117,7 @@ void addSphereContacts(const HeightfieldGrid& grid, const Vec3& c, double r, dou
     // of the foot and of closestOnTriangle's regions, far below any cell.
     const double inset = 1e-9 * (grid.cellX + grid.cellZ) + 1e-12 * c.cwiseAbs().maxCoeff();
     // The diagonal's signed x–z distance is across / √(cellX² + cellZ²): this is at most that.
-    const double inverseSpan = 1.0 / (grid.cellX + grid.cellZ);
+    const double inverseSpan = grid.inverseSpan;
     const int columns = field.columns;
     forEachCell(grid, i0, i1, j0, j1, [&](int i, int j, const CellCorners& cell) {
         if (cell.highest() < lowest) return;
@@ -186,6 +186,7 @@ void HeightfieldGrid::reset(const HeightfieldData& data) {
     cellZ = data.cellZ();
     inverseCellX = 1.0 / cellX;
     inverseCellZ = 1.0 / cellZ;
+    inverseSpan = 1.0 / (cellX + cellZ);
     keptColumns_ = keptRows_ = 0;
     keptNormals_.clear();
 }
@@ -210,7 +211,16 @@ void collideSphereHeightfield(const HeightfieldGrid& grid, const Vec3& centre, d
     out.clear();
     ContactBuffer buffer(kMergeFraction * r);
     addSphereContacts(grid, pose.applyInverse(centre), r, margin, buffer);
-    if (buffer.count() > 0) buffer.emit(pose, out);
+    if (buffer.count() > 1) {
+        buffer.emit(pose, out);
+    } else if (buffer.count() == 1) {
+        // ContactBuffer::emit for its one point, without the call to sort it (most contacts).
+        ContactPoint p = buffer[0];
+        p.point0 = pose.apply(p.point0);
+        p.point1 = pose.apply(p.point1);
+        p.normal = pose.rotation * p.normal;
+        out.add(p);
+    }
 }
 
 double heightfieldGapBound(const HeightfieldGrid& grid, const Vec3& p, double reach) {

@@ -40,6 +40,7 @@ public:
     double originX = 0.0, originZ = 0.0;  ///< the low corner of cell (0, 0)
     double cellX = 1.0, cellZ = 1.0;      ///< as HeightfieldData::cellX, cellZ compute them
     double inverseCellX = 1.0, inverseCellZ = 1.0;
+    double inverseSpan = 0.5;  ///< 1 / (cellX + cellZ)
 
 private:
     int keptI0_ = 0, keptJ0_ = 0, keptColumns_ = 0, keptRows_ = 0;
