@@ -44,7 +44,7 @@ struct BatchShape {
     /// The doubles in order, rest row by row then ℓ² and α_e: rest[r][j] is row(8 r + j).
     const double* row(int index) const { return &rest[0][0] + index; }
 };
-static_assert(sizeof(BatchShape) == 256, "two and a half cache lines, padded to four");
+static_assert(sizeof(BatchShape) == 256, "208 bytes, padded to four cache lines");
 
 /// Up to kBatchLanes consecutive elements of one wave: their corners' particles lane-innermost
 /// (lanes past `lanes` repeat lane 0 and are not written back) and their rest shapes.

@@ -53,8 +53,7 @@ public:
     // The stages of World::step, in order.
     /// Once per frame: the (particle, rigid body) pairs that may touch during the frame.
     void collectCandidates(std::span<const Body> bodies, double dt, double margin, const Vec3& gravity);
-    /// Every substep: the prediction and the velocity derivation (with a pool, body by body on
-    /// its threads).
+    /// Every substep: the prediction (with a pool, body by body on its threads).
     void integrate(double h, const Vec3& gravity, WorkerPool* pool = nullptr);
     /// Every substep: the candidates' contact points on the current poses.
     void findContacts(std::span<const Body> bodies, double margin);
@@ -80,6 +79,7 @@ public:
     /// (docs/SOFT_BODIES.md, "Loaded particles sink into the ground"). The world sets it every
     /// frame from WorldSettings::softHeldContacts.
     void setHeldContacts(bool on) { heldContacts_ = on; }
+    /// Every substep, after the solve: the velocities (with a pool, body by body on its threads).
     void deriveVelocities(double h, WorkerPool* pool = nullptr);
     /// The contacts' restitution and dynamic friction.
     void solveVelocities(Body* bodies, double h, double gravity);
@@ -268,7 +268,8 @@ private:
     /// q_j: the element's rest shape (lattice.h), the same bits for every element of a shape, in
     /// that shape's own frame; rotations_ map it to the world.
     std::vector<std::array<Vec3, 8>> restOffsets_;
-    std::vector<std::array<Vec3, 8>> volumeGradients_; ///< b_j = ⅛ A_qq⁻¹ q_j
+    /// b_j = ⅛ A_qq⁻¹ r_j, r_j the corners' offsets from their centroid in the world at creation.
+    std::vector<std::array<Vec3, 8>> volumeGradients_;
     /// The rotation extracted last (the next extraction's warm start), from the element's rest
     /// frame to the world; at creation the body's orientation times the shape's turn.
     std::vector<Quat> rotations_;
