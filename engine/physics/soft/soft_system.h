@@ -84,7 +84,8 @@ public:
     /// The contacts' restitution and dynamic friction.
     void solveVelocities(Body* bodies, double h, double gravity);
 
-    /// Once per frame, after the substeps: damps each element's deformation rate (elementDamping_).
+    /// Once per frame, after the substeps: damps each element's deformation rate (elementDamping_;
+    /// with a pool, body by body on its threads).
     void damp(double dt, WorkerPool* pool = nullptr);
 
     SoftEnergies energies(const Vec3& gravity) const;
