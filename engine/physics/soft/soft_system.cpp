@@ -327,14 +327,21 @@ void SoftSystem::forEachBody(WorkerPool* pool, Visit&& visit) {
     });
 }
 
-void SoftSystem::solveElements(double invH2, ElementLanes lanes, WorkerPool* pool) {
-    const ElementArrays arrays = elementArrays();
+template <class Visit>
+void SoftSystem::forEachBodyBatches(WorkerPool* pool, Visit&& visit) {
     if (!pool || bodyBatches_.size() < 2) {
-        solveElementBatches(batches_, arrays, invH2, lanes);
+        visit(0, static_cast<uint32_t>(batches_.size()));
         return;
     }
     pool->parallelFor(static_cast<int>(bodyBatches_.size()), [&](int block) {
         const auto [first, end] = bodyBatches_[static_cast<size_t>(block)];
+        visit(first, end);
+    });
+}
+
+void SoftSystem::solveElements(double invH2, ElementLanes lanes, WorkerPool* pool) {
+    const ElementArrays arrays = elementArrays();
+    forEachBodyBatches(pool, [&](uint32_t first, uint32_t end) {
         ElementArrays own = arrays;  // the held flags are per batch
         if (!own.heldBatches.empty()) own.heldBatches = own.heldBatches.subspan(first, end - first);
         solveElementBatches(std::span(batches_).subspan(first, end - first), own, invH2, lanes);
@@ -427,12 +434,7 @@ void SoftSystem::damp(double dt, WorkerPool* pool) {
     // Each element's deformation rate, its batches' lanes side by side (element_damping.h);
     // with a pool, each body's batches on a thread of their own.
     const DampingArrays arrays{.positions = x_, .velocities = v_, .mass = mass_, .damping = elementDamping_};
-    if (!pool || bodyBatches_.size() < 2) {
-        dampElementBatches(batches_, arrays, dt);
-        return;
-    }
-    pool->parallelFor(static_cast<int>(bodyBatches_.size()), [&](int block) {
-        const auto [first, end] = bodyBatches_[static_cast<size_t>(block)];
+    forEachBodyBatches(pool, [&](uint32_t first, uint32_t end) {
         dampElementBatches(std::span(batches_).subspan(first, end - first), arrays, dt);
     });
 }

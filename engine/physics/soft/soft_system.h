@@ -241,6 +241,10 @@ private:
     /// particles, elements and moments are their own: the same bits in any order).
     template <class Visit>
     void forEachBody(WorkerPool* pool, Visit&& visit);
+    /// visit(first, end) for each live body's batches, [first, end) in batches_; with a pool,
+    /// each on a thread of their own; without, once for all of them.
+    template <class Visit>
+    void forEachBodyBatches(WorkerPool* pool, Visit&& visit);
     /// The element arrays as the batch kernel reads them.
     ElementArrays elementArrays();
     /// Rebuilds batches_ from every live body's elements.
