@@ -76,10 +76,25 @@ namespace substep {
     return 1;
 }
 
-/// Sphere body `sphere` (pose ps) against plane body `plane`: collideSpherePlane's point below
-/// the centre. `sphereFirst` says whether the sphere is the pair's body 0; otherwise the point
-/// is stored the other way round with the normal flipped, as the dispatch table's swapped slot
+/// The sphere's point `onSphere` and the other body's `onOther`, with the normal n from the
+/// other body to the sphere, kept when they overlap or lie within the margin, in the pair's
+/// order: `sphereFirst` says whether the sphere is the pair's body 0; otherwise the point is
+/// stored the other way round with the normal flipped, as the dispatch table's swapped slot
 /// does. Returns the points added (0 or 1).
+[[gnu::always_inline]] inline int appendSphereContact(const Body& sphere, const Body& other, const Vec3& onSphere,
+                                                      const Vec3& onOther, const Vec3& n, bool sphereFirst,
+                                                      double margin, std::vector<Contact>& out) {
+    const double depth = (onOther - onSphere).dot(n);
+    if (!(depth >= -margin)) return 0;
+    if (sphereFirst)
+        appendContactInBodyFrames(sphere, other, onSphere, onOther, n, out);
+    else
+        appendContactInBodyFrames(other, sphere, onOther, onSphere, Vec3(-n), out);
+    return 1;
+}
+
+/// Sphere body `sphere` (pose ps) against plane body `plane`: collideSpherePlane's point below
+/// the centre, stored as appendSphereContact says. Returns the points added (0 or 1).
 [[gnu::always_inline]] inline int appendSpherePlaneContact(const Body& sphere, const Pose& ps,
                                                            const Body& plane, bool sphereFirst,
                                                            double margin,
@@ -91,21 +106,13 @@ namespace substep {
     const Vec3 normal = unit ? Vec3(shape.normal / length) : Vec3(Vec3::UnitY());
     const double offset = unit ? shape.offset / length : shape.offset;
     const double height = normal.dot(ps.position) - offset;
-    const Vec3 point0 = ps.position - sphere.shape.radius * normal;
-    const Vec3 point1 = ps.position - height * normal;
-    const double depth = (point1 - point0).dot(normal);
-    if (!(depth >= -margin)) return 0;
-    if (sphereFirst)
-        appendContactInBodyFrames(sphere, plane, point0, point1, normal, out);
-    else
-        appendContactInBodyFrames(plane, sphere, point1, point0, Vec3(-normal), out);
-    return 1;
+    return appendSphereContact(sphere, plane, ps.position - sphere.shape.radius * normal,
+                               ps.position - height * normal, normal, sphereFirst, margin, out);
 }
 
 /// Sphere body `sphere` (pose ps) against box body `box` (pose pb): collideSphereBox's point
 /// (primitive::sphereBoxPoints), the sphere's centre against its closest point of the box (or, from inside, of the nearest
-/// face). `sphereFirst` as for a plane: otherwise stored the other way round, the normal
-/// flipped. Returns the points added (0 or 1).
+/// face), stored as appendSphereContact says. Returns the points added (0 or 1).
 [[gnu::always_inline]] inline int appendSphereBoxContact(const Body& sphere, const Pose& ps,
                                                          const Body& box, const Pose& pb,
                                                          bool sphereFirst, double margin,
@@ -114,16 +121,7 @@ namespace substep {
     if (!primitive::sphereBoxPoints(ps.position, sphere.shape.radius, pb, primitive::halfExtents(box.shape), margin,
                                     points))
         return 0;
-    const Vec3& point0 = points.onSphere;
-    const Vec3& point1 = points.onBox;
-    const Vec3& n = points.normal;
-    const double depth = (point1 - point0).dot(n);
-    if (!(depth >= -margin)) return 0;
-    if (sphereFirst)
-        appendContactInBodyFrames(sphere, box, point0, point1, n, out);
-    else
-        appendContactInBodyFrames(box, sphere, point1, point0, Vec3(-n), out);
-    return 1;
+    return appendSphereContact(sphere, box, points.onSphere, points.onBox, points.normal, sphereFirst, margin, out);
 }
 
 /// The fast path's pairs: sphere – sphere, sphere – plane and sphere – box in either order.
