@@ -302,7 +302,7 @@ bool World::substep() {
         groupTouchingPairs();
     else
         contactSchedule_.plan(touchingPairs_, contactPairs_, bodies_.data());
-    if (soft) soft_->findContacts(bodies_, settings_.contactMargin);
+    if (soft) soft_->findContacts(bodies_, settings_.contactMargin, workerPool());
     if (soft) soft_->holdContactParticles();  // none unless SoftSystem::setHeldContacts
     lap(stepTimes_.narrowphase);
     for (int i = 0; i < settings_.iterations; ++i) solvePositions(h);
@@ -315,7 +315,7 @@ bool World::substep() {
         if (corrections_) [[unlikely]]
             corrections_->solveSoftVelocitiesRecorded(*soft_, bodies_.data(), bodies_.size(), h, settings_.gravity.norm());
         else
-            soft_->solveVelocities(bodies_.data(), h, settings_.gravity.norm());
+            soft_->solveVelocities(bodies_.data(), h, settings_.gravity.norm(), workerPool());
     }
     lap(stepTimes_.velocities);
     ++frame_.done;

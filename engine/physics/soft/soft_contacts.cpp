@@ -6,6 +6,7 @@
 #include "physics/collision/narrowphase.h"
 #include "physics/collision/shape_bounds.h"
 #include "physics/soft/soft_system.h"
+#include "physics/worker_pool.h"
 
 #include <algorithm>
 #include <cmath>
@@ -135,6 +136,7 @@ void SoftSystem::collectCandidates(std::span<const Body> bodies, double dt, doub
     // narrowphase itself.
     candidates_.clear();
     candidateSkips_.clear();
+    candidateRuns_.clear();
     for (FieldGrid& slot : fieldGrids_) slot.field.reset();
     fieldGridCount_ = 0;
     const double fall = gravity.norm() * dt * dt;
@@ -151,6 +153,7 @@ void SoftSystem::collectCandidates(std::span<const Body> bodies, double dt, doub
         }
         softBox = softBox.inflated(soft.radius + margin + 2.0 * dt * std::sqrt(fastest) + fall);
         const Shape probe = sphereShape(soft.radius);
+        const size_t firstCandidate = candidates_.size();
         for (uint32_t bi = 1; bi < bodies.size(); ++bi) {
             const Body& b = bodies[bi];
             if (!b.alive || !b.collide || b.shape.type == ShapeType::None) continue;
@@ -214,6 +217,17 @@ void SoftSystem::collectCandidates(std::span<const Body> bodies, double dt, doub
                 addCandidate({.particle = i, .body = bi, .softBody = s}, -std::numeric_limits<double>::infinity(), x_[i]);
             }
         }
+        if (candidates_.size() > firstCandidate)
+            candidateRuns_.push_back({.softBody = s, .first = firstCandidate, .end = candidates_.size()});
+    }
+}
+
+void SoftSystem::listCandidateRuns() {
+    candidateRuns_.clear();
+    for (size_t k = 0; k < candidates_.size(); ++k) {
+        if (candidateRuns_.empty() || candidateRuns_.back().softBody != candidates_[k].softBody)
+            candidateRuns_.push_back({.softBody = candidates_[k].softBody, .first = k, .end = k});
+        candidateRuns_.back().end = k + 1;
     }
 }
 
@@ -244,8 +258,37 @@ void SoftSystem::clearanceOf(Candidate& candidate, const Body& field, double mar
     candidate.clearHighZ = clear.highZ + t.z() - shiftSlack;
 }
 
-void SoftSystem::findContacts(std::span<const Body> bodies, double margin) {
+void SoftSystem::findContacts(std::span<const Body> bodies, double margin, WorkerPool* pool) {
+    // Each soft body's run of candidates on its own (with a pool, on a thread of its own, into
+    // its own list, the lists joined in the runs' order): the contacts and their order are the
+    // serial ones whichever thread found them.
     contacts_.clear();
+    keptCandidates_.resize(candidates_.size());
+    if (!pool || candidateRuns_.size() < 2) {
+        for (CandidateRun& run : candidateRuns_) {
+            run.firstContact = contacts_.size();
+            findRunContacts(run, bodies, margin, contacts_);
+            run.endContact = contacts_.size();
+        }
+    } else {
+        if (runContacts_.size() < candidateRuns_.size()) runContacts_.resize(candidateRuns_.size());
+        pool->parallelFor(static_cast<int>(candidateRuns_.size()), [&](int r) {
+            std::vector<ParticleContact>& found = runContacts_[static_cast<size_t>(r)];
+            found.clear();
+            findRunContacts(candidateRuns_[static_cast<size_t>(r)], bodies, margin, found);
+        });
+        for (size_t r = 0; r < candidateRuns_.size(); ++r) {
+            candidateRuns_[r].firstContact = contacts_.size();
+            contacts_.insert(contacts_.end(), runContacts_[r].begin(), runContacts_[r].end());
+            candidateRuns_[r].endContact = contacts_.size();
+        }
+    }
+    if (pool) planShares(bodies);
+    else bodiesApart_ = false;
+}
+
+void SoftSystem::findRunContacts(const CandidateRun& run, std::span<const Body> bodies, double margin,
+                                 std::vector<ParticleContact>& out) {
     ContactManifold manifold;
     uint32_t poseBody = UINT32_MAX;
     uint32_t probeBody = UINT32_MAX;
@@ -262,10 +305,9 @@ void SoftSystem::findContacts(std::span<const Body> bodies, double margin) {
     // squared: most candidates of a rolling tyre are skipped here). The test runs over every
     // candidate first, without a branch, listing those it keeps in order: a rolling tyre's
     // candidates pass and fail it at random, and the mispredicted branch cost more than the test.
-    keptCandidates_.resize(candidates_.size());
-    uint32_t* kept = keptCandidates_.data();
+    uint32_t* kept = keptCandidates_.data() + run.first;  // the run's own part of the list
     size_t keptCount = 0;
-    for (size_t index = 0; index < candidateSkips_.size(); ++index) {
+    for (size_t index = run.first; index < run.end; ++index) {
         const CandidateSkip& skip = candidateSkips_[index];
         const double slack = skip.gap - margin;
         const bool skipped = (slack > 0.0) & ((x_[skip.particle] - skip.origin).squaredNorm() < slack * slack);
@@ -314,16 +356,16 @@ void SoftSystem::findContacts(std::span<const Body> bodies, double margin) {
         for (int m = 0; m < manifold.count; ++m) {
             const ContactPoint& point = manifold.points[m];
             const Vec3 local1 = inverse * (point.point1 - b.x);
-            contacts_.push_back({.particle = candidate.particle,
-                                 .body = candidate.body,
-                                 .local1 = local1,
-                                 .normal = point.normal,
-                                 .radius = soft.radius,
-                                 .staticFriction = staticFriction,
-                                 .dynamicFriction = dynamicFriction,
-                                 .restitution = restitution,
-                                 .still = still,
-                                 .anchor = still ? b.pointToWorld(local1) : Vec3::Zero()});
+            out.push_back({.particle = candidate.particle,
+                           .body = candidate.body,
+                           .local1 = local1,
+                           .normal = point.normal,
+                           .radius = soft.radius,
+                           .staticFriction = staticFriction,
+                           .dynamicFriction = dynamicFriction,
+                           .restitution = restitution,
+                           .still = still,
+                           .anchor = still ? b.pointToWorld(local1) : Vec3::Zero()});
         }
     }
 }

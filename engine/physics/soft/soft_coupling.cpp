@@ -139,6 +139,7 @@ inline double attachmentImpulse(double& lambda, double alphaTilde, double c2, do
 
 void SoftSystem::addAttachments(const SoftBodyDef& def, SoftBodyData& data,
                                 const Lattice& lattice, std::span<const Body> bodies) {
+    attachmentRangesListed_ = false;
     ContactManifold manifold;
     for (const SoftAttachmentDef& attach : def.attachments) {
         const uint32_t bodyIndex = attach.body.isNull() ? 0 : attach.body.index;
@@ -185,6 +186,10 @@ void SoftSystem::solveAttachments(SolverContext& ctx) {
         }
         return;
     }
+    solveAttachmentRange(ctx, 0, attachments_.size());
+}
+
+void SoftSystem::solveAttachmentRange(SolverContext& ctx, size_t first, size_t end) {
     // Gauss-Seidel: attachments come grouped by rigid body, and a run of them to one body (a
     // rim holds hundreds) keeps the body's pose in local variables: its rotation matrix and
     // world inverse inertia from the start of the run, turned to first order by the run's
@@ -197,12 +202,12 @@ void SoftSystem::solveAttachments(SolverContext& ctx) {
     // touch disjoint state, so up to kAttachmentLanes consecutive ones are stepped in turn,
     // link by link: the same operations in the same order per run, the same bits as one run
     // after the other, with the chains overlapping in the processor (rc_car's four rims).
-    size_t k = 0;
-    while (k < attachments_.size()) {
+    size_t k = first;
+    while (k < end) {
         std::array<AttachmentRun, kAttachmentLanes> lanes;
         int laneCount = 0;
-        while (laneCount < kAttachmentLanes && k < attachments_.size()) {
-            AttachmentRun run = attachmentRunAt(k);
+        while (laneCount < kAttachmentLanes && k < end) {
+            AttachmentRun run = attachmentRunAt(k, end);
             bool independent = true;
             for (int l = 0; l < laneCount; ++l)
                 independent = independent && run.bodyIndex != lanes[l].bodyIndex &&
@@ -226,12 +231,12 @@ void SoftSystem::solveAttachments(SolverContext& ctx) {
     }
 }
 
-SoftSystem::AttachmentRun SoftSystem::attachmentRunAt(size_t first) const {
+SoftSystem::AttachmentRun SoftSystem::attachmentRunAt(size_t first, size_t end) const {
     AttachmentRun run;
     run.bodyIndex = attachments_[first].body;
     run.next = run.end = first;
     run.lowParticle = run.highParticle = attachments_[first].particle;
-    while (run.end < attachments_.size() && attachments_[run.end].body == run.bodyIndex) {
+    while (run.end < end && attachments_[run.end].body == run.bodyIndex) {
         run.lowParticle = std::min(run.lowParticle, attachments_[run.end].particle);
         run.highParticle = std::max(run.highParticle, attachments_[run.end].particle);
         ++run.end;
@@ -305,7 +310,7 @@ void SoftSystem::groupContactPatches() {
 
 void SoftSystem::solveContacts(SolverContext& ctx) {
     if (patchFriction_) solveContactsPerPatch(ctx);
-    else solveContactsPerParticle(ctx);
+    else solveContactsPerParticle(ctx, 0, contacts_.size());
 }
 
 double SoftSystem::takeHeldImpulse(SolverContext& ctx, ParticleContact& c) {
@@ -322,8 +327,8 @@ double SoftSystem::takeHeldImpulse(SolverContext& ctx, ParticleContact& c) {
     return taken;
 }
 
-void SoftSystem::solveContactsPerParticle(SolverContext& ctx) {
-    for (ParticleContact& c : contacts_) {
+void SoftSystem::solveContactsPerParticle(SolverContext& ctx, size_t first, size_t end) {
+    for (ParticleContact& c : std::span(contacts_).subspan(first, end - first)) {
         const Body& b = ctx.bodies[c.body];
         const Vec3& n = c.normal;
         Vec3& x = x_[c.particle];
@@ -458,9 +463,9 @@ void SoftSystem::solveContactsPerPatch(SolverContext& ctx) {
     }
 }
 
-void SoftSystem::solveContactVelocities(Body* bodies, double h, double gravity) {
+void SoftSystem::solveContactVelocities(Body* bodies, double h, double gravity, size_t first, size_t end) {
     const double restingSpeed = 2.0 * gravity * h;
-    for (size_t k = 0; k < contacts_.size(); ++k) {
+    for (size_t k = first; k < end; ++k) {
         const ParticleContact& c = contacts_[k];
         if (!(c.lambdaNormal > 0.0)) continue;
         Body& b = bodies[c.body];

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 
 namespace substep {
 namespace {
@@ -167,7 +168,10 @@ void SoftSystem::destroy(SoftBodyId id) {
         if (a.particle >= endParticle) a.particle -= particleCount;
     candidates_.clear();
     candidateSkips_.clear();
+    candidateRuns_.clear();
     contacts_.clear();
+    attachmentRangesListed_ = false;
+    bodiesApart_ = false;
     dead = SoftBodyData{};
     freeBodies_.push_back(id.index);
     --liveBodies_;
@@ -267,7 +271,10 @@ void SoftSystem::forgetBody(uint32_t bodyIndex) {
     }
     candidates_.resize(kept);
     candidateSkips_.resize(kept);
+    listCandidateRuns();
+    attachmentRangesListed_ = false;
     std::erase_if(contacts_, [&](const ParticleContact& c) { return c.body == bodyIndex; });
+    bodiesApart_ = false;  // the shares' contact ranges are gone: the serial solve until findContacts
 }
 
 void SoftSystem::integrate(double h, const Vec3& gravity, WorkerPool* pool) {
@@ -309,9 +316,101 @@ void SoftSystem::integrate(double h, const Vec3& gravity, WorkerPool* pool) {
 }
 
 void SoftSystem::solvePositions(SolverContext& ctx, WorkerPool* pool) {
+    if (pool && bodiesApart_ && shares_.size() > 1 && ctx.solver == SolverType::GaussSeidel && !patchFriction_) {
+        // Each body's elements, attachments and contacts in turn, the bodies at once: what
+        // one body's solve writes, no other's reads (planShares), so every order of the
+        // bodies gives the bits of all elements, then all attachments, then all contacts.
+        const ElementArrays arrays = elementArrays();
+        pool->parallelFor(static_cast<int>(shares_.size()), [&](int index) {
+            const BodyShare& share = shares_[static_cast<size_t>(index)];
+            ElementArrays own = arrays;
+            if (!own.heldBatches.empty())
+                own.heldBatches = own.heldBatches.subspan(share.firstBatch, share.endBatch - share.firstBatch);
+            solveElementBatches(std::span(batches_).subspan(share.firstBatch, share.endBatch - share.firstBatch), own,
+                                ctx.invH2, ElementLanes::Widest);
+            SolverContext shareCtx = ctx;
+            solveAttachmentRange(shareCtx, share.firstAttachment, share.endAttachment);
+            solveContactsPerParticle(shareCtx, share.firstContact, share.endContact);
+        });
+        return;
+    }
     solveElements(ctx.invH2, ElementLanes::Widest, pool);
     solveAttachments(ctx);
     solveContacts(ctx);
+}
+
+void SoftSystem::listAttachmentRanges() {
+    attachmentRanges_.assign(bodies_.size(), {0, 0});
+    attachmentsGrouped_ = true;
+    std::vector<uint8_t> seen(bodies_.size(), 0);
+    size_t k = 0;
+    while (k < attachments_.size()) {
+        // The body whose particles hold attachment k, and how far its attachments run.
+        const uint32_t particle = attachments_[k].particle;
+        uint32_t owner = UINT32_MAX;
+        for (uint32_t s = 0; s < bodies_.size() && owner == UINT32_MAX; ++s)
+            if (bodies_[s].alive && particle >= bodies_[s].firstParticle &&
+                particle < bodies_[s].firstParticle + bodies_[s].particleCount)
+                owner = s;
+        if (owner == UINT32_MAX || seen[owner]) {
+            attachmentsGrouped_ = false;
+            break;
+        }
+        seen[owner] = 1;
+        const SoftBodyData& body = bodies_[owner];
+        const size_t first = k;
+        while (k < attachments_.size() && attachments_[k].particle >= body.firstParticle &&
+               attachments_[k].particle < body.firstParticle + body.particleCount)
+            ++k;
+        attachmentRanges_[owner] = {first, k};
+    }
+    attachmentRangesListed_ = true;
+}
+
+void SoftSystem::planShares(std::span<const Body> bodies) {
+    if (!attachmentRangesListed_) listAttachmentRanges();
+    shares_.clear();
+    bodiesApart_ = false;
+    if (liveBodies_ < 2 || !attachmentsGrouped_ || bodyBatches_.size() != static_cast<size_t>(liveBodies_)) return;
+    // The live bodies in order, as rebuildBatches lists their batches.
+    size_t live = 0, run = 0;
+    for (uint32_t s = 0; s < bodies_.size(); ++s) {
+        if (!bodies_[s].alive) continue;
+        BodyShare share{.body = s};
+        std::tie(share.firstBatch, share.endBatch) = bodyBatches_[live++];
+        std::tie(share.firstAttachment, share.endAttachment) = attachmentRanges_[s];
+        share.firstContact = share.endContact = contacts_.size();
+        shares_.push_back(share);
+    }
+    // Contacts: the runs' (a body without candidates has none). A run out of the bodies' order
+    // leaves the bodies together (not expected: collectCandidates lists them in order).
+    for (BodyShare& share : shares_) {
+        if (run < candidateRuns_.size() && candidateRuns_[run].softBody == share.body) {
+            share.firstContact = candidateRuns_[run].firstContact;
+            share.endContact = candidateRuns_[run].endContact;
+            ++run;
+        } else {
+            share.firstContact = share.endContact = run < candidateRuns_.size() ? candidateRuns_[run].firstContact
+                                                                                : contacts_.size();
+        }
+    }
+    if (run != candidateRuns_.size()) return;
+    // Apart: every moving rigid body is held or touched by one soft body at most.
+    rigidOwner_.resize(bodies.size(), UINT32_MAX);
+    bool apart = true;
+    const auto claim = [&](uint32_t body, uint32_t soft) {
+        if (bodies[body].invMass == 0.0) return;
+        uint32_t& owner = rigidOwner_[body];
+        if (owner == UINT32_MAX) owner = soft, ownedBodies_.push_back(body);
+        else if (owner != soft) apart = false;
+    };
+    for (const BodyShare& share : shares_) {
+        for (const uint32_t body : bodies_[share.body].attachedBodies) claim(body, share.body);
+        for (size_t k = share.firstContact; k < share.endContact; ++k) claim(contacts_[k].body, share.body);
+    }
+    for (const uint32_t body : ownedBodies_) rigidOwner_[body] = UINT32_MAX;
+    ownedBodies_.clear();
+    bodiesApart_ = apart;
 }
 
 template <class Visit>
@@ -383,9 +482,10 @@ void SoftSystem::deriveVelocities(double h, WorkerPool* pool) {
     });
 }
 
-void SoftSystem::solveVelocities(Body* bodies, double h, double gravity) {
+void SoftSystem::solveVelocities(Body* bodies, double h, double gravity, WorkerPool* pool) {
     // The contacts change their particles' velocities: each body's kept moments (deriveOnArc)
     // take the change of its momentum and angular momentum, Σ m Δv and Σ m (x − c) × Δv.
+    // Each particle is listed once, where its first contact is.
     passed_.resize(x_.size(), 0);
     passedVelocities_.clear();
     for (const ParticleContact& c : contacts_) {
@@ -393,7 +493,33 @@ void SoftSystem::solveVelocities(Body* bodies, double h, double gravity) {
         passed_[c.particle] = 1;
         passedVelocities_.emplace_back(c.particle, v_[c.particle]);
     }
-    solveContactVelocities(bodies, h, gravity);
+    if (pool && bodiesApart_ && shares_.size() > 1) {
+        // Contacts come body by body, and so do the listed particles: each body's contacts and
+        // moments on a thread of their own (one body's contacts change no particle or moving
+        // body another one's read, planShares).
+        size_t listed = 0;
+        for (BodyShare& share : shares_) {
+            const SoftBodyData& body = bodies_[share.body];
+            share.firstPassed = listed;
+            while (listed < passedVelocities_.size() && passedVelocities_[listed].first >= body.firstParticle &&
+                   passedVelocities_[listed].first < body.firstParticle + body.particleCount)
+                ++listed;
+            share.endPassed = listed;
+        }
+        if (listed == passedVelocities_.size()) {
+            pool->parallelFor(static_cast<int>(shares_.size()), [&](int index) {
+                const BodyShare& own = shares_[static_cast<size_t>(index)];
+                solveContactVelocities(bodies, h, gravity, own.firstContact, own.endContact);
+                keepPassedMoments(own.firstPassed, own.endPassed);
+            });
+            return;
+        }
+    }
+    solveContactVelocities(bodies, h, gravity, 0, contacts_.size());
+    keepPassedMoments(0, passedVelocities_.size());
+}
+
+void SoftSystem::keepPassedMoments(size_t first, size_t end) {
     // The particles come grouped by soft body (the candidates' order): the sums of the last
     // one's body are kept in registers (not a load and a store per particle through memory the
     // byte stores to passed_ may alias), its body searched for again only when a particle lies
@@ -407,7 +533,7 @@ void SoftSystem::solveVelocities(Body* bodies, double h, double gravity) {
         owner->moments.velocity = velocity;
         owner->moments.angularMomentum = angular;
     };
-    for (const auto& [i, before] : passedVelocities_) {
+    for (const auto& [i, before] : std::span(passedVelocities_).subspan(first, end - first)) {
         passed_[i] = 0;
         const Vec3 change = mass_[i] * (v_[i] - before);
         if (owner == nullptr || i < ownerFirst || i >= ownerEnd) {

@@ -55,8 +55,10 @@ public:
     void collectCandidates(std::span<const Body> bodies, double dt, double margin, const Vec3& gravity);
     /// Every substep: the prediction (with a pool, body by body on its threads).
     void integrate(double h, const Vec3& gravity, WorkerPool* pool = nullptr);
-    /// Every substep: the candidates' contact points on the current poses.
-    void findContacts(std::span<const Body> bodies, double margin);
+    /// Every substep: the candidates' contact points on the current poses (with a pool, each
+    /// soft body's candidates on a thread of their own, their points joined in the bodies'
+    /// order: the same list as one after the other).
+    void findContacts(std::span<const Body> bodies, double margin, WorkerPool* pool = nullptr);
     /// Every substep, after findContacts, with setHeldContacts on: the particles a contact
     /// holds (every contact found, touching or within the margin) and their contact normals,
     /// along which the element projection does not push them (element_batch.h;
@@ -64,7 +66,8 @@ public:
     void holdContactParticles();
     /// Elements, then attachments, then contacts (hard inequalities last). With a pool, each
     /// soft body's elements on a thread of their own (the bodies share no particle: the same
-    /// bits as one after the other).
+    /// bits as one after the other); where the soft bodies are apart (bodiesApart), each body's
+    /// elements, attachments and contacts together on one.
     void solvePositions(SolverContext& ctx, WorkerPool* pool = nullptr);
     /// solvePositions' last two stages alone (what the world calls while recording each
     /// stage's corrections, substep_corrections.h).
@@ -81,8 +84,14 @@ public:
     void setHeldContacts(bool on) { heldContacts_ = on; }
     /// Every substep, after the solve: the velocities (with a pool, body by body on its threads).
     void deriveVelocities(double h, WorkerPool* pool = nullptr);
-    /// The contacts' restitution and dynamic friction.
-    void solveVelocities(Body* bodies, double h, double gravity);
+    /// The contacts' restitution and dynamic friction (with a pool and the bodies apart, each
+    /// soft body's contacts on a thread of their own).
+    void solveVelocities(Body* bodies, double h, double gravity, WorkerPool* pool = nullptr);
+    /// Whether this substep's soft bodies are apart: no moving rigid body is touched (held or
+    /// in contact) by two of them, so each one's attachments and contacts change state no
+    /// other one's read, and the bodies' solves may run in any order, or at once, with the same
+    /// bits. Decided by findContacts.
+    bool bodiesApart() const { return bodiesApart_; }
 
     /// Once per frame, after the substeps: damps each element's deformation rate (elementDamping_;
     /// with a pool, body by body on its threads).
@@ -167,10 +176,12 @@ private:
     };
     /// Runs solved link by link in turn (solveAttachments).
     static constexpr int kAttachmentLanes = 4;
-    /// The run of attachments to one body that starts at `first`.
-    AttachmentRun attachmentRunAt(size_t first) const;
+    /// The run of attachments to one body that starts at `first` (and ends by `end`).
+    AttachmentRun attachmentRunAt(size_t first, size_t end) const;
     /// One attachment of a run (Eqs. 2-9): moves its particle and the run's body.
     void solveAttachmentLink(AttachmentRun& run, Attachment& a, double invH2);
+    /// The Gauss-Seidel attachments [first, end) of attachments_.
+    void solveAttachmentRange(SolverContext& ctx, size_t first, size_t end);
     /// What every substep reads of a candidate (candidateSkips_, beside candidates_): the
     /// particle sphere's gap to a static body's shape when the frame began (m), and where the
     /// particle was: the substeps skip the pair while the gap less the particle's displacement
@@ -234,9 +245,13 @@ private:
     void groupContactPatches();
     /// solveContacts with static friction judged contact by contact (the paper's), or over
     /// each patch.
-    void solveContactsPerParticle(SolverContext& ctx);
+    /// (Per particle: the contacts [first, end) of contacts_.)
+    void solveContactsPerParticle(SolverContext& ctx, size_t first, size_t end);
     void solveContactsPerPatch(SolverContext& ctx);
-    void solveContactVelocities(Body* bodies, double h, double gravity);
+    void solveContactVelocities(Body* bodies, double h, double gravity, size_t first, size_t end);
+    /// The velocity pass's changes to the particles passedVelocities_[first, end), all of one
+    /// soft body or of several in runs, added to their bodies' kept moments.
+    void keepPassedMoments(size_t first, size_t end);
     /// visit(body) for every live body; with a pool, each on a thread of its own (the bodies'
     /// particles, elements and moments are their own: the same bits in any order).
     template <class Visit>
@@ -299,6 +314,41 @@ private:
     std::vector<uint32_t> keptCandidates_;       ///< findContacts': the candidates the gap keeps
     /// Appends a candidate and its skip data.
     Candidate& addCandidate(const Candidate& candidate, double gap, const Vec3& origin);
+    /// One soft body's candidates, [first, end) in candidates_ (collectCandidates lists them body
+    /// by body), and the contacts they found this substep, [firstContact, endContact) in contacts_.
+    struct CandidateRun {
+        uint32_t softBody = 0;
+        size_t first = 0, end = 0;
+        size_t firstContact = 0, endContact = 0;
+    };
+    std::vector<CandidateRun> candidateRuns_;
+    /// Lists candidateRuns_ from candidates_ (after candidates are removed).
+    void listCandidateRuns();
+    /// The contact points of one run's candidates, appended to `out`.
+    void findRunContacts(const CandidateRun& run, std::span<const Body> bodies, double margin,
+                         std::vector<ParticleContact>& out);
+    std::vector<std::vector<ParticleContact>> runContacts_;  ///< per run, with a pool
+    /// One live soft body's share of a substep's solve: its element batches, attachments,
+    /// contacts and velocity pass particles (ranges of batches_, attachments_, contacts_,
+    /// passedVelocities_).
+    struct BodyShare {
+        uint32_t body = 0;
+        uint32_t firstBatch = 0, endBatch = 0;
+        size_t firstAttachment = 0, endAttachment = 0;
+        size_t firstContact = 0, endContact = 0;
+        size_t firstPassed = 0, endPassed = 0;
+    };
+    std::vector<BodyShare> shares_;
+    bool bodiesApart_ = false;
+    /// Lists shares_ and decides bodiesApart_ (findContacts, with this substep's contacts).
+    void planShares(std::span<const Body> bodies);
+    /// Per soft body slot: its attachments' range in attachments_ ({0, 0} for none), and whether
+    /// every body's are consecutive; listed again after attachments change.
+    std::vector<std::pair<size_t, size_t>> attachmentRanges_;
+    bool attachmentRangesListed_ = false, attachmentsGrouped_ = false;
+    void listAttachmentRanges();
+    std::vector<uint32_t> rigidOwner_;  ///< planShares': per rigid body, the soft body touching it
+    std::vector<uint32_t> ownedBodies_;  ///< the rigid bodies rigidOwner_ names
     /// Fills a heightfield candidate's clearance (Candidate::clearAbove) from where its
     /// particle is now; `field` is its body.
     void clearanceOf(Candidate& candidate, const Body& field, double margin) const;
