@@ -274,7 +274,7 @@ void World::beginFrame(double dt) {
     const bool soft = hasSoftBodies();
     if (soft) soft_->setPatchFriction(settings_.softPatchFriction);
     if (soft) soft_->setHeldContacts(settings_.softHeldContacts);
-    if (soft) soft_->collectCandidates(bodies_, dt, settings_.contactMargin, settings_.gravity);
+    if (soft) soft_->collectCandidates(bodies_, dt, settings_.contactMargin, settings_.gravity, workerPool());
     // The parallel step's order (world_parallel.cpp); recording corrections keeps the serial one.
     const bool coloured = colouredSolveActive() && !corrections_;
     if (coloured) colourConstraints();

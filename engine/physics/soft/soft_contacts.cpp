@@ -126,120 +126,120 @@ private:
 
 }  // namespace
 
-void SoftSystem::collectCandidates(std::span<const Body> bodies, double dt, double margin, const Vec3& gravity) {
+void SoftSystem::collectCandidates(std::span<const Body> bodies, double dt, double margin, const Vec3& gravity,
+                                   WorkerPool* pool) {
     // Once per frame: every particle whose sphere may reach a rigid shape during the frame, with
     // a margin for the frame's motion (a particle's speed twice over, for the corrections that
     // move it, and the body's sweep). Each soft body's box is tested against each rigid body's
     // first; then each particle, against a static shape by a lower bound on its gap (StaticGap;
     // where that bound is the distance or near it, the bound alone decides, and a candidate
     // that cannot touch costs the substeps one comparison each), against a moving one by the
-    // narrowphase itself.
-    candidates_.clear();
-    candidateSkips_.clear();
-    candidateRuns_.clear();
-    for (FieldGrid& slot : fieldGrids_) slot.field.reset();
-    fieldGridCount_ = 0;
+    // narrowphase itself. Each soft body into its own lists (with a pool, on a thread of its own).
+    if (bodyCandidates_.size() < bodies_.size()) bodyCandidates_.resize(bodies_.size());
     const double fall = gravity.norm() * dt * dt;
+    const auto collect = [&](int s) {
+        if (bodies_[static_cast<size_t>(s)].alive) collectBodyCandidates(static_cast<uint32_t>(s), bodies, dt, margin, fall);
+        else bodyCandidates_[static_cast<size_t>(s)].clear();
+    };
+    if (pool && liveBodies_ > 1) pool->parallelFor(static_cast<int>(bodies_.size()), [&](int s) { collect(s); });
+    else for (int s = 0; s < static_cast<int>(bodies_.size()); ++s) collect(s);
+}
+
+void SoftSystem::collectBodyCandidates(uint32_t s, std::span<const Body> bodies, double dt, double margin, double fall) {
+    BodyCandidates& own = bodyCandidates_[s];
+    own.clear();
+    const SoftBodyData& soft = bodies_[s];
+    if (!soft.collide || soft.particleCount == 0) return;
     ContactManifold manifold;
-    for (uint32_t s = 0; s < bodies_.size(); ++s) {
-        const SoftBodyData& soft = bodies_[s];
-        if (!soft.alive || !soft.collide || soft.particleCount == 0) continue;
-        const uint32_t first = soft.firstParticle, end = first + soft.particleCount;
-        Aabb softBox;
-        double fastest = 0.0;
-        for (uint32_t i = first; i < end; ++i) {
-            softBox.grow(x_[i]);
-            fastest = std::max(fastest, v_[i].squaredNorm());
-        }
-        softBox = softBox.inflated(soft.radius + margin + 2.0 * dt * std::sqrt(fastest) + fall);
-        const Shape probe = sphereShape(soft.radius);
-        const size_t firstCandidate = candidates_.size();
-        for (uint32_t bi = 1; bi < bodies.size(); ++bi) {
-            const Body& b = bodies[bi];
-            if (!b.alive || !b.collide || b.shape.type == ShapeType::None) continue;
-            if (!canCollide(ShapeType::Sphere, b.shape.type)) continue;
-            // The filters, as two rigid bodies' (Body::filtersMeet).
-            if ((soft.collisionGroup & b.collisionMask) == 0 || (b.collisionGroup & soft.collisionMask) == 0)
-                continue;
-            // Attached particles sit on (or in) the body: they are held, not pushed out.
-            if (std::find(soft.attachedBodies.begin(), soft.attachedBodies.end(), bi) != soft.attachedBodies.end())
-                continue;
-            const Pose pose{b.userPosition(), b.userOrientation()};
-            // A static body stays put for the frame: its candidates keep their gap.
-            const bool still = b.type == BodyType::Static;
-            const double reach = shapeReach(b.shape);
-            double sweep = dt * b.v.norm();
-            if (std::isfinite(reach)) sweep += dt * b.omega.norm() * reach;
-            const Aabb staticBounds = shapeBounds(b.shape, pose.position, pose.rotation);
-            const Aabb bodyBox = staticBounds.inflated(sweep);
-            if (!bodyBox.overlaps(softBox)) continue;
-            if (still) {
-                HeightfieldGrid* grid = nullptr;
-                if (b.shape.type == ShapeType::Heightfield && b.shape.heightfield) {
-                    if (fieldGridCount_ == fieldGrids_.size()) fieldGrids_.emplace_back();
-                    FieldGrid& slot = fieldGrids_[fieldGridCount_++];
-                    slot.softBody = s, slot.body = bi, slot.field = b.shape.heightfield;
-                    slot.grid.reset(*slot.field);
-                    grid = &slot.grid;
-                }
-                const StaticGap gapOf(b.shape, pose, staticBounds, softBox, soft.radius, grid);
-                const bool decides = gapOf.tight();
-                // A field in the world's axes takes the particle's world coordinates less its
-                // position, exactly (a turn by the identity quaternion adds zeros), so its
-                // clearance moves to the world by that translation.
-                const bool clearance = grid && pose.rotation.w() == 1.0 && pose.rotation.vec().isZero(0.0);
-                for (uint32_t i = first; i < end; ++i) {
-                    const double reachOut = margin + 2.0 * dt * v_[i].norm() + fall;
-                    const Aabb point = Aabb{x_[i], x_[i]}.inflated(soft.radius + reachOut);
-                    if (!point.overlaps(bodyBox)) continue;
-                    const double gap = gapOf(x_[i], reachOut);
-                    if (gap > reachOut) continue;  // the narrowphase would find nothing
-                    if (!decides) {
-                        collide(probe, Pose{x_[i], Quat::Identity()}, b.shape, pose, reachOut, manifold);
-                        if (manifold.count == 0) continue;
-                    }
-                    Candidate& candidate =
-                        addCandidate({.particle = i, .body = bi, .softBody = s}, gap, x_[i]);
-                    if (clearance) {
-                        candidate.clearAbove = std::numeric_limits<double>::quiet_NaN();  // findContacts'
-                        candidate.roam = reachOut - margin;
-                    }
-                }
-                continue;
+    const uint32_t first = soft.firstParticle, end = first + soft.particleCount;
+    Aabb softBox;
+    double fastest = 0.0;
+    for (uint32_t i = first; i < end; ++i) {
+        softBox.grow(x_[i]);
+        fastest = std::max(fastest, v_[i].squaredNorm());
+    }
+    softBox = softBox.inflated(soft.radius + margin + 2.0 * dt * std::sqrt(fastest) + fall);
+    const Shape probe = sphereShape(soft.radius);
+    for (uint32_t bi = 1; bi < bodies.size(); ++bi) {
+        const Body& b = bodies[bi];
+        if (!b.alive || !b.collide || b.shape.type == ShapeType::None) continue;
+        if (!canCollide(ShapeType::Sphere, b.shape.type)) continue;
+        // The filters, as two rigid bodies' (Body::filtersMeet).
+        if ((soft.collisionGroup & b.collisionMask) == 0 || (b.collisionGroup & soft.collisionMask) == 0)
+            continue;
+        // Attached particles sit on (or in) the body: they are held, not pushed out.
+        if (std::find(soft.attachedBodies.begin(), soft.attachedBodies.end(), bi) != soft.attachedBodies.end())
+            continue;
+        const Pose pose{b.userPosition(), b.userOrientation()};
+        // A static body stays put for the frame: its candidates keep their gap.
+        const bool still = b.type == BodyType::Static;
+        const double reach = shapeReach(b.shape);
+        double sweep = dt * b.v.norm();
+        if (std::isfinite(reach)) sweep += dt * b.omega.norm() * reach;
+        const Aabb staticBounds = shapeBounds(b.shape, pose.position, pose.rotation);
+        const Aabb bodyBox = staticBounds.inflated(sweep);
+        if (!bodyBox.overlaps(softBox)) continue;
+        if (still) {
+            HeightfieldGrid* grid = nullptr;
+            if (b.shape.type == ShapeType::Heightfield && b.shape.heightfield) {
+                if (own.fieldGridCount == own.fieldGrids.size()) own.fieldGrids.emplace_back();
+                FieldGrid& slot = own.fieldGrids[own.fieldGridCount++];
+                slot.softBody = s, slot.body = bi, slot.field = b.shape.heightfield;
+                slot.grid.reset(*slot.field);
+                grid = &slot.grid;
             }
+            const StaticGap gapOf(b.shape, pose, staticBounds, softBox, soft.radius, grid);
+            const bool decides = gapOf.tight();
+            // A field in the world's axes takes the particle's world coordinates less its
+            // position, exactly (a turn by the identity quaternion adds zeros), so its
+            // clearance moves to the world by that translation.
+            const bool clearance = grid && pose.rotation.w() == 1.0 && pose.rotation.vec().isZero(0.0);
             for (uint32_t i = first; i < end; ++i) {
-                const double reachOut = margin + 2.0 * dt * v_[i].norm() + sweep + fall;
+                const double reachOut = margin + 2.0 * dt * v_[i].norm() + fall;
                 const Aabb point = Aabb{x_[i], x_[i]}.inflated(soft.radius + reachOut);
                 if (!point.overlaps(bodyBox)) continue;
-                collide(probe, Pose{x_[i], Quat::Identity()}, b.shape, pose, reachOut, manifold);
-                if (manifold.count == 0) continue;
-                // Never skipped: a moving body's gap changes with its own motion too.
-                addCandidate({.particle = i, .body = bi, .softBody = s}, -std::numeric_limits<double>::infinity(), x_[i]);
+                const double gap = gapOf(x_[i], reachOut);
+                if (gap > reachOut) continue;  // the narrowphase would find nothing
+                if (!decides) {
+                    collide(probe, Pose{x_[i], Quat::Identity()}, b.shape, pose, reachOut, manifold);
+                    if (manifold.count == 0) continue;
+                }
+                Candidate& candidate = own.add({.particle = i, .body = bi, .softBody = s}, gap, x_[i]);
+                if (clearance) {
+                    candidate.clearAbove = std::numeric_limits<double>::quiet_NaN();  // findContacts'
+                    candidate.roam = reachOut - margin;
+                }
             }
+            continue;
         }
-        if (candidates_.size() > firstCandidate)
-            candidateRuns_.push_back({.softBody = s, .first = firstCandidate, .end = candidates_.size()});
+        for (uint32_t i = first; i < end; ++i) {
+            const double reachOut = margin + 2.0 * dt * v_[i].norm() + sweep + fall;
+            const Aabb point = Aabb{x_[i], x_[i]}.inflated(soft.radius + reachOut);
+            if (!point.overlaps(bodyBox)) continue;
+            collide(probe, Pose{x_[i], Quat::Identity()}, b.shape, pose, reachOut, manifold);
+            if (manifold.count == 0) continue;
+            // Never skipped: a moving body's gap changes with its own motion too.
+            own.add({.particle = i, .body = bi, .softBody = s}, -std::numeric_limits<double>::infinity(), x_[i]);
+        }
     }
 }
 
-void SoftSystem::listCandidateRuns() {
-    candidateRuns_.clear();
-    for (size_t k = 0; k < candidates_.size(); ++k) {
-        if (candidateRuns_.empty() || candidateRuns_.back().softBody != candidates_[k].softBody)
-            candidateRuns_.push_back({.softBody = candidates_[k].softBody, .first = k, .end = k});
-        candidateRuns_.back().end = k + 1;
-    }
+void SoftSystem::BodyCandidates::clear() {
+    candidates.clear();
+    skips.clear();
+    for (FieldGrid& slot : fieldGrids) slot.field.reset();
+    fieldGridCount = 0;
 }
 
-SoftSystem::Candidate& SoftSystem::addCandidate(const Candidate& candidate, double gap, const Vec3& origin) {
-    candidateSkips_.push_back({.origin = origin, .gap = gap, .particle = candidate.particle});
-    return candidates_.emplace_back(candidate);
+SoftSystem::Candidate& SoftSystem::BodyCandidates::add(const Candidate& candidate, double gap, const Vec3& origin) {
+    skips.push_back({.origin = origin, .gap = gap, .particle = candidate.particle});
+    return candidates.emplace_back(candidate);
 }
 
-void SoftSystem::clearanceOf(Candidate& candidate, const Body& field, double margin) const {
+void SoftSystem::clearanceOf(const BodyCandidates& own, Candidate& candidate, const Body& field, double margin) const {
     const HeightfieldGrid* grid = nullptr;
-    for (size_t g = 0; g < fieldGridCount_ && !grid; ++g) {
-        const FieldGrid& slot = fieldGrids_[g];
+    for (size_t g = 0; g < own.fieldGridCount && !grid; ++g) {
+        const FieldGrid& slot = own.fieldGrids[g];
         if (slot.softBody == candidate.softBody && slot.body == candidate.body) grid = &slot.grid;
     }
     candidate.clearAbove = std::numeric_limits<double>::infinity();
@@ -259,36 +259,34 @@ void SoftSystem::clearanceOf(Candidate& candidate, const Body& field, double mar
 }
 
 void SoftSystem::findContacts(std::span<const Body> bodies, double margin, WorkerPool* pool) {
-    // Each soft body's run of candidates on its own (with a pool, on a thread of its own, into
-    // its own list, the lists joined in the runs' order): the contacts and their order are the
-    // serial ones whichever thread found them.
+    // Each soft body's candidates on their own (with a pool, on a thread of their own, into
+    // their own list, the lists joined in the bodies' order): the contacts and their order are
+    // the serial ones whichever thread found them.
     contacts_.clear();
-    keptCandidates_.resize(candidates_.size());
-    if (!pool || candidateRuns_.size() < 2) {
-        for (CandidateRun& run : candidateRuns_) {
-            run.firstContact = contacts_.size();
-            findRunContacts(run, bodies, margin, contacts_);
-            run.endContact = contacts_.size();
+    if (!pool || liveBodies_ < 2) {
+        for (BodyCandidates& own : bodyCandidates_) {
+            own.firstContact = contacts_.size();
+            if (!own.candidates.empty()) findBodyContacts(own, bodies, margin, contacts_);
+            own.endContact = contacts_.size();
         }
-    } else {
-        if (runContacts_.size() < candidateRuns_.size()) runContacts_.resize(candidateRuns_.size());
-        pool->parallelFor(static_cast<int>(candidateRuns_.size()), [&](int r) {
-            std::vector<ParticleContact>& found = runContacts_[static_cast<size_t>(r)];
-            found.clear();
-            findRunContacts(candidateRuns_[static_cast<size_t>(r)], bodies, margin, found);
-        });
-        for (size_t r = 0; r < candidateRuns_.size(); ++r) {
-            candidateRuns_[r].firstContact = contacts_.size();
-            contacts_.insert(contacts_.end(), runContacts_[r].begin(), runContacts_[r].end());
-            candidateRuns_[r].endContact = contacts_.size();
-        }
+        bodiesApart_ = false;
+        return;
     }
-    if (pool) planShares(bodies);
-    else bodiesApart_ = false;
+    pool->parallelFor(static_cast<int>(bodyCandidates_.size()), [&](int s) {
+        BodyCandidates& own = bodyCandidates_[static_cast<size_t>(s)];
+        own.contacts.clear();
+        if (!own.candidates.empty()) findBodyContacts(own, bodies, margin, own.contacts);
+    });
+    for (BodyCandidates& own : bodyCandidates_) {
+        own.firstContact = contacts_.size();
+        contacts_.insert(contacts_.end(), own.contacts.begin(), own.contacts.end());
+        own.endContact = contacts_.size();
+    }
+    planShares(bodies);
 }
 
-void SoftSystem::findRunContacts(const CandidateRun& run, std::span<const Body> bodies, double margin,
-                                 std::vector<ParticleContact>& out) {
+void SoftSystem::findBodyContacts(BodyCandidates& own, std::span<const Body> bodies, double margin,
+                                  std::vector<ParticleContact>& out) {
     ContactManifold manifold;
     uint32_t poseBody = UINT32_MAX;
     uint32_t probeBody = UINT32_MAX;
@@ -305,22 +303,23 @@ void SoftSystem::findRunContacts(const CandidateRun& run, std::span<const Body> 
     // squared: most candidates of a rolling tyre are skipped here). The test runs over every
     // candidate first, without a branch, listing those it keeps in order: a rolling tyre's
     // candidates pass and fail it at random, and the mispredicted branch cost more than the test.
-    uint32_t* kept = keptCandidates_.data() + run.first;  // the run's own part of the list
+    own.kept.resize(own.candidates.size());
+    uint32_t* kept = own.kept.data();
     size_t keptCount = 0;
-    for (size_t index = run.first; index < run.end; ++index) {
-        const CandidateSkip& skip = candidateSkips_[index];
+    for (size_t index = 0; index < own.skips.size(); ++index) {
+        const CandidateSkip& skip = own.skips[index];
         const double slack = skip.gap - margin;
         const bool skipped = (slack > 0.0) & ((x_[skip.particle] - skip.origin).squaredNorm() < slack * slack);
         kept[keptCount] = static_cast<uint32_t>(index);
         keptCount += !skipped;
     }
     for (size_t n = 0; n < keptCount; ++n) {
-        Candidate& candidate = candidates_[kept[n]];
+        Candidate& candidate = own.candidates[kept[n]];
         const Vec3& x = x_[candidate.particle];
         // Or it is above every sample of the cells the narrowphase would visit (a rolling tread
         // particle moves along the ground more than toward it). Most candidates never get here,
         // so the clearance is computed the first time one does, from where the particle is.
-        if (std::isnan(candidate.clearAbove)) clearanceOf(candidate, bodies[candidate.body], margin);
+        if (std::isnan(candidate.clearAbove)) clearanceOf(own, candidate, bodies[candidate.body], margin);
         if (x.y() > candidate.clearAbove && x.x() > candidate.clearLowX && x.x() < candidate.clearHighX &&
             x.z() > candidate.clearLowZ && x.z() < candidate.clearHighZ)
             continue;
@@ -333,8 +332,8 @@ void SoftSystem::findRunContacts(const CandidateRun& run, std::span<const Body> 
             probe = sphereShape(soft.radius);
             grid = nullptr;
             if (b.shape.type == ShapeType::Heightfield && b.shape.heightfield) {
-                for (size_t g = 0; g < fieldGridCount_ && !grid; ++g) {
-                    const FieldGrid& slot = fieldGrids_[g];
+                for (size_t g = 0; g < own.fieldGridCount && !grid; ++g) {
+                    const FieldGrid& slot = own.fieldGrids[g];
                     if (slot.softBody == candidate.softBody && slot.body == candidate.body && slot.field == b.shape.heightfield)
                         grid = &slot.grid;
                 }

@@ -166,9 +166,7 @@ void SoftSystem::destroy(SoftBodyId id) {
     });
     for (Attachment& a : attachments_)
         if (a.particle >= endParticle) a.particle -= particleCount;
-    candidates_.clear();
-    candidateSkips_.clear();
-    candidateRuns_.clear();
+    for (BodyCandidates& own : bodyCandidates_) own.clear();
     contacts_.clear();
     attachmentRangesListed_ = false;
     bodiesApart_ = false;
@@ -263,15 +261,16 @@ bool SoftSystem::isValid(SoftBodyId id) const {
 void SoftSystem::forgetBody(uint32_t bodyIndex) {
     for (SoftBodyData& body : bodies_) std::erase(body.attachedBodies, bodyIndex);
     std::erase_if(attachments_, [&](const Attachment& a) { return a.body == bodyIndex; });
-    size_t kept = 0;
-    for (size_t k = 0; k < candidates_.size(); ++k) {
-        if (candidates_[k].body == bodyIndex) continue;
-        candidates_[kept] = candidates_[k];
-        candidateSkips_[kept++] = candidateSkips_[k];
+    for (BodyCandidates& own : bodyCandidates_) {
+        size_t kept = 0;
+        for (size_t k = 0; k < own.candidates.size(); ++k) {
+            if (own.candidates[k].body == bodyIndex) continue;
+            own.candidates[kept] = own.candidates[k];
+            own.skips[kept++] = own.skips[k];
+        }
+        own.candidates.resize(kept);
+        own.skips.resize(kept);
     }
-    candidates_.resize(kept);
-    candidateSkips_.resize(kept);
-    listCandidateRuns();
     attachmentRangesListed_ = false;
     std::erase_if(contacts_, [&](const ParticleContact& c) { return c.body == bodyIndex; });
     bodiesApart_ = false;  // the shares' contact ranges are gone: the serial solve until findContacts
@@ -373,28 +372,19 @@ void SoftSystem::planShares(std::span<const Body> bodies) {
     bodiesApart_ = false;
     if (liveBodies_ < 2 || !attachmentsGrouped_ || bodyBatches_.size() != static_cast<size_t>(liveBodies_)) return;
     // The live bodies in order, as rebuildBatches lists their batches.
-    size_t live = 0, run = 0;
+    size_t live = 0;
     for (uint32_t s = 0; s < bodies_.size(); ++s) {
         if (!bodies_[s].alive) continue;
         BodyShare share{.body = s};
         std::tie(share.firstBatch, share.endBatch) = bodyBatches_[live++];
         std::tie(share.firstAttachment, share.endAttachment) = attachmentRanges_[s];
-        share.firstContact = share.endContact = contacts_.size();
         shares_.push_back(share);
     }
-    // Contacts: the runs' (a body without candidates has none). A run out of the bodies' order
-    // leaves the bodies together (not expected: collectCandidates lists them in order).
+    // Contacts: the body's own (findContacts joined them in the bodies' order).
     for (BodyShare& share : shares_) {
-        if (run < candidateRuns_.size() && candidateRuns_[run].softBody == share.body) {
-            share.firstContact = candidateRuns_[run].firstContact;
-            share.endContact = candidateRuns_[run].endContact;
-            ++run;
-        } else {
-            share.firstContact = share.endContact = run < candidateRuns_.size() ? candidateRuns_[run].firstContact
-                                                                                : contacts_.size();
-        }
+        share.firstContact = bodyCandidates_[share.body].firstContact;
+        share.endContact = bodyCandidates_[share.body].endContact;
     }
-    if (run != candidateRuns_.size()) return;
     // Apart: every moving rigid body is held or touched by one soft body at most.
     rigidOwner_.resize(bodies.size(), UINT32_MAX);
     bool apart = true;

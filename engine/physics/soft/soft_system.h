@@ -51,8 +51,10 @@ public:
     void forgetBody(uint32_t bodyIndex);
 
     // The stages of World::step, in order.
-    /// Once per frame: the (particle, rigid body) pairs that may touch during the frame.
-    void collectCandidates(std::span<const Body> bodies, double dt, double margin, const Vec3& gravity);
+    /// Once per frame: the (particle, rigid body) pairs that may touch during the frame (with a
+    /// pool, each soft body's on a thread of their own).
+    void collectCandidates(std::span<const Body> bodies, double dt, double margin, const Vec3& gravity,
+                           WorkerPool* pool = nullptr);
     /// Every substep: the prediction (with a pool, body by body on its threads).
     void integrate(double h, const Vec3& gravity, WorkerPool* pool = nullptr);
     /// Every substep: the candidates' contact points on the current poses (with a pool, each
@@ -182,7 +184,7 @@ private:
     void solveAttachmentLink(AttachmentRun& run, Attachment& a, double invH2);
     /// The Gauss-Seidel attachments [first, end) of attachments_.
     void solveAttachmentRange(SolverContext& ctx, size_t first, size_t end);
-    /// What every substep reads of a candidate (candidateSkips_, beside candidates_): the
+    /// What every substep reads of a candidate (BodyCandidates::skips, beside its candidates): the
     /// particle sphere's gap to a static body's shape when the frame began (m), and where the
     /// particle was: the substeps skip the pair while the gap less the particle's displacement
     /// exceeds the contact margin. −∞ for a moving body (never skipped). Kept apart from the
@@ -309,25 +311,40 @@ private:
     std::vector<uint32_t> freeBodies_;
     int liveBodies_ = 0;
     std::vector<Attachment> attachments_;
-    std::vector<Candidate> candidates_;
-    std::vector<CandidateSkip> candidateSkips_;  ///< per candidate, in the same order
-    std::vector<uint32_t> keptCandidates_;       ///< findContacts': the candidates the gap keeps
-    /// Appends a candidate and its skip data.
-    Candidate& addCandidate(const Candidate& candidate, double gap, const Vec3& origin);
-    /// One soft body's candidates, [first, end) in candidates_ (collectCandidates lists them body
-    /// by body), and the contacts they found this substep, [firstContact, endContact) in contacts_.
-    struct CandidateRun {
-        uint32_t softBody = 0;
-        size_t first = 0, end = 0;
-        size_t firstContact = 0, endContact = 0;
+    /// A soft body and a static heightfield it has candidates on this frame: the field's grid
+    /// with the normals of the cells under the soft body kept (heightfield_sphere.h), for the
+    /// candidates' gap bounds and every substep's contacts.
+    struct FieldGrid {
+        uint32_t softBody = 0, body = 0;
+        std::shared_ptr<const HeightfieldData> field;  ///< kept alive while the grid points at it
+        HeightfieldGrid grid;
     };
-    std::vector<CandidateRun> candidateRuns_;
-    /// Lists candidateRuns_ from candidates_ (after candidates are removed).
-    void listCandidateRuns();
-    /// The contact points of one run's candidates, appended to `out`.
-    void findRunContacts(const CandidateRun& run, std::span<const Body> bodies, double margin,
-                         std::vector<ParticleContact>& out);
-    std::vector<std::vector<ParticleContact>> runContacts_;  ///< per run, with a pool
+    /// One soft body's candidates this frame (collectCandidates) with their skip data, in the
+    /// same order, and the heightfield grids they use; every substep, the candidates the gaps
+    /// keep, the contacts found (with a pool, before the bodies' lists are joined) and where they
+    /// are in contacts_. One per soft body slot, its storage reused frame after frame.
+    struct BodyCandidates {
+        std::vector<Candidate> candidates;
+        std::vector<CandidateSkip> skips;
+        std::vector<uint32_t> kept;
+        std::vector<FieldGrid> fieldGrids;  ///< the first fieldGridCount are this frame's
+        size_t fieldGridCount = 0;
+        std::vector<ParticleContact> contacts;
+        size_t firstContact = 0, endContact = 0;
+        /// Appends a candidate and its skip data.
+        Candidate& add(const Candidate& candidate, double gap, const Vec3& origin);
+        /// Forgets the frame's candidates and grids (their storage stays).
+        void clear();
+    };
+    std::vector<BodyCandidates> bodyCandidates_;
+    /// Soft body s's candidates (collectCandidates); `fall`: g dt², the frame's fall.
+    void collectBodyCandidates(uint32_t s, std::span<const Body> bodies, double dt, double margin, double fall);
+    /// The contact points of one soft body's candidates, appended to `out`.
+    void findBodyContacts(BodyCandidates& own, std::span<const Body> bodies, double margin,
+                          std::vector<ParticleContact>& out);
+    /// Fills a heightfield candidate's clearance (Candidate::clearAbove) from where its
+    /// particle is now; `field` is its body, `own` its soft body's candidates.
+    void clearanceOf(const BodyCandidates& own, Candidate& candidate, const Body& field, double margin) const;
     /// One live soft body's share of a substep's solve: its element batches, attachments,
     /// contacts and velocity pass particles (ranges of batches_, attachments_, contacts_,
     /// passedVelocities_).
@@ -349,19 +366,6 @@ private:
     void listAttachmentRanges();
     std::vector<uint32_t> rigidOwner_;  ///< planShares': per rigid body, the soft body touching it
     std::vector<uint32_t> ownedBodies_;  ///< the rigid bodies rigidOwner_ names
-    /// Fills a heightfield candidate's clearance (Candidate::clearAbove) from where its
-    /// particle is now; `field` is its body.
-    void clearanceOf(Candidate& candidate, const Body& field, double margin) const;
-    /// A soft body and a static heightfield it has candidates on this frame: the field's grid
-    /// with the normals of the cells under the soft body kept (heightfield_sphere.h), for the
-    /// candidates' gap bounds and every substep's contacts.
-    struct FieldGrid {
-        uint32_t softBody = 0, body = 0;
-        std::shared_ptr<const HeightfieldData> field;  ///< kept alive while the grid points at it
-        HeightfieldGrid grid;
-    };
-    std::vector<FieldGrid> fieldGrids_;  ///< the first fieldGridCount_ are this frame's
-    size_t fieldGridCount_ = 0;
     std::vector<ParticleContact> contacts_;
     bool patchFriction_ = false;
     bool heldContacts_ = false;
