@@ -372,7 +372,6 @@ private:
     std::vector<ContactPatch> patches_;
     std::vector<uint32_t> contactPatch_;  ///< per contact: its patch
     std::vector<Vec3> frictionStep_;      ///< per contact: this iteration's static friction impulse
-    std::vector<Pose> poses_;  ///< per rigid body with candidates: its shape pose this substep
     // Particles held by contacts (holdContactParticles).
     std::vector<Vec3> holdNormal_;         ///< per particle: its contacts' unit normal, zero when free
     std::vector<double> heldImpulse_;      ///< per particle: the elements' push its normal did not take
