@@ -33,19 +33,6 @@ using namespace simd;
         p[l] = padded[l];
 }
 
-/// The `count` (at most four) points at `from` to `to` as they are stored (a full block as
-/// three rows of four doubles, without the transposes).
-[[gnu::always_inline]] inline void copyBlock(Vec3* to, const Vec3* from, uint32_t count) {
-    if (count == kLanes) {
-        Lanes v0, v1, v2;
-        load(v0, from->data()), load(v1, from->data() + 4), load(v2, from->data() + 8);
-        store(to->data(), v0), store(to->data() + 4, v1), store(to->data() + 8, v2);
-        return;
-    }
-    for (uint32_t l = 0; l < count; ++l)
-        to[l] = from[l];
-}
-
 /// The `count` (at most four) masses at m into lanes; lanes past `count` get 0.
 [[gnu::always_inline]] inline void loadMasses(const double* m, uint32_t count, Lanes& out) {
     if (count == kLanes) return load(out, m);
@@ -112,13 +99,12 @@ rigidModeMoments(const Vec3* x, const Vec3* v, const double* m, uint32_t count) 
 }
 
 [[gnu::target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")]] void predictOnArc(
-    Vec3* x, Vec3* xPrev, const Vec3* v, uint32_t count, const Vec3& gravityStep, double h,
+    Vec3* x, const Vec3* xPrev, const Vec3* v, uint32_t count, const Vec3& gravityStep, double h,
     const Mat3& arc, const Vec3& centre) {
     for (uint32_t i = 0; i < count; i += kLanes) {
         const uint32_t n = std::min<uint32_t>(kLanes, count - i);
         Lanes px, py, pz, vx, vy, vz;
-        copyBlock(xPrev + i, x + i, n);
-        loadBlock(x + i, n, Vec3::Zero(), px, py, pz);
+        loadBlock(xPrev + i, n, Vec3::Zero(), px, py, pz);
         loadBlock(v + i, n, Vec3::Zero(), vx, vy, vz);
         vx += gravityStep.x(), vy += gravityStep.y(), vz += gravityStep.z();
         const Lanes rx = px - centre.x(), ry = py - centre.y(), rz = pz - centre.z();

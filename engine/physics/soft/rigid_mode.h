@@ -34,10 +34,13 @@ struct RigidModeMoments {
 RigidModeMoments rigidModeMoments(const Vec3* x, const Vec3* v, const double* m, uint32_t count);
 
 /// The prediction of Algorithm 2 for `count` particles with the rigid mode's arc
-/// (SoftSystem::integrate): x_prev = x, x += h (v + gravityStep) + arc (x_prev − centre).
-/// arc = 0 moves them on straight lines. v + gravityStep is not stored: the velocity derivation
-/// overwrites v, and only the contacts read it before (they add gravityStep themselves).
-void predictOnArc(Vec3* x, Vec3* xPrev, const Vec3* v, uint32_t count, const Vec3& gravityStep,
+/// (SoftSystem::integrate), from the positions `xPrev` into `x`:
+/// x = x_prev + h (v + gravityStep) + arc (x_prev − centre). arc = 0 moves them on straight
+/// lines. `x` is only written (the system swaps its position arrays, so that the substep's
+/// x_prev is the last one's x without a copy). v + gravityStep is not stored: the velocity
+/// derivation overwrites v, and only the contacts read it before (they add gravityStep
+/// themselves).
+void predictOnArc(Vec3* x, const Vec3* xPrev, const Vec3* v, uint32_t count, const Vec3& gravityStep,
                   double h, const Mat3& arc, const Vec3& centre);
 
 /// The sums the best-fit turn from x_prev to x needs (SoftSystem::deriveVelocities), over

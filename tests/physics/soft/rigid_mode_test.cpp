@@ -8,6 +8,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
+#include <limits>
+#include <random>
 #include <vector>
 
 namespace substep {
@@ -128,13 +131,15 @@ TEST(RigidMode, PassesInLanesMatchTheirFormulasForEveryRemainder) {
 
         // Prediction and velocities: each particle's formula, to rounding (1e-15 m at 300 m
         // from the origin is below its last bit); particles past `count` are never written, and
-        // the prediction does not store v + gravityStep.
+        // the prediction does not store v + gravityStep. It predicts from x_prev into x.
         Particles lanes(count + 1), scalar(count + 1);
+        lanes.xPrev = lanes.x;
         predictOnArc(lanes.x.data(), lanes.xPrev.data(), lanes.v.data(), count, gravityStep, h, arc, centre);
         for (int i = 0; i < count; ++i) {
             scalar.xPrev[i] = scalar.x[i];
             scalar.x[i] += h * Vec3(scalar.v[i] + gravityStep) + arc * (scalar.xPrev[i] - centre);
         }
+        scalar.xPrev[count] = scalar.x[count];
         for (int i = 0; i <= count; ++i) {
             EXPECT_LT((lanes.x[i] - scalar.x[i]).norm(), 1e-12) << count << " " << i;
             EXPECT_EQ(lanes.v[i], scalar.v[i]) << count << " " << i;
@@ -158,6 +163,36 @@ TEST(RigidMode, PassesInLanesMatchTheirFormulasForEveryRemainder) {
         EXPECT_LT((derived.velocity - after.velocity).norm(), 1e-12 * (1 + after.velocity.norm())) << count;
         EXPECT_LT((derived.angularMomentum - after.angularMomentum).norm(), 1e-11 * (1 + after.angularMomentum.norm())) << count;
         EXPECT_LT(distance(derived.inertia, after.inertia), 1e-11 * (1e-6 + after.inertia.norm())) << count;
+    }
+}
+
+TEST(RigidMode, ThePredictionReadsOnlyThePreviousPositions) {
+    // SoftSystem::integrate swaps x and x_prev and predicts into the array that held the last
+    // x_prev: the prediction must give the same bits whatever that array holds (here NaNs or
+    // a copy of x_prev), and leave x_prev as it was. Random particles, arcs and counts.
+    std::mt19937_64 random(20261125);
+    std::uniform_real_distribution<double> unit(-1.0, 1.0);
+    const auto vec = [&] { return Vec3(unit(random), unit(random), unit(random)); };
+    for (int trial = 0; trial < 40; ++trial) {
+        const auto count = static_cast<uint32_t>(1 + random() % 41);
+        Mat3 arc;
+        for (int k = 0; k < 9; ++k) arc(k / 3, k % 3) = 1e-2 * unit(random);
+        const Vec3 gravityStep = 1e-2 * vec(), centre = 100.0 * vec();
+        const double h = 1e-3 * (1.0 + unit(random));
+        std::vector<Vec3> xPrev, v;
+        for (uint32_t i = 0; i < count; ++i)
+            xPrev.push_back(centre + vec()), v.push_back(10.0 * vec());
+        const std::vector<Vec3> kept = xPrev;
+        std::vector<Vec3> fromCopy = xPrev;
+        std::vector<Vec3> fromNaN(count + 1, Vec3::Constant(std::numeric_limits<double>::quiet_NaN()));
+        predictOnArc(fromCopy.data(), xPrev.data(), v.data(), count, gravityStep, h, arc, centre);
+        predictOnArc(fromNaN.data(), xPrev.data(), v.data(), count, gravityStep, h, arc, centre);
+        for (uint32_t i = 0; i < count; ++i) {
+            EXPECT_EQ(std::memcmp(fromCopy[i].data(), fromNaN[i].data(), sizeof(Vec3)), 0) << trial << " " << i;
+            EXPECT_EQ(std::memcmp(xPrev[i].data(), kept[i].data(), sizeof(Vec3)), 0) << trial << " " << i;
+            EXPECT_NE(fromNaN[i], xPrev[i]) << trial << " " << i;  // it moved
+        }
+        EXPECT_TRUE(std::isnan(fromNaN[count].x())) << trial;  // past the end: not written
     }
 }
 
