@@ -283,12 +283,15 @@ void SoftSystem::integrate(double h, const Vec3& gravity, WorkerPool* pool) {
     // solve.
     const Vec3 gravityStep = h * gravity;
     gravityStep_ = gravityStep;
+    // The last substep's positions become x_prev as they are (the prediction writes the new x
+    // into the other array): no copy of every particle.
+    x_.swap(xPrev_);
     forEachBody(pool, [&](SoftBodyData& body) {
         const uint32_t first = body.firstParticle;
         // The moments the last velocity derivation summed (the velocity pass's changes added),
         // or afresh after damping and at the start.
         if (!body.momentsKept)
-            body.moments = rigidModeMoments(x_.data() + first, v_.data() + first, mass_.data() + first, body.particleCount);
+            body.moments = rigidModeMoments(xPrev_.data() + first, v_.data() + first, mass_.data() + first, body.particleCount);
         body.momentsKept = false;
         const RigidModeMoments& moments = body.moments;
         const Vec3 spin = momentumKeepingSpin(moments.inertia, moments.angularMomentum, h);
