@@ -1,8 +1,9 @@
 // Tests engine/physics/collision/heightfield_sphere.cpp: the sphere–heightfield narrowphase
 // straight from the heights against the triangle-by-triangle reference (heightfield_reference.h),
-// bit for bit, and the gap bound the soft bodies' candidates use: never above the distance, the
-// distance itself over a plane, and never hiding a contact the narrowphase would find; and the
-// clearance over a block's highest sample, which hides none either and is sharp.
+// bit for bit, and its one-cell path against its general path; the gap bound the soft bodies'
+// candidates use: never above the distance, the distance itself over a plane, and never hiding a
+// contact the narrowphase would find; and the clearance over a block's highest sample, which hides
+// none either and is sharp.
 
 #include "physics/collision/heightfield_sphere.h"
 
@@ -179,6 +180,79 @@ TEST(HeightfieldSphere, GivesTheReferenceContactsBesideATriangle) {
     // The draw reaches both outcomes.
     EXPECT_GT(withContacts, cases / 5);
     EXPECT_LT(withContacts, cases);
+}
+
+/// Whether two manifolds hold the same points, bit for bit, in the same order.
+::testing::AssertionResult sameManifolds(const ContactManifold& got, const ContactManifold& expected) {
+    if (got.count != expected.count)
+        return ::testing::AssertionFailure() << got.count << " contacts against " << expected.count;
+    for (int i = 0; i < got.count; ++i) {
+        const ContactPoint& a = got.points[i];
+        const ContactPoint& b = expected.points[i];
+        if (!(sameBits(a.point0, b.point0) && sameBits(a.point1, b.point1) && sameBits(a.normal, b.normal) &&
+              sameBits(a.depth, b.depth) && a.feature == b.feature))
+            return ::testing::AssertionFailure() << "point " << i << ": depth " << a.depth << " vs " << b.depth;
+    }
+    return ::testing::AssertionSuccess();
+}
+
+TEST(HeightfieldSphere, OneCellPathGivesTheCellByCellContactsBitForBit) {
+    // Spheres inside one cell, the one-cell path's case, against the general path through the
+    // buffer (and the triangle-by-triangle reference): anywhere in a random cell, on its sides
+    // and diagonal, at its corners (within 1e-12 to 1e-3 of a cell), from 1e-4 cell to larger
+    // than a cell, about the surface from below it to beyond the margin; flat, gentle and steep
+    // fields of 1 cm to 2 m cells, with and without kept normals, turned or not.
+    std::mt19937 rng(33);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    int cases = 0, onePointInOneCell = 0, several = 0;
+    for (int f = 0; f < 400; ++f) {
+        const auto field = randomField(rng, f % 4);
+        HeightfieldGrid grid(*field);
+        if (f % 3 != 0) grid.keepNormals({Vec3(-field->sizeX, 0, -field->sizeZ), Vec3(field->sizeX, 0, field->sizeZ)}, 256);
+        const Pose pose = randomPose(rng, f % 4 == 1);
+        const double cx = field->cellX(), cz = field->cellZ();
+        std::uniform_int_distribution<int> column(0, field->columns - 2), row(0, field->rows - 2), kind(0, 3);
+        for (int k = 0; k < 200; ++k) {
+            const int i = column(rng), j = row(rng);
+            const auto tiny = [&] { return (unit(rng) - 0.5) * (unit(rng) < 0.5 ? 1e-12 : 1e-3); };
+            double u = unit(rng), v = unit(rng);  // across the cell, in cells
+            switch (kind(rng)) {
+                case 0: break;
+                case 1: (unit(rng) < 0.5 ? u : v) = std::round(unit(rng)) + tiny(); break;  // a side
+                case 2: u = std::round(unit(rng)) + tiny(), v = std::round(unit(rng)) + tiny(); break;  // a corner
+                default: v = u + tiny();  // the diagonal
+            }
+            const double h00 = field->heights[j * field->columns + i], h10 = field->heights[j * field->columns + i + 1];
+            const double h01 = field->heights[(j + 1) * field->columns + i];
+            const double h11 = field->heights[(j + 1) * field->columns + i + 1];
+            // The surface there: the plane of the triangle (u, v) is over.
+            const double surface = v >= u ? h00 + v * (h01 - h00) + u * (h11 - h01) : h00 + u * (h10 - h00) + v * (h11 - h10);
+            const double r = std::min(cx, cz) * std::pow(10.0, -4.0 + 4.2 * unit(rng));
+            const double margin = unit(rng) < 0.2 ? 0.0 : 0.4 * r * unit(rng);
+            const Vec3 local(-0.5 * field->sizeX + (i + u) * cx, surface + r * (3.0 * unit(rng) - 1.5),
+                             -0.5 * field->sizeZ + (j + v) * cz);
+            const Vec3 centre = pose.apply(local);
+            ContactManifold got, general;
+            collideSphereHeightfield(grid, centre, r, pose, margin, got);
+            collideSphereHeightfieldCellByCell(grid, centre, r, pose, margin, general);
+            ++cases;
+            ASSERT_TRUE(sameManifolds(got, general)) << "field " << f << " case " << k;
+            int expected = 0;
+            ASSERT_TRUE(sameContactsAsReference(*field, grid, centre, r, pose, margin, expected))
+                << "field " << f << " case " << k;
+            // The draw's share of the one-cell path's case: the reach inside one cell (as
+            // forTrianglesIn finds the cells), one point.
+            const double reach = r + margin;
+            const bool oneCell = std::floor((local.x() - reach + 0.5 * field->sizeX) / cx) ==
+                                     std::floor((local.x() + reach + 0.5 * field->sizeX) / cx) &&
+                                 std::floor((local.z() - reach + 0.5 * field->sizeZ) / cz) ==
+                                     std::floor((local.z() + reach + 0.5 * field->sizeZ) / cz);
+            onePointInOneCell += oneCell && got.count == 1;
+            several += got.count > 1;
+        }
+    }
+    EXPECT_GT(onePointInOneCell, cases / 5);
+    EXPECT_GT(several, cases / 50);
 }
 
 TEST(HeightfieldSphere, KeepsTheNormalsOfTheCellsUnderABox) {
