@@ -9,6 +9,10 @@
 #include <cstdint>
 #include <limits>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 namespace substep {
 
 namespace {
@@ -49,6 +53,32 @@ double cellIndex(double t, double cell, double inverseCell) {
     first = static_cast<int>(std::max(a, 0.0));
     last = static_cast<int>(std::min(b, static_cast<double>(cells - 1)));
     return true;
+}
+
+/// cellRange(x − reach, x + reach, ...), both ends' cell indices at once in SSE2 lanes where
+/// their quotients lie within ±1e9 (their truncation to 32 bits is floorOf's) and clear of whole
+/// numbers by cellIndex's 1e-9; else cellRange itself. The same operations on the same values
+/// (x − reach is x + (−reach) in IEEE arithmetic), so the same cells.
+[[gnu::always_inline]] inline bool cellsReached(double x, double reach, double origin, double cell, double inverseCell,
+                                                int cells, int& first, int& last) {
+#if defined(__SSE2__)
+    const __m128d one = _mm_set1_pd(1.0), tiny = _mm_set1_pd(1e-9), limit = _mm_set1_pd(1e9);
+    const __m128d ends = _mm_add_pd(_mm_set1_pd(x), _mm_set_pd(reach, -reach));  // x − reach, x + reach
+    const __m128d q = _mm_mul_pd(_mm_sub_pd(ends, _mm_set1_pd(origin)), _mm_set1_pd(inverseCell));
+    const __m128d small = _mm_and_pd(_mm_cmplt_pd(q, limit), _mm_cmpgt_pd(q, _mm_sub_pd(_mm_setzero_pd(), limit)));
+    const __m128d truncated = _mm_cvtepi32_pd(_mm_cvttpd_epi32(q));
+    const __m128d k = _mm_sub_pd(truncated, _mm_and_pd(_mm_cmpgt_pd(truncated, q), one));  // floorOf
+    const __m128d clear =
+        _mm_and_pd(_mm_cmpgt_pd(_mm_sub_pd(q, k), tiny), _mm_cmpgt_pd(_mm_sub_pd(_mm_add_pd(k, one), q), tiny));
+    if (_mm_movemask_pd(_mm_and_pd(small, clear)) == 3) {
+        const double a = _mm_cvtsd_f64(k), b = _mm_cvtsd_f64(_mm_unpackhi_pd(k, k));
+        if (!(b >= 0.0) || !(a <= cells - 1)) return false;
+        first = static_cast<int>(std::max(a, 0.0));
+        last = static_cast<int>(std::min(b, static_cast<double>(cells - 1)));
+        return true;
+    }
+#endif
+    return cellRange(x - reach, x + reach, origin, cell, inverseCell, cells, first, last);
 }
 
 /// One cell's corners: x and z of its sides, and its four heights (h_ij at x_i, z_j).
@@ -265,10 +295,8 @@ void collideInFieldFrame(const HeightfieldGrid& grid, const Vec3& c, double r, c
     const SphereQuery s(grid, c, r, margin);
     const HeightfieldData& field = *grid.field;
     int i0, i1, j0, j1;
-    if (!cellRange(c.x() - s.reach, c.x() + s.reach, grid.originX, grid.cellX, grid.inverseCellX, field.columns - 1,
-                   i0, i1) ||
-        !cellRange(c.z() - s.reach, c.z() + s.reach, grid.originZ, grid.cellZ, grid.inverseCellZ, field.rows - 1, j0,
-                   j1))
+    if (!cellsReached(c.x(), s.reach, grid.originX, grid.cellX, grid.inverseCellX, field.columns - 1, i0, i1) ||
+        !cellsReached(c.z(), s.reach, grid.originZ, grid.cellZ, grid.inverseCellZ, field.rows - 1, j0, j1))
         return;
     if (oneCell && i0 == i1 && j0 == j1 && oneCellContact(grid, s, i0, j0, pose, out)) return;
     ContactBuffer buffer(kMergeFraction * r);
@@ -323,6 +351,12 @@ void collideSphereHeightfieldCellByCell(const HeightfieldGrid& grid, const Vec3&
     collideInFieldFrame(grid, heightfield_turns::applyInverse(pose, centre), r, pose, margin, false, out);
 }
 
+bool heightfieldCellsReached(const HeightfieldGrid& grid, const Vec3& c, double reach, int& i0, int& i1, int& j0,
+                             int& j1) {
+    return cellsReached(c.x(), reach, grid.originX, grid.cellX, grid.inverseCellX, grid.field->columns - 1, i0, i1) &&
+           cellsReached(c.z(), reach, grid.originZ, grid.cellZ, grid.inverseCellZ, grid.field->rows - 1, j0, j1);
+}
+
 double heightfieldGapBound(const HeightfieldGrid& grid, const Vec3& p, double reach) {
     if (!p.allFinite() || !std::isfinite(reach)) return -std::numeric_limits<double>::infinity();
     const HeightfieldData& field = *grid.field;
@@ -341,25 +375,41 @@ double heightfieldGapBound(const HeightfieldGrid& grid, const Vec3& p, double re
     const int i0 = static_cast<int>(std::max(a0, 0.0)), i1 = static_cast<int>(std::min(a1, field.columns - 2.0));
     const int j0 = static_cast<int>(std::max(b0, 0.0)), j1 = static_cast<int>(std::min(b1, field.rows - 2.0));
     if ((i1 - i0 + 1) * (j1 - j0 + 1) > kMostBoundCells) return std::min(bound, p.y() - field.maxHeight) - rounding;
-    forEachCell(grid, i0, i1, j0, j1, [&](int i, int j, const CellCorners& cell) {
-        // Above the cell's highest sample by at least the bound: nothing lower here.
-        const double aboveSamples = p.y() - cell.highest();
-        if (aboveSamples >= bound) return;
-        // The solid under a triangle lies below its plane (its normal points up).
-        const Vec3 corner00(cell.x0, cell.h00, cell.z0), corner11(cell.x1, cell.h11, cell.z1);
-        const Vec3 offset = p - corner00;
-        double above0, above1;
-        if (const Vec3* kept = grid.keptNormals(i, j)) {
-            above0 = offset.dot(kept[0]);
-            above1 = offset.dot(kept[1]);
-        } else {
-            const Vec3 cross0 = (Vec3(cell.x0, cell.h01, cell.z1) - corner00).cross(corner11 - corner00);
-            const Vec3 cross1 = (corner11 - corner00).cross(Vec3(cell.x1, cell.h10, cell.z0) - corner00);
-            above0 = offset.dot(cross0) / cross0.norm();
-            above1 = offset.dot(cross1) / cross1.norm();
+    // Row by row, each cell's highest sample from its sides' (a side's two samples shared with
+    // the cell before): the max is exact, so the same value. (Its zero's sign may differ, and
+    // with it the bound's: the result, the bound less a positive rounding, does not.)
+    const int columns = field.columns;
+    const double* heights = field.heights.data();
+    for (int j = j0; j <= j1; ++j) {
+        const double z0 = grid.originZ + j * grid.cellZ, z1 = grid.originZ + (j + 1) * grid.cellZ;
+        const double* near = heights + j * columns;  // samples at z_j
+        const double* far = near + columns;          // at z_j+1
+        double leftSide = std::max(near[i0], far[i0]);
+        for (int i = i0; i <= i1; ++i) {
+            const double rightSide = std::max(near[i + 1], far[i + 1]);
+            // Above the cell's highest sample by at least the bound: nothing lower here.
+            const double aboveSamples = p.y() - std::max(leftSide, rightSide);
+            leftSide = rightSide;
+            if (aboveSamples >= bound) continue;
+            // The solid under a triangle lies below its plane (its normal points up).
+            const double x0 = grid.originX + i * grid.cellX;
+            const Vec3 corner00(x0, near[i], z0);
+            const Vec3 offset = p - corner00;
+            double above0, above1;
+            if (const Vec3* kept = grid.keptNormals(i, j)) {
+                above0 = offset.dot(kept[0]);
+                above1 = offset.dot(kept[1]);
+            } else {
+                const double x1 = grid.originX + (i + 1) * grid.cellX;
+                const Vec3 corner11(x1, far[i + 1], z1);
+                const Vec3 cross0 = (Vec3(x0, far[i], z1) - corner00).cross(corner11 - corner00);
+                const Vec3 cross1 = (corner11 - corner00).cross(Vec3(x1, near[i + 1], z0) - corner00);
+                above0 = offset.dot(cross0) / cross0.norm();
+                above1 = offset.dot(cross1) / cross1.norm();
+            }
+            bound = std::min(bound, std::max(aboveSamples, std::min(above0, above1)));
         }
-        bound = std::min(bound, std::max(aboveSamples, std::min(above0, above1)));
-    });
+    }
     return bound - rounding;
 }
 

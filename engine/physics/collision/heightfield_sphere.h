@@ -63,6 +63,12 @@ void collideSphereHeightfield(const HeightfieldGrid& grid, const Vec3& centre, d
 void collideSphereHeightfieldCellByCell(const HeightfieldGrid& grid, const Vec3& centre, double r, const Pose& pose,
                                         double margin, ContactManifold& out);
 
+/// The cells [i0, i1] x [j0, j1] the narrowphase tests for a sphere with `reach` (radius +
+/// margin) centred at c (the field's frame): those HeightfieldData::forTrianglesIn visits under
+/// c ± reach (x–z). False where that box misses the field (or c is NaN).
+bool heightfieldCellsReached(const HeightfieldGrid& grid, const Vec3& c, double reach, int& i0, int& i1, int& j0,
+                             int& j1);
+
 /// A lower bound on the height of point p (the field's frame) above the field's solid, as the
 /// narrowphase sees it: for the cells within `reach` of p (x–z), each cell's lowest height of p
 /// above its two triangles' planes or above its highest sample, whichever is larger; for the

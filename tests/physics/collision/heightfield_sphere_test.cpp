@@ -255,6 +255,58 @@ TEST(HeightfieldSphere, OneCellPathGivesTheCellByCellContactsBitForBit) {
     EXPECT_GT(several, cases / 50);
 }
 
+TEST(HeightfieldSphere, ReachesTheCellsForTrianglesInVisits) {
+    // The narrowphase's cells (two ends at once in SSE2 lanes, or one by one near a cell line)
+    // against HeightfieldData::forTrianglesIn's floor((t − origin) / cell), over random fields,
+    // reaches from 1e-6 cell to 50 cells, ends anywhere, on cell lines (as rounded, or within
+    // 1e-15 to 1e-6 of a cell), beyond the border, far off the field (1e12 cells) and NaN.
+    std::mt19937 rng(52);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    const auto range = [](double lo, double hi, double origin, double cell, int cells, int& first, int& last) {
+        const double a = std::floor((lo - origin) / cell), b = std::floor((hi - origin) / cell);
+        if (!(b >= 0.0) || !(a <= cells - 1)) return false;
+        first = static_cast<int>(std::max(a, 0.0));
+        last = static_cast<int>(std::min(b, static_cast<double>(cells - 1)));
+        return true;
+    };
+    int onLines = 0, reached = 0;
+    for (int f = 0; f < 200; ++f) {
+        const auto field = randomField(rng, f % 4);
+        const HeightfieldGrid grid(*field);
+        const double cx = field->cellX(), cz = field->cellZ();
+        std::uniform_int_distribution<int> line(-2, std::max(field->columns, field->rows) + 1), kind(0, 5);
+        for (int k = 0; k < 500; ++k) {
+            const double reach = std::min(cx, cz) * std::pow(10.0, -6.0 + 7.7 * unit(rng));
+            // An end on a cell line: the centre a reach from it, give or take a few ulps or more.
+            const auto coordinate = [&](double origin, double cell, double size) {
+                const double near = unit(rng) < 0.3 ? 0.0 : std::pow(10.0, -15.0 + 9.0 * unit(rng)) * (unit(rng) - 0.5) * cell;
+                switch (kind(rng)) {
+                    case 0: return origin + line(rng) * cell + (unit(rng) < 0.5 ? reach : -reach) + near;
+                    case 1: return (unit(rng) - 0.5) * 1e12 * cell;
+                    case 2: return std::numeric_limits<double>::quiet_NaN();
+                    default: return (unit(rng) - 0.5) * 1.4 * size;
+                }
+            };
+            const Vec3 c(coordinate(grid.originX, cx, field->sizeX), 0.0, coordinate(grid.originZ, cz, field->sizeZ));
+            int i0 = -7, i1 = -7, j0 = -7, j1 = -7, e0 = -7, e1 = -7, f0 = -7, f1 = -7;
+            const bool got = heightfieldCellsReached(grid, c, reach, i0, i1, j0, j1);
+            const bool expected = range(c.x() - reach, c.x() + reach, grid.originX, cx, field->columns - 1, e0, e1) &&
+                                  range(c.z() - reach, c.z() + reach, grid.originZ, cz, field->rows - 1, f0, f1);
+            ASSERT_EQ(got, expected) << "field " << f << " case " << k;
+            if (!got) continue;
+            ++reached;
+            ASSERT_EQ(i0, e0) << "field " << f << " case " << k;
+            ASSERT_EQ(i1, e1) << "field " << f << " case " << k;
+            ASSERT_EQ(j0, f0) << "field " << f << " case " << k;
+            ASSERT_EQ(j1, f1) << "field " << f << " case " << k;
+            const double q = (c.x() - reach - grid.originX) / cx;
+            onLines += std::abs(q - std::round(q)) < 1e-9;
+        }
+    }
+    EXPECT_GT(reached, 20000);
+    EXPECT_GT(onLines, 1000);
+}
+
 TEST(HeightfieldSphere, KeepsTheNormalsOfTheCellsUnderABox) {
     const auto field = makeHeightfield(5, 4, {0, 1, 0, 2, 0, 0, 3, 0, 1, 0, 2, 0, 0, 1, 0, 0, 0, 2, 0, 1}, 4.0, 3.0);
     HeightfieldGrid grid(*field);
@@ -335,6 +387,31 @@ TEST(HeightfieldSphere, GapBoundNeverExceedsTheDistance) {
         }
     }
     EXPECT_GT(tight, 2000);  // not a bound that says nothing
+}
+
+TEST(HeightfieldSphere, GapBoundIsTheCellByCellBoundBitForBit) {
+    // The row-by-row loop against the cell-by-cell one (heightfield_reference.h): random fields,
+    // none, all or part of their normals kept, points near samples, sides, diagonals and the
+    // border, reaches from none to past kMostBoundCells cells.
+    std::mt19937 rng(41);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    int overCells = 0;
+    for (int f = 0; f < 300; ++f) {
+        const auto field = randomField(rng, f % 4);
+        HeightfieldGrid grid(*field);
+        if (f % 3 == 1) grid.keepNormals(someCells(*field, rng), 256);
+        if (f % 3 == 2) grid.keepNormals({Vec3(-field->sizeX, 0, -field->sizeZ), Vec3(field->sizeX, 0, field->sizeZ)}, 256);
+        const double cell = std::min(field->cellX(), field->cellZ());
+        for (int k = 0; k < 200; ++k) {
+            const double reach = unit(rng) < 0.1 ? 0.0 : cell * std::pow(10.0, -3.0 + 4.0 * unit(rng));
+            const Vec3 p = pointNear(*field, rng, cell * unit(rng));
+            const double got = heightfieldGapBound(grid, p, reach);
+            const double expected = reference::heightfieldGapBound(grid, p, reach);
+            ASSERT_TRUE(sameBits(got, expected)) << "field " << f << " case " << k << ": " << got << " vs " << expected;
+            overCells += got < reach - 1e-6 * cell;  // below the block's sides: a cell decided
+        }
+    }
+    EXPECT_GT(overCells, 10000);
 }
 
 TEST(HeightfieldSphere, GapBoundHidesNoContact) {
