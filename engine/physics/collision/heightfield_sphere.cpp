@@ -199,7 +199,7 @@ enum class TriangleOutcome : uint8_t {
 }
 
 /// addSphereTriangleContacts for every triangle forTrianglesIn visits under c ± (r + margin),
-/// the cells [i0, i1] x [j0, j1] (cellRange's). The corners, normals and that function's first
+/// the cells [i0, i1] x [j0, j1] (cellsReached's). The corners, normals and that function's first
 /// test (the height over the plane) are computed as HeightfieldData::triangle and the function
 /// compute them, so the triangles kept give the same bits.
 void addSphereContacts(const HeightfieldGrid& grid, const SphereQuery& s, int i0, int i1, int j0, int j1,
