@@ -52,8 +52,22 @@ private:
 /// the points that addSphereTriangleContacts gives for each HeightfieldData::triangle that
 /// HeightfieldData::forTrianglesIn visits under the sphere's box grown by `margin`, merged and
 /// ordered as the triangle meshes' (collide_mesh.cpp), bit for bit.
+/// A sphere whose reach stays inside one cell (most of a tread particle's calls) takes a path of
+/// its own: both triangles' outcomes told without a buffer, and the one point most give written
+/// straight into `out`; the same bits.
 void collideSphereHeightfield(const HeightfieldGrid& grid, const Vec3& centre, double r, const Pose& pose,
                               double margin, ContactManifold& out);
+
+/// collideSphereHeightfield without the one-cell path: every cell through the buffer. The
+/// general path the one-cell path is tested against.
+void collideSphereHeightfieldCellByCell(const HeightfieldGrid& grid, const Vec3& centre, double r, const Pose& pose,
+                                        double margin, ContactManifold& out);
+
+/// The cells [i0, i1] x [j0, j1] the narrowphase tests for a sphere with `reach` (radius +
+/// margin) centred at c (the field's frame): those HeightfieldData::forTrianglesIn visits under
+/// c ± reach (x–z). False where that box misses the field (or c is NaN).
+bool heightfieldCellsReached(const HeightfieldGrid& grid, const Vec3& c, double reach, int& i0, int& i1, int& j0,
+                             int& j1);
 
 /// A lower bound on the height of point p (the field's frame) above the field's solid, as the
 /// narrowphase sees it: for the cells within `reach` of p (x–z), each cell's lowest height of p

@@ -1,8 +1,9 @@
 // Tests engine/physics/collision/heightfield_sphere.cpp: the sphere–heightfield narrowphase
 // straight from the heights against the triangle-by-triangle reference (heightfield_reference.h),
-// bit for bit, and the gap bound the soft bodies' candidates use: never above the distance, the
-// distance itself over a plane, and never hiding a contact the narrowphase would find; and the
-// clearance over a block's highest sample, which hides none either and is sharp.
+// bit for bit, and its one-cell path against its general path; the gap bound the soft bodies'
+// candidates use: never above the distance, the distance itself over a plane, and never hiding a
+// contact the narrowphase would find; and the clearance over a block's highest sample, which hides
+// none either and is sharp.
 
 #include "physics/collision/heightfield_sphere.h"
 
@@ -181,6 +182,131 @@ TEST(HeightfieldSphere, GivesTheReferenceContactsBesideATriangle) {
     EXPECT_LT(withContacts, cases);
 }
 
+/// Whether two manifolds hold the same points, bit for bit, in the same order.
+::testing::AssertionResult sameManifolds(const ContactManifold& got, const ContactManifold& expected) {
+    if (got.count != expected.count)
+        return ::testing::AssertionFailure() << got.count << " contacts against " << expected.count;
+    for (int i = 0; i < got.count; ++i) {
+        const ContactPoint& a = got.points[i];
+        const ContactPoint& b = expected.points[i];
+        if (!(sameBits(a.point0, b.point0) && sameBits(a.point1, b.point1) && sameBits(a.normal, b.normal) &&
+              sameBits(a.depth, b.depth) && a.feature == b.feature))
+            return ::testing::AssertionFailure() << "point " << i << ": depth " << a.depth << " vs " << b.depth;
+    }
+    return ::testing::AssertionSuccess();
+}
+
+TEST(HeightfieldSphere, OneCellPathGivesTheCellByCellContactsBitForBit) {
+    // Spheres inside one cell, the one-cell path's case, against the general path through the
+    // buffer (and the triangle-by-triangle reference): anywhere in a random cell, on its sides
+    // and diagonal, at its corners (within 1e-12 to 1e-3 of a cell), from 1e-4 cell to larger
+    // than a cell, about the surface from below it to beyond the margin; flat, gentle and steep
+    // fields of 1 cm to 2 m cells, with and without kept normals, turned or not.
+    std::mt19937 rng(33);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    int cases = 0, onePointInOneCell = 0, several = 0;
+    for (int f = 0; f < 400; ++f) {
+        const auto field = randomField(rng, f % 4);
+        HeightfieldGrid grid(*field);
+        if (f % 3 != 0) grid.keepNormals({Vec3(-field->sizeX, 0, -field->sizeZ), Vec3(field->sizeX, 0, field->sizeZ)}, 256);
+        const Pose pose = randomPose(rng, f % 4 == 1);
+        const double cx = field->cellX(), cz = field->cellZ();
+        std::uniform_int_distribution<int> column(0, field->columns - 2), row(0, field->rows - 2), kind(0, 3);
+        for (int k = 0; k < 200; ++k) {
+            const int i = column(rng), j = row(rng);
+            const auto tiny = [&] { return (unit(rng) - 0.5) * (unit(rng) < 0.5 ? 1e-12 : 1e-3); };
+            double u = unit(rng), v = unit(rng);  // across the cell, in cells
+            switch (kind(rng)) {
+                case 0: break;
+                case 1: (unit(rng) < 0.5 ? u : v) = std::round(unit(rng)) + tiny(); break;  // a side
+                case 2: u = std::round(unit(rng)) + tiny(), v = std::round(unit(rng)) + tiny(); break;  // a corner
+                default: v = u + tiny();  // the diagonal
+            }
+            const double h00 = field->heights[j * field->columns + i], h10 = field->heights[j * field->columns + i + 1];
+            const double h01 = field->heights[(j + 1) * field->columns + i];
+            const double h11 = field->heights[(j + 1) * field->columns + i + 1];
+            // The surface there: the plane of the triangle (u, v) is over.
+            const double surface = v >= u ? h00 + v * (h01 - h00) + u * (h11 - h01) : h00 + u * (h10 - h00) + v * (h11 - h10);
+            const double r = std::min(cx, cz) * std::pow(10.0, -4.0 + 4.2 * unit(rng));
+            const double margin = unit(rng) < 0.2 ? 0.0 : 0.4 * r * unit(rng);
+            const Vec3 local(-0.5 * field->sizeX + (i + u) * cx, surface + r * (3.0 * unit(rng) - 1.5),
+                             -0.5 * field->sizeZ + (j + v) * cz);
+            const Vec3 centre = pose.apply(local);
+            ContactManifold got, general;
+            collideSphereHeightfield(grid, centre, r, pose, margin, got);
+            collideSphereHeightfieldCellByCell(grid, centre, r, pose, margin, general);
+            ++cases;
+            ASSERT_TRUE(sameManifolds(got, general)) << "field " << f << " case " << k;
+            int expected = 0;
+            ASSERT_TRUE(sameContactsAsReference(*field, grid, centre, r, pose, margin, expected))
+                << "field " << f << " case " << k;
+            // The draw's share of the one-cell path's case: the reach inside one cell (as
+            // forTrianglesIn finds the cells), one point.
+            const double reach = r + margin;
+            const bool oneCell = std::floor((local.x() - reach + 0.5 * field->sizeX) / cx) ==
+                                     std::floor((local.x() + reach + 0.5 * field->sizeX) / cx) &&
+                                 std::floor((local.z() - reach + 0.5 * field->sizeZ) / cz) ==
+                                     std::floor((local.z() + reach + 0.5 * field->sizeZ) / cz);
+            onePointInOneCell += oneCell && got.count == 1;
+            several += got.count > 1;
+        }
+    }
+    EXPECT_GT(onePointInOneCell, cases / 5);
+    EXPECT_GT(several, cases / 50);
+}
+
+TEST(HeightfieldSphere, ReachesTheCellsForTrianglesInVisits) {
+    // The narrowphase's cells (two ends at once in SSE2 lanes, or one by one near a cell line)
+    // against HeightfieldData::forTrianglesIn's floor((t − origin) / cell), over random fields,
+    // reaches from 1e-6 cell to 50 cells, ends anywhere, on cell lines (as rounded, or within
+    // 1e-15 to 1e-6 of a cell), beyond the border, far off the field (1e12 cells) and NaN.
+    std::mt19937 rng(52);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    const auto range = [](double lo, double hi, double origin, double cell, int cells, int& first, int& last) {
+        const double a = std::floor((lo - origin) / cell), b = std::floor((hi - origin) / cell);
+        if (!(b >= 0.0) || !(a <= cells - 1)) return false;
+        first = static_cast<int>(std::max(a, 0.0));
+        last = static_cast<int>(std::min(b, static_cast<double>(cells - 1)));
+        return true;
+    };
+    int onLines = 0, reached = 0;
+    for (int f = 0; f < 200; ++f) {
+        const auto field = randomField(rng, f % 4);
+        const HeightfieldGrid grid(*field);
+        const double cx = field->cellX(), cz = field->cellZ();
+        std::uniform_int_distribution<int> line(-2, std::max(field->columns, field->rows) + 1), kind(0, 5);
+        for (int k = 0; k < 500; ++k) {
+            const double reach = std::min(cx, cz) * std::pow(10.0, -6.0 + 7.7 * unit(rng));
+            // An end on a cell line: the centre a reach from it, give or take a few ulps or more.
+            const auto coordinate = [&](double origin, double cell, double size) {
+                const double near = unit(rng) < 0.3 ? 0.0 : std::pow(10.0, -15.0 + 9.0 * unit(rng)) * (unit(rng) - 0.5) * cell;
+                switch (kind(rng)) {
+                    case 0: return origin + line(rng) * cell + (unit(rng) < 0.5 ? reach : -reach) + near;
+                    case 1: return (unit(rng) - 0.5) * 1e12 * cell;
+                    case 2: return std::numeric_limits<double>::quiet_NaN();
+                    default: return (unit(rng) - 0.5) * 1.4 * size;
+                }
+            };
+            const Vec3 c(coordinate(grid.originX, cx, field->sizeX), 0.0, coordinate(grid.originZ, cz, field->sizeZ));
+            int i0 = -7, i1 = -7, j0 = -7, j1 = -7, e0 = -7, e1 = -7, f0 = -7, f1 = -7;
+            const bool got = heightfieldCellsReached(grid, c, reach, i0, i1, j0, j1);
+            const bool expected = range(c.x() - reach, c.x() + reach, grid.originX, cx, field->columns - 1, e0, e1) &&
+                                  range(c.z() - reach, c.z() + reach, grid.originZ, cz, field->rows - 1, f0, f1);
+            ASSERT_EQ(got, expected) << "field " << f << " case " << k;
+            if (!got) continue;
+            ++reached;
+            ASSERT_EQ(i0, e0) << "field " << f << " case " << k;
+            ASSERT_EQ(i1, e1) << "field " << f << " case " << k;
+            ASSERT_EQ(j0, f0) << "field " << f << " case " << k;
+            ASSERT_EQ(j1, f1) << "field " << f << " case " << k;
+            const double q = (c.x() - reach - grid.originX) / cx;
+            onLines += std::abs(q - std::round(q)) < 1e-9;
+        }
+    }
+    EXPECT_GT(reached, 20000);
+    EXPECT_GT(onLines, 1000);
+}
+
 TEST(HeightfieldSphere, KeepsTheNormalsOfTheCellsUnderABox) {
     const auto field = makeHeightfield(5, 4, {0, 1, 0, 2, 0, 0, 3, 0, 1, 0, 2, 0, 0, 1, 0, 0, 0, 2, 0, 1}, 4.0, 3.0);
     HeightfieldGrid grid(*field);
@@ -261,6 +387,31 @@ TEST(HeightfieldSphere, GapBoundNeverExceedsTheDistance) {
         }
     }
     EXPECT_GT(tight, 2000);  // not a bound that says nothing
+}
+
+TEST(HeightfieldSphere, GapBoundIsTheCellByCellBoundBitForBit) {
+    // The row-by-row loop against the cell-by-cell one (heightfield_reference.h): random fields,
+    // none, all or part of their normals kept, points near samples, sides, diagonals and the
+    // border, reaches from none to past kMostBoundCells cells.
+    std::mt19937 rng(41);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    int overCells = 0;
+    for (int f = 0; f < 300; ++f) {
+        const auto field = randomField(rng, f % 4);
+        HeightfieldGrid grid(*field);
+        if (f % 3 == 1) grid.keepNormals(someCells(*field, rng), 256);
+        if (f % 3 == 2) grid.keepNormals({Vec3(-field->sizeX, 0, -field->sizeZ), Vec3(field->sizeX, 0, field->sizeZ)}, 256);
+        const double cell = std::min(field->cellX(), field->cellZ());
+        for (int k = 0; k < 200; ++k) {
+            const double reach = unit(rng) < 0.1 ? 0.0 : cell * std::pow(10.0, -3.0 + 4.0 * unit(rng));
+            const Vec3 p = pointNear(*field, rng, cell * unit(rng));
+            const double got = heightfieldGapBound(grid, p, reach);
+            const double expected = reference::heightfieldGapBound(grid, p, reach);
+            ASSERT_TRUE(sameBits(got, expected)) << "field " << f << " case " << k << ": " << got << " vs " << expected;
+            overCells += got < reach - 1e-6 * cell;  // below the block's sides: a cell decided
+        }
+    }
+    EXPECT_GT(overCells, 10000);
 }
 
 TEST(HeightfieldSphere, GapBoundHidesNoContact) {

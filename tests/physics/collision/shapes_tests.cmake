@@ -6,5 +6,6 @@ physics_add_test(triangle_contact_test SOURCES collision/triangle_contact_test.c
 physics_add_test(mesh_collider_test SOURCES collision/mesh_collider_test.cpp LIBS substep_physics)
 physics_add_test(heightfield_test SOURCES collision/heightfield_test.cpp LIBS substep_physics)
 physics_add_test(heightfield_sphere_test SOURCES collision/heightfield_sphere_test.cpp LIBS substep_physics)
+physics_add_test(heightfield_turns_test SOURCES collision/heightfield_turns_test.cpp LIBS substep_physics)
 physics_add_test(collide_mesh_test SOURCES collision/collide_mesh_test.cpp LIBS substep_physics)
 physics_add_test(curved_robustness_test SOURCES collision/curved_robustness_test.cpp LIBS substep_physics)
