@@ -169,7 +169,6 @@ void SoftSystem::destroy(SoftBodyId id) {
     for (BodyCandidates& own : bodyCandidates_) own.clear();
     contacts_.clear();
     attachmentRangesListed_ = false;
-    bodiesApart_ = false;
     dead = SoftBodyData{};
     freeBodies_.push_back(id.index);
     --liveBodies_;
@@ -196,6 +195,7 @@ ElementArrays SoftSystem::elementArrays() {
 }
 
 void SoftSystem::rebuildBatches() {
+    bodiesApart_ = false;  // the shares name the old batches: the serial solve until findContacts
     batches_.clear();
     batchShapes_.clear();
     bodyBatches_.clear();
@@ -373,7 +373,10 @@ void SoftSystem::planShares(std::span<const Body> bodies) {
     if (!attachmentRangesListed_) listAttachmentRanges();
     shares_.clear();
     bodiesApart_ = false;
-    if (liveBodies_ < 2 || !attachmentsGrouped_ || bodyBatches_.size() != static_cast<size_t>(liveBodies_)) return;
+    // A body created since the frame's candidates has none listed yet: together this substep.
+    if (liveBodies_ < 2 || !attachmentsGrouped_ || bodyBatches_.size() != static_cast<size_t>(liveBodies_) ||
+        bodyCandidates_.size() < bodies_.size())
+        return;
     // The live bodies in order, as rebuildBatches lists their batches.
     size_t live = 0;
     for (uint32_t s = 0; s < bodies_.size(); ++s) {

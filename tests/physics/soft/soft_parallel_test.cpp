@@ -140,5 +140,35 @@ TEST(SoftParallel, BodiesUnderOnePlankAreSolvedTogether) {
     EXPECT_NEAR(scene.world.body(scene.rigid[0]).x.y(), 0.225, 0.02);  // resting on the boxes
 }
 
+TEST(SoftParallel, BodiesCreatedAndDestroyedBetweenSubstepsKeepOneThreadsBytes) {
+    // The window steps one substep at a time, and a soft body may come or go between two: the
+    // next substeps plan their shares afresh (a body created mid-frame has no candidates until
+    // the next frame), with the bytes of one thread.
+    std::vector<Scene> scenes;
+    for (const int threads : {1, 2}) scenes.push_back(rollingTyres(threads));
+    int apartWithTheNewBody = 0;
+    for (int frame = 0; frame < 12; ++frame) {
+        for (Scene& scene : scenes) {
+            World& world = scene.world;
+            world.beginFrame(kDt);
+            for (int k = 0; k < 7; ++k) world.substep();
+            if (frame == 3)
+                scene.soft.push_back(world.createSoftBody({.size = Vec3(0.2, 0.2, 0.2), .cells = {2, 2, 2},
+                                                           .position = Vec3(3.5, 0.2, 0.0), .compliance = 1e-6}));
+            if (frame == 8) {
+                world.destroySoftBody(scene.soft[1]);
+                scene.soft.erase(scene.soft.begin() + 1);
+            }
+            while (world.substep()) {
+            }
+            world.endFrame();
+        }
+        if (frame >= 4 && frame < 8) apartWithTheNewBody += scenes[1].world.softBodies()->bodiesApart() ? 1 : 0;
+        ASSERT_TRUE(sameBytes(scenes[0], scenes[1])) << "frame " << frame;
+    }
+    EXPECT_TRUE(scenes[1].world.isFinite());
+    EXPECT_GT(apartWithTheNewBody, 0);  // the new body's share was solved on the pool
+}
+
 }  // namespace
 }  // namespace substep::test
