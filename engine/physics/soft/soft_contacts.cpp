@@ -141,8 +141,11 @@ void SoftSystem::collectCandidates(std::span<const Body> bodies, double dt, doub
         if (bodies_[static_cast<size_t>(s)].alive) collectBodyCandidates(static_cast<uint32_t>(s), bodies, dt, margin, fall);
         else bodyCandidates_[static_cast<size_t>(s)].clear();
     };
-    if (pool && liveBodies_ > 1) pool->parallelFor(static_cast<int>(bodies_.size()), [&](int s) { collect(s); });
-    else for (int s = 0; s < static_cast<int>(bodies_.size()); ++s) collect(s);
+    if (pool && liveBodies_ > 1) {
+        pool->parallelFor(static_cast<int>(bodies_.size()), [&](int s) { collect(s); });
+        return;
+    }
+    for (int s = 0; s < static_cast<int>(bodies_.size()); ++s) collect(s);
 }
 
 void SoftSystem::collectBodyCandidates(uint32_t s, std::span<const Body> bodies, double dt, double margin, double fall) {
