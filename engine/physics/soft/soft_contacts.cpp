@@ -5,6 +5,7 @@
 #include "physics/collision/heightfield_sphere.h"
 #include "physics/collision/narrowphase.h"
 #include "physics/collision/shape_bounds.h"
+#include "physics/soft/soft_body_loops.h"
 #include "physics/soft/soft_system.h"
 #include "physics/worker_pool.h"
 
@@ -137,15 +138,11 @@ void SoftSystem::collectCandidates(std::span<const Body> bodies, double dt, doub
     // narrowphase itself. Each soft body into its own lists (with a pool, on a thread of its own).
     if (bodyCandidates_.size() < bodies_.size()) bodyCandidates_.resize(bodies_.size());
     const double fall = gravity.norm() * dt * dt;
-    const auto collect = [&](int s) {
-        if (bodies_[static_cast<size_t>(s)].alive) collectBodyCandidates(static_cast<uint32_t>(s), bodies, dt, margin, fall);
-        else bodyCandidates_[static_cast<size_t>(s)].clear();
-    };
-    if (pool && liveBodies_ > 1) {
-        pool->parallelFor(static_cast<int>(bodies_.size()), [&](int s) { collect(s); });
-        return;
-    }
-    for (int s = 0; s < static_cast<int>(bodies_.size()); ++s) collect(s);
+    for (size_t s = 0; s < bodies_.size(); ++s)
+        if (!bodies_[s].alive) bodyCandidates_[s].clear();
+    forEachBody(pool, [&](SoftBodyData& soft) {
+        collectBodyCandidates(static_cast<uint32_t>(&soft - bodies_.data()), bodies, dt, margin, fall);
+    });
 }
 
 void SoftSystem::collectBodyCandidates(uint32_t s, std::span<const Body> bodies, double dt, double margin, double fall) {

@@ -3,6 +3,7 @@
 #include "physics/soft/element_damping.h"
 #include "physics/soft/rigid_mode.h"
 #include "physics/soft/shape_matching.h"
+#include "physics/soft/soft_body_loops.h"
 #include "physics/worker_pool.h"
 
 #include <Eigen/LU>
@@ -407,31 +408,6 @@ void SoftSystem::planShares(std::span<const Body> bodies) {
     for (const uint32_t body : ownedBodies_) rigidOwner_[body] = UINT32_MAX;
     ownedBodies_.clear();
     bodiesApart_ = apart;
-}
-
-template <class Visit>
-void SoftSystem::forEachBody(WorkerPool* pool, Visit&& visit) {
-    if (!pool || liveBodies_ < 2) {
-        for (SoftBodyData& body : bodies_)
-            if (body.alive) visit(body);
-        return;
-    }
-    pool->parallelFor(static_cast<int>(bodies_.size()), [&](int index) {
-        SoftBodyData& body = bodies_[static_cast<size_t>(index)];
-        if (body.alive) visit(body);
-    });
-}
-
-template <class Visit>
-void SoftSystem::forEachBodyBatches(WorkerPool* pool, Visit&& visit) {
-    if (!pool || bodyBatches_.size() < 2) {
-        visit(0, static_cast<uint32_t>(batches_.size()));
-        return;
-    }
-    pool->parallelFor(static_cast<int>(bodyBatches_.size()), [&](int block) {
-        const auto [first, end] = bodyBatches_[static_cast<size_t>(block)];
-        visit(first, end);
-    });
 }
 
 void SoftSystem::solveElements(double invH2, ElementLanes lanes, WorkerPool* pool) {

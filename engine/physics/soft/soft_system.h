@@ -254,6 +254,7 @@ private:
     /// The velocity pass's changes to the particles passedVelocities_[first, end), all of one
     /// soft body or of several in runs, added to their bodies' kept moments.
     void keepPassedMoments(size_t first, size_t end);
+    /// (These two are defined in soft_body_loops.h.)
     /// visit(body) for every live body; with a pool, each on a thread of its own (the bodies'
     /// particles, elements and moments are their own: the same bits in any order).
     template <class Visit>
