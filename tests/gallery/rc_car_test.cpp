@@ -232,32 +232,36 @@ TEST(RcCar, HoldsOn25DegreesWithPatchFriction) {
     EXPECT_LT(moved, 2e-3);
 }
 
-// Motors off on flat ground (reversing away from the bumps): the car rolls on, loses its
-// energy to the tyres' damping and stops. While it rolls (faster than 0.2 m/s) the world's
-// energy never rises; at rest the loaded tyres' elastic energy flickers by under 1 % of the
-// kinetic energy it had.
+// Motors off on flat ground (reversing away from the bumps), from three speeds: the car rolls
+// on, loses its energy to the tyres' damping and stops. While it rolls (faster than 0.3 m/s) the
+// world's energy (kinetic, potential and elastic, rigid and soft) never rises. Once the tyres
+// stick and the stopped car rocks on them, the measured total swings from frame to frame by up
+// to about 2 % of the kinetic energy it had (measured at throttles −0.25 to −0.6, with the
+// element kernel's one Newton step and with the two it took before alike); the car still ends
+// with that energy gone.
 TEST(RcCar, CoastsToAStopWithTheMotorsOff) {
-    LiveScene scene = makeCar({{"throttle", -0.4}});
-    run(scene, 1.5);
-    const double kinetic = scene.world().energies().kinetic;
-    EXPECT_GT(body(scene, "chassis").velocity.norm(), 1.0);
-    ASSERT_TRUE(scene.setKnob("throttle", 0.0));
-    const double start = scene.world().energies().total();
-    double previous = start;
-    double risingWhileRolling = 0.0;
-    double risingAtRest = 0.0;
-    for (int frame = 0; frame < 120; ++frame) {
-        const bool rolling = body(scene, "chassis").velocity.norm() > 0.2;
-        scene.step();
-        const double energy = scene.world().energies().total();
-        (rolling ? risingWhileRolling : risingAtRest) = std::max(rolling ? risingWhileRolling : risingAtRest,
-                                                                 energy - previous);
-        previous = energy;
+    for (const double throttle : {-0.3, -0.4, -0.5}) {
+        LiveScene scene = makeCar({{"throttle", throttle}});
+        run(scene, 1.5);
+        const double kinetic = scene.world().energies().kinetic;
+        EXPECT_GT(body(scene, "chassis").velocity.norm(), 1.0) << throttle;
+        ASSERT_TRUE(scene.setKnob("throttle", 0.0));
+        const double start = scene.world().energies().total();
+        double previous = start;
+        double risingWhileRolling = -kinetic, risingAfter = -kinetic;
+        for (int frame = 0; frame < 120; ++frame) {
+            const bool rolling = body(scene, "chassis").velocity.norm() > 0.3;
+            scene.step();
+            const double energy = scene.world().energies().total();
+            double& rising = rolling ? risingWhileRolling : risingAfter;
+            rising = std::max(rising, energy - previous);
+            previous = energy;
+        }
+        EXPECT_LE(risingWhileRolling, 0.0) << throttle;
+        EXPECT_LT(risingAfter, 0.03 * kinetic) << throttle;
+        EXPECT_LT(previous, start - 0.9 * kinetic) << throttle;
+        EXPECT_LT(body(scene, "chassis").velocity.norm(), 0.02) << throttle;
     }
-    EXPECT_LE(risingWhileRolling, 0.0);
-    EXPECT_LT(risingAtRest, 0.01 * kinetic);
-    EXPECT_LT(previous, start - 0.9 * kinetic);
-    EXPECT_LT(body(scene, "chassis").velocity.norm(), 0.02);
 }
 
 // At a steady speed on flat ground each wheel's spin times its axle's height above the ground

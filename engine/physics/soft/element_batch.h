@@ -8,11 +8,10 @@
 /// order (the order decides how fast a stiff lattice converges: a sweep bottom to top carries a
 /// push through a whole column). Elements of one wave share no particle; runs of up to four
 /// consecutive elements of one wave form a batch, projected side by side, one per SIMD lane. The
-/// kernel is the one of shape_matching.h (Eq. 4 on C = sqrt(Σ ⅛ |x_j − c − R q_j|²)) with one or
-/// two warm-started Newton steps of the rotation extraction in the lanes (two where the first
-/// turns more than 1e-3 rad, as extractRotation does); the rare element that needs more (a turn
-/// over 0.1 rad, a second step over 1e-3 rad, an inverted or collapsed shape) and the optional
-/// volume constraint run through the scalar functions of shape_matching.h.
+/// kernel is the one of shape_matching.h (Eq. 4 on C = sqrt(Σ ⅛ |x_j − c − R q_j|²)) with
+/// projectionRotation's warm-started Newton step of the rotation extraction in the lanes; the
+/// rare element that needs more (a turn over 0.1 rad, an inverted or collapsed shape) and the
+/// optional volume constraint run through the scalar functions of shape_matching.h.
 ///
 /// Each element's rest offsets q_j are its rest shape's (lattice.h) in that shape's own frame,
 /// and its rotation R maps them to the world: a tyre's 1104 cells are 24 shapes, each turned

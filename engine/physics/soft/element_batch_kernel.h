@@ -23,13 +23,9 @@ namespace {
 /// Eight doubles: the lanes of two batches, the first's in 0-3.
 using WideLanes = double __attribute__((vector_size(8 * sizeof(double))));
 
-/// A lane's first Newton step turned more than this (rad²): it takes a second step, as
-/// extractRotation would (what is left after a step of 1e-3 rad is about its square, below
-/// rounding after the second); a second step over it goes to extractRotation.
+/// A lane's Newton step turned more than this (rad², 1e-3 rad): integrateRotation's series
+/// takes its third term, and the quaternion's new norm its square root.
 constexpr double kLaneTurn2 = 1e-6;
-/// A first step over this (rad², 0.1 rad), or a matrix that is not positive definite: the lane
-/// goes to extractRotation, which turns such steps by their exact angle.
-constexpr double kLaneFar2 = 0.01;
 
 /// Two halves' four lanes as eight.
 [[gnu::always_inline]] inline void join(WideLanes& v, const simd::Lanes& lo, const simd::Lanes& hi) {
@@ -358,9 +354,8 @@ template <bool Contiguous, bool Held, bool OneShape>
         for (int c = 0; c < 3; ++c)
             am[r][c] *= 0.125;
 
-    // Newton steps of extractRotation from the warm start (selects instead of branches): one,
-    // and a second for the lanes whose first turned more than 1e-3 rad; the rest (a turn over
-    // 0.1 rad, an inverted or collapsed shape, a second step still over 1e-3 rad) go to
+    // projectionRotation's Newton step from the warm start (selects instead of branches); the
+    // lanes it hands over (a turn over 0.1 rad, an inverted or collapsed shape, NaN) go to
     // extractRotation itself.
     const Lanes zero = {}, one = zero + 1.0;
     Lanes r00, r01, r02, r10, r11, r12, r20, r21, r22;
@@ -368,37 +363,23 @@ template <bool Contiguous, bool Held, bool OneShape>
     Lanes tx, ty, tz;
     Mask definite;
     newtonTurn(am, spread, r00, r01, r02, r10, r11, r12, r20, r21, r22, tx, ty, tz, definite);
-    Lanes angle2 = tx * tx + ty * ty + tz * tz;
-    // Not definite, a turn over 0.1 rad or NaN: extractRotation from the warm start.
-    Mask handOver = ~definite | (angle2 > kLaneFar2) | (angle2 != angle2);
-    // A turn over 1e-3 rad: a second step follows (what is left after a step is about its square).
-    const Mask again = ~handOver & (angle2 > kLaneTurn2);
+    const Lanes angle2 = tx * tx + ty * ty + tz * tz;
+    const Mask handOver = ~definite | (angle2 > kFarTurn2) | (angle2 != angle2);
     {
-        // integrateRotation's small-angle series (|θ|/2 below 5e-4 here, 0.05 in the lanes that
-        // step again, which take its next term too); a converged lane (angle2 ≤ 1e-24) stays
-        // put, as in extractRotation.
+        // integrateRotation's small-angle series: its first two terms are exact to rounding for
+        // |θ|/2 up to 5e-4 (a turn of 1e-3 rad); up to 0.05 it takes the third, and the new
+        // norm then needs its square root. A converged lane (angle2 ≤ 1e-24) stays put, as in
+        // projectionRotation.
+        const Mask large = ~handOver & (angle2 > kLaneTurn2);
         const Lanes half2 = 0.25 * angle2;
         const Lanes series = 0.5 * (1.0 + half2 * (1.0 / 3.0 + half2 * (2.0 / 15.0)));
         const Lanes longSeries = 0.5 * (1.0 + half2 * (1.0 / 3.0 + half2 * (2.0 / 15.0 + half2 * (17.0 / 315.0))));
         const Mask still = handOver | (angle2 <= 1e-24);
-        const Lanes scale = still ? zero : again ? longSeries : series;
-        turnLanes(r00, r01, r02, r10, r11, r12, r20, r21, r22, tx, ty, tz, scale, still, again, w, qx, qy, qz);
+        const Lanes scale = still ? zero : large ? longSeries : series;
+        turnLanes(r00, r01, r02, r10, r11, r12, r20, r21, r22, tx, ty, tz, scale, still, large, w, qx, qy, qz);
         rotationMatrix(w, qx, qy, qz, r00, r01, r02, r10, r11, r12, r20, r21, r22);
     }
-    if (anyLane(again)) {
-        newtonTurn(am, spread, r00, r01, r02, r10, r11, r12, r20, r21, r22, tx, ty, tz, definite);
-        angle2 = tx * tx + ty * ty + tz * tz;
-        // Still over 1e-3 rad (or no longer definite): extractRotation goes on from the first step.
-        handOver |= again & (~definite | (angle2 > kLaneTurn2) | (angle2 != angle2));
-        const Lanes half2 = 0.25 * angle2;
-        const Lanes series = 0.5 * (1.0 + half2 * (1.0 / 3.0 + half2 * (2.0 / 15.0)));
-        const Mask still = ~again | handOver | (angle2 <= 1e-24);
-        const Lanes scale = still ? zero : series;
-        turnLanes(r00, r01, r02, r10, r11, r12, r20, r21, r22, tx, ty, tz, scale, still, Mask{}, w, qx, qy, qz);
-        rotationMatrix(w, qx, qy, qz, r00, r01, r02, r10, r11, r12, r20, r21, r22);
-    }
-    // A lane handed over kept its warm start (or its first step) in (w, qx, qy, qz):
-    // extractRotation starts from it.
+    // A lane handed over kept its warm start in (w, qx, qy, qz): extractRotation starts from it.
     if constexpr (Contiguous && kHalves == 1) storeRotations(rotationsOf(0), w, qx, qy, qz);
     if constexpr (Contiguous && kHalves == 2) storeRotations(rotationsOf(0), rotationsOf(1), w, qx, qy, qz);
     for (int l = 0; l < lanes; ++l) {

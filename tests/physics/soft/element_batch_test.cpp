@@ -3,7 +3,7 @@
 // gives what projecting the elements one after the other in the lattice's order with the scalar
 // functions of shape_matching.h gives, on deformed, turned and flat elements, rigid and soft,
 // with and without the volume constraint, through the contiguous loads (a tyre's batches) and the gathers,
-// and a rolling wheel's turns per substep finished in the lanes (two Newton steps) with its result;
+// and a rolling wheel's turns per substep taken in the lanes (one Newton step) with its result;
 // corners held by contacts take no correction into them and hand that push to the contacts.
 #include "physics/soft/element_batch.h"
 #include "physics/soft/shape_matching.h"
@@ -150,14 +150,14 @@ double blockHeld(const Elements& s, uint32_t particle, double numerator, Vec3& g
     return along;
 }
 
-/// The scalar sweep: each element after the other with extractRotation, Eq. 4 on the
+/// The scalar sweep: each element after the other with projectionRotation, Eq. 4 on the
 /// shape-matching error, then the volume constraint.
 void scalarSweep(Elements& s, double invH2) {
     for (size_t e = 0; e < s.elements.size(); ++e) {
         std::array<Vec3, 8> x, d;
         for (int j = 0; j < 8; ++j)
             x[j] = s.x[s.elements[e][j]];
-        const Mat3 r = extractRotation(shapeMatrix(x, s.rest[e]), s.scale2[e], s.rotations[e]);
+        const Mat3 r = projectionRotation(shapeMatrix(x, s.rest[e]), s.scale2[e], s.rotations[e]);
         const double c = shapeMatchingError(x, s.rest[e], r, d);
         const double alpha = s.compliance[e] * invH2;
         std::array<double, 8> blocked{};
@@ -266,10 +266,10 @@ TEST(ElementBatch, ContiguousBatchesProjectLikeOneElementAfterTheOther) {
 TEST(ElementBatch, TurnsOfARollingWheelStayInTheLanes) {
     // A rolling wheel's elements turn about ω h = 20 rad/s x 0.83 ms = 0.017 rad per substep
     // beyond their warm start. Elements stretched without a turn (their polar rotation the
-    // identity, the warm start) and then turned by 0.005 to 0.05 rad: the lanes finish all but
-    // a few of them in two Newton steps, as extractRotation does, with the scalar sweep's
-    // result (one step alone handed every one over: its first step turns over 1e-3 rad); turned by
-    // 0.3 rad (beyond 0.1) they go to extractRotation, with the same result.
+    // identity, the warm start) and then turned by 0.005 to 0.05 rad: the lanes take all but a
+    // few of them in their one Newton step (projectionRotation's), with the scalar sweep's
+    // result, its integrateRotation series to the third term and its norm's square root
+    // included; turned by 0.3 rad (beyond 0.1) they go to extractRotation, with the same result.
     const Mat3 axes = Quat(Eigen::AngleAxisd(0.7, Vec3(1, -1, 2).normalized())).toRotationMatrix();
     const Mat3 stretch = axes * Vec3(1.02, 0.98, 1.0).asDiagonal() * axes.transpose();  // symmetric
     for (const Lattice& lattice : {buildTyreLattice(0.3, 0.2, 0.15, {44, 5, 5}), buildBoxLattice(Vec3(0.3, 0.2, 0.4), {3, 2, 4})}) {

@@ -1,5 +1,6 @@
 // Tests engine/physics/soft/shape_matching.h: the warm-started rotation extraction against the
-// polar decomposition, and its guards for inverted, flat and collapsed elements.
+// polar decomposition, a projection's one Newton step and its convergence, and the guards for
+// inverted, flat and collapsed elements.
 #include "physics/soft/shape_matching.h"
 
 #include <gtest/gtest.h>
@@ -37,6 +38,51 @@ TEST(ShapeMatching, WarmStartConvergesInOneCall) {
     Quat q = someRotation(0.69, Vec3(0, 1, 1));  // last substep's rotation
     extractRotation(truth.toRotationMatrix() * s, 1.0, q);
     EXPECT_LT(q.angularDistance(truth), 1e-8);
+}
+
+TEST(ShapeMatching, ProjectionTakesOneNewtonStepAndLeavesAboutItsCube) {
+    // A stretch and axes not tuned for: a warm start θ off the polar rotation. One Newton step
+    // (θ ≤ 0.1 rad) leaves an error of order θ³ here (about θ³/3: the step solves the symmetry
+    // of Rᵀ A to first order, and its second-order term vanishes by that symmetry), at most the
+    // θ² of Newton's quadratic convergence, and it is one step only: a second call from there
+    // moves by that error. Beyond 0.1 rad, or not positive definite, it is extractRotation's
+    // whole result.
+    Mat3 s;
+    s << 1.3, 0.2, -0.1, 0.2, 0.8, 0.05, -0.1, 0.05, 1.1;
+    for (const Vec3& axis : {Vec3(1, 2, 3), Vec3(-2, 0.5, 1), Vec3(0, 0, 1)}) {
+        const Quat truth = someRotation(1.1, Vec3(3, -1, 2));
+        const Mat3 a = truth.toRotationMatrix() * s;
+        const Quat polar(polarRotation(a));
+        for (const double theta : {1e-4, 1e-3, 0.01, 0.05, 0.099}) {
+            const Quat start = someRotation(theta, axis) * polar;
+            Quat q = start;
+            const Mat3 r = projectionRotation(a, 1.0, q);
+            EXPECT_LT((r - q.toRotationMatrix()).norm(), 1e-15);
+            const double left = q.angularDistance(polar);
+            EXPECT_LT(left, theta * theta * theta) << theta;
+            EXPECT_GT(left, 0.1 * theta * theta * theta) << theta;  // one step, not converged to rounding
+            if (left > 1e-11) {  // (a smaller turn counts as converged: (1e-12)² ≤ 1e-24)
+                Quat again = q;
+                projectionRotation(a, 1.0, again);
+                EXPECT_NEAR(again.angularDistance(q), left, 0.01 * left) << theta;
+            }
+            // Substep after substep from the same matrix, the warm start converges.
+            for (int call = 0; call < 3; ++call) projectionRotation(a, 1.0, q);
+            EXPECT_LT(q.angularDistance(polar), 1e-12) << theta;
+        }
+        // Far off: the same as extractRotation.
+        for (const double theta : {0.3, 2.0}) {
+            Quat q = someRotation(theta, axis) * polar, full = q;
+            const Mat3 r = projectionRotation(a, 1.0, q), expected = extractRotation(a, 1.0, full);
+            EXPECT_EQ(q.coeffs(), full.coeffs()) << theta;
+            EXPECT_EQ(r, expected) << theta;
+        }
+    }
+    // Fully inverted (tr S 1 − S not positive definite): extractRotation's fallback, also the same.
+    const Mat3 inverted = -Mat3::Identity();
+    Quat q = someRotation(0.02, Vec3(1, 0, 0)), full = q;
+    projectionRotation(inverted, 1.0, q), extractRotation(inverted, 1.0, full);
+    EXPECT_EQ(q.coeffs(), full.coeffs());
 }
 
 TEST(ShapeMatching, InvertedFlatAndCollapsedElementsGiveARotation) {
