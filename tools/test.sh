@@ -7,7 +7,8 @@
 #      check that the project builds with Debian 12's clang) with AddressSanitizer and
 #      UndefinedBehaviorSanitizer at -O1 without -g, and under it the unit tests that matter:
 #      the loader (every rule, the fuzz seeds and findings), the engine layer, the world,
-#      contacts, corrections and joints, and the sandbox's whole-or-nothing outputs.
+#      contacts, corrections and joints, the soft bodies' element kernels (four lanes and eight
+#      alike under clang too), and the sandbox's whole-or-nothing outputs.
 # Both stages fit CI's 20 minutes from a fresh clone on two cores: the release stage about
 # 10-12 minutes, the asan stage about 7 (746 s of CPU to build; docs/STABILITY.md, "Continuous
 # integration", has the measures and how the wall time was estimated). Without a compiler launcher (CI, a fresh
@@ -56,9 +57,10 @@ if [[ $stages == *" asan "* ]]; then
     # engine/ecs: the layer the sandbox goes through
     registry_test view_test body_components_test physics_system_test physics_system_changes_test
     scene_entities_test
-    # engine/physics: the world, contacts and corrections
+    # engine/physics: the world, contacts and corrections; the soft kernels' lanes alike
     world_test contact_test correction_test mass_properties_test heightfield_test
     distance_joint_test hinge_joint_test spherical_joint_test prismatic_joint_test fixed_joint_test
+    soft_element_batch_test soft_shape_matching_test
     # sandbox: whole-or-nothing outputs
     atomic_file_test output_transaction_test csv_writer_test
   )
