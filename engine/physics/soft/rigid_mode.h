@@ -9,9 +9,9 @@
 /// about the body's centre of mass by the body's spin, and the velocity derivation puts the
 /// spin back from the best-fit rotation between the start and the end of the substep
 /// (rigid_mode.h's functions; SoftSystem::integrate and ::deriveVelocities use them; the
-/// passes over the particles run four particles at a time in vector lanes, rigid_mode.cpp). A rigid
-/// motion is then integrated exactly, as the paper integrates a rigid body's rotation
-/// (Algorithm 2), and the deformation on top of it as before.
+/// passes over the particles run four or eight particles at a time in vector lanes,
+/// rigid_mode.cpp). A rigid motion is then integrated exactly, as the paper integrates a rigid
+/// body's rotation (Algorithm 2), and the deformation on top of it as before.
 
 #include "physics/math.h"
 
@@ -29,6 +29,11 @@ struct RigidModeMoments {
     Mat3 inertia = Mat3::Zero();          ///< Σ m (|r|² 1 − r rᵀ), r = x − c
 };
 
+/// The width of the passes below: eight particles at a time where the machine has AVX-512
+/// (x86-64-v4), four otherwise; the same bits either way (rigid_mode.cpp). Four can be asked
+/// for, so that the tests compare the two.
+enum class PassLanes { Widest, Four };
+
 /// The moments of `count` particles, summed about the first particle's position (so the sums
 /// do not cancel far from the origin) and moved to the centre of mass.
 RigidModeMoments rigidModeMoments(const Vec3* x, const Vec3* v, const double* m, uint32_t count);
@@ -41,7 +46,7 @@ RigidModeMoments rigidModeMoments(const Vec3* x, const Vec3* v, const double* m,
 /// derivation overwrites v, and only the contacts read it before (they add gravityStep
 /// themselves).
 void predictOnArc(Vec3* x, const Vec3* xPrev, const Vec3* v, uint32_t count, const Vec3& gravityStep,
-                  double h, const Mat3& arc, const Vec3& centre);
+                  double h, const Mat3& arc, const Vec3& centre, PassLanes lanes = PassLanes::Widest);
 
 /// The sums the best-fit turn from x_prev to x needs (SoftSystem::deriveVelocities), over
 /// positions relative to `origin`: p = x − origin, q = x_prev − origin.
@@ -53,7 +58,7 @@ struct TurnSums {
     double spread = 0.0;            ///< Σ m |q|²
 };
 TurnSums turnSums(const Vec3* x, const Vec3* xPrev, const double* m, uint32_t count,
-                  const Vec3& origin);
+                  const Vec3& origin, PassLanes lanes = PassLanes::Widest);
 
 /// The velocity derivation with the rigid turn on its arc (SoftSystem::deriveVelocities):
 /// v = (x − x_prev) invH + spin (x − centre) − turnBack (x_prev − centrePrev).
@@ -61,11 +66,25 @@ TurnSums turnSums(const Vec3* x, const Vec3* xPrev, const double* m, uint32_t co
 /// substep's prediction needs them, and x does not move before it.
 RigidModeMoments deriveOnArc(const Vec3* x, const Vec3* xPrev, Vec3* v, uint32_t count,
                              double invH, const Mat3& spin, const Vec3& centre, const Mat3& turnBack,
-                             const Vec3& centrePrev, const double* m);
+                             const Vec3& centrePrev, const double* m, PassLanes lanes = PassLanes::Widest);
 
 /// Turns `count` rotations by `turn` (q = turn q): the elements' warm starts follow their body's
-/// predicted turn (SoftSystem::integrate). Each quaternion in one vector of four lanes.
-void turnRotations(Quat* rotations, uint32_t count, const Quat& turn);
+/// predicted turn (SoftSystem::integrate). Each quaternion in one vector of four lanes, two at a
+/// time on AVX-512.
+void turnRotations(Quat* rotations, uint32_t count, const Quat& turn, PassLanes lanes = PassLanes::Widest);
+
+/// The passes eight particles at a time (rigid_mode_wide.cpp), which the functions above call
+/// on a CPU where wideElementLanes() (element_batch.h).
+[[gnu::target("arch=x86-64-v4")]] void predictInEights(Vec3* x, const Vec3* xPrev, const Vec3* v, uint32_t count,
+                                                       const Vec3& gravityStep, double h, const Mat3& arc,
+                                                       const Vec3& centre);
+[[gnu::target("arch=x86-64-v4")]] TurnSums turnSumsInEights(const Vec3* x, const Vec3* xPrev, const double* m,
+                                                            uint32_t count, const Vec3& origin);
+[[gnu::target("arch=x86-64-v4")]] RigidModeMoments deriveInEights(const Vec3* x, const Vec3* xPrev, Vec3* v,
+                                                                  uint32_t count, double invH, const Mat3& spin,
+                                                                  const Vec3& centre, const Mat3& turnBack,
+                                                                  const Vec3& centrePrev, const double* m);
+[[gnu::target("arch=x86-64-v4")]] void turnRotationsInPairs(double* q, uint32_t count, const Quat& turn);
 
 /// The spin ω whose turn by h ω keeps the angular momentum L of a body of inertia I: the
 /// inertia turns with the body, so L after the turn is Rot(h ω) I ω, and ω solves

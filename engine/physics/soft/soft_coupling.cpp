@@ -189,6 +189,26 @@ void SoftSystem::solveAttachments(SolverContext& ctx) {
     solveAttachmentRange(ctx, 0, attachments_.size());
 }
 
+// Inlined into the runs' loop: a link is a few dozen operations, and a call's saves and the
+// run's state reloaded after it cost a good part of them.
+[[gnu::always_inline]] inline void SoftSystem::solveAttachmentLink(AttachmentRun& run, Attachment& a, double invH2) {
+    const Vec3 r0 = run.rotation * a.local;
+    const Vec3 r = r0 + run.turned.cross(r0);
+    const Vec3 delta = run.position + r - x_[a.particle];
+    const double c2 = delta.squaredNorm();
+    if (!(c2 > kDirectionEpsilon * kDirectionEpsilon)) return;
+    const double w = invMass_[a.particle];
+    const Vec3 rd = r.cross(delta);
+    const Vec3 spin = run.inverseInertia * rd;
+    const double angular = rd.dot(spin);  // Eqs. 2-3, times c²
+    // p = f delta, so I⁻¹ (r × p) = f I⁻¹ (r × delta): the body's turn reuses what its inverse
+    // mass took, one multiplication after the division on the chain.
+    const double factor = attachmentImpulse(a.lambda, a.compliance * invH2, c2, w + run.inverseMass, angular);
+    x_[a.particle] += (w * factor) * delta;          // Eq. 6
+    run.position -= (run.inverseMass * factor) * delta;  // Eq. 7, the body receiving −p
+    run.turned -= factor * spin;                      // Eq. 8
+}
+
 void SoftSystem::solveAttachmentRange(SolverContext& ctx, size_t first, size_t end) {
     // Gauss-Seidel: attachments come grouped by rigid body, and a run of them to one body (a
     // rim holds hundreds) keeps the body's pose in local variables: its rotation matrix and
@@ -258,24 +278,6 @@ void SoftSystem::AttachmentRun::finish(Body& b) const {
     if (!moves) return;
     b.x = position;
     if (turns) integrateRotation(b.q, turned);  // Eq. 9 by the exact map, as moveBody does
-}
-
-void SoftSystem::solveAttachmentLink(AttachmentRun& run, Attachment& a, double invH2) {
-    const Vec3 r0 = run.rotation * a.local;
-    const Vec3 r = r0 + run.turned.cross(r0);
-    const Vec3 delta = run.position + r - x_[a.particle];
-    const double c2 = delta.squaredNorm();
-    if (!(c2 > kDirectionEpsilon * kDirectionEpsilon)) return;
-    const double w = invMass_[a.particle];
-    const Vec3 rd = r.cross(delta);
-    const Vec3 spin = run.inverseInertia * rd;
-    const double angular = rd.dot(spin);  // Eqs. 2-3, times c²
-    // p = f delta, so I⁻¹ (r × p) = f I⁻¹ (r × delta): the body's turn reuses what its inverse
-    // mass took, one multiplication after the division on the chain.
-    const double factor = attachmentImpulse(a.lambda, a.compliance * invH2, c2, w + run.inverseMass, angular);
-    x_[a.particle] += (w * factor) * delta;          // Eq. 6
-    run.position -= (run.inverseMass * factor) * delta;  // Eq. 7, the body receiving −p
-    run.turned -= factor * spin;                      // Eq. 8
 }
 
 void SoftSystem::groupContactPatches() {

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -193,6 +194,115 @@ TEST(RigidMode, ThePredictionReadsOnlyThePreviousPositions) {
             EXPECT_NE(fromNaN[i], xPrev[i]) << trial << " " << i;  // it moved
         }
         EXPECT_TRUE(std::isnan(fromNaN[count].x())) << trial;  // past the end: not written
+    }
+}
+
+/// Random particles for the passes' bit-for-bit tests: positions near `centre`, velocities,
+/// masses, and positions moved a little from them.
+struct RandomParticles {
+    std::vector<Vec3> x, xPrev, v;
+    std::vector<double> m;
+    RandomParticles(std::mt19937_64& random, uint32_t count, const Vec3& centre) {
+        std::uniform_real_distribution<double> unit(-1.0, 1.0);
+        const auto vec = [&] { return Vec3(unit(random), unit(random), unit(random)); };
+        for (uint32_t i = 0; i < count; ++i) {
+            xPrev.push_back(centre + 0.2 * vec());
+            x.push_back(xPrev.back() + 1e-3 * vec());
+            v.push_back(5.0 * vec());
+            m.push_back(1e-3 * (1.5 + unit(random)));
+        }
+    }
+};
+
+bool sameBits(const Vec3& a, const Vec3& b) { return std::memcmp(a.data(), b.data(), sizeof(Vec3)) == 0; }
+
+// On AVX-512 the passes run eight particles at a time (PassLanes::Widest) and their last
+// particles, and PassLanes::Four all of them, four at a time: the same operations per lane, so
+// the same bits, which these tests check on random inputs (elsewhere Widest is Four).
+
+TEST(RigidMode, ThePredictionOnEightLanesGivesTheBitsOfFour) {
+    std::mt19937_64 random(7);
+    std::uniform_real_distribution<double> unit(-1.0, 1.0);
+    for (int trial = 0; trial < 80; ++trial) {
+        // Odd trials near the origin with a large arc and step, where every term of the sum
+        // reaches x's last bits (far from the origin the arc's rounding is below them).
+        const double far = trial % 2 == 0 ? 1.0 : 0.0, large = trial % 2 == 0 ? 1.0 : 100.0;
+        const auto count = static_cast<uint32_t>(1 + random() % 70);
+        const Vec3 centre = far * Vec3(300.0 * unit(random), 10.0 * unit(random), -50.0 * unit(random));
+        const RandomParticles p(random, count, centre);
+        Mat3 arc;
+        for (int k = 0; k < 9; ++k) arc(k / 3, k % 3) = large * 1e-2 * unit(random);
+        const Vec3 gravityStep(0.0, -9.81e-3 * (1.0 + unit(random)), 0.0);
+        const double h = large * 1e-3 * (1.0 + 0.5 * unit(random));
+        std::vector<Vec3> widest(count), four(count);
+        predictOnArc(widest.data(), p.xPrev.data(), p.v.data(), count, gravityStep, h, arc, centre);
+        predictOnArc(four.data(), p.xPrev.data(), p.v.data(), count, gravityStep, h, arc, centre, PassLanes::Four);
+        for (uint32_t i = 0; i < count; ++i)
+            EXPECT_TRUE(sameBits(widest[i], four[i])) << trial << " " << i;
+    }
+}
+
+TEST(RigidMode, TheTurnSumsOnEightLanesGiveTheBitsOfFour) {
+    std::mt19937_64 random(13);
+    std::uniform_real_distribution<double> unit(-1.0, 1.0);
+    for (int trial = 0; trial < 40; ++trial) {
+        const auto count = static_cast<uint32_t>(1 + random() % 70);
+        const RandomParticles p(random, count, Vec3(-40.0 * unit(random), 2.0, 700.0 * unit(random)));
+        const TurnSums widest = turnSums(p.x.data(), p.xPrev.data(), p.m.data(), count, p.xPrev[0]);
+        const TurnSums four = turnSums(p.x.data(), p.xPrev.data(), p.m.data(), count, p.xPrev[0], PassLanes::Four);
+        EXPECT_EQ(std::memcmp(&widest.mass, &four.mass, sizeof(double)), 0) << trial;
+        EXPECT_TRUE(sameBits(widest.first, four.first)) << trial;
+        EXPECT_TRUE(sameBits(widest.firstPrev, four.firstPrev)) << trial;
+        EXPECT_EQ(std::memcmp(widest.cross.data(), four.cross.data(), sizeof(Mat3)), 0) << trial;
+        EXPECT_EQ(std::memcmp(&widest.spread, &four.spread, sizeof(double)), 0) << trial;
+    }
+}
+
+TEST(RigidMode, TheDerivationOnEightLanesGivesTheBitsOfFour) {
+    std::mt19937_64 random(17);
+    std::uniform_real_distribution<double> unit(-1.0, 1.0);
+    const auto matrix = [&](double scale) {
+        Mat3 a;
+        for (int k = 0; k < 9; ++k) a(k / 3, k % 3) = scale * unit(random);
+        return a;
+    };
+    for (int trial = 0; trial < 40; ++trial) {
+        const auto count = static_cast<uint32_t>(1 + random() % 70);
+        const Vec3 centre(100.0 * unit(random), 5.0 * unit(random), -80.0 * unit(random));
+        RandomParticles widest(random, count, centre);
+        RandomParticles four = widest;
+        const Vec3 centrePrev = centre + 1e-3 * Vec3(unit(random), unit(random), unit(random));
+        const Mat3 spin = crossMatrix(20.0 * Vec3(unit(random), unit(random), unit(random)));
+        const Mat3 turnBack = matrix(10.0);
+        const double invH = 1e3 * (1.0 + 0.5 * unit(random));
+        const RigidModeMoments a = deriveOnArc(widest.x.data(), widest.xPrev.data(), widest.v.data(), count, invH,
+                                               spin, centre, turnBack, centrePrev, widest.m.data());
+        const RigidModeMoments b = deriveOnArc(four.x.data(), four.xPrev.data(), four.v.data(), count, invH, spin,
+                                               centre, turnBack, centrePrev, four.m.data(), PassLanes::Four);
+        for (uint32_t i = 0; i < count; ++i)
+            EXPECT_TRUE(sameBits(widest.v[i], four.v[i])) << trial << " " << i;
+        EXPECT_EQ(std::memcmp(&a.mass, &b.mass, sizeof(double)), 0) << trial;
+        EXPECT_TRUE(sameBits(a.centre, b.centre)) << trial;
+        EXPECT_TRUE(sameBits(a.velocity, b.velocity)) << trial;
+        EXPECT_TRUE(sameBits(a.angularMomentum, b.angularMomentum)) << trial;
+        EXPECT_EQ(std::memcmp(a.inertia.data(), b.inertia.data(), sizeof(Mat3)), 0) << trial;
+    }
+}
+
+TEST(RigidMode, TurnRotationsOnEightLanesGivesTheBitsOfFour) {
+    std::mt19937_64 random(11);
+    std::uniform_real_distribution<double> unit(-1.0, 1.0);
+    for (int trial = 0; trial < 40; ++trial) {
+        const auto count = static_cast<uint32_t>(1 + random() % 50);
+        const Quat turn = Quat(Eigen::AngleAxisd(0.1 * unit(random), Vec3(unit(random), unit(random), 1.0).normalized()));
+        std::vector<Quat> widest, four;
+        for (uint32_t i = 0; i < count; ++i)
+            widest.push_back(Quat(Eigen::AngleAxisd(3.0 * unit(random), Vec3(unit(random), 1.0, unit(random)).normalized())));
+        four = widest;
+        turnRotations(widest.data(), count, turn);
+        turnRotations(four.data(), count, turn, PassLanes::Four);
+        for (uint32_t i = 0; i < count; ++i)
+            EXPECT_EQ(std::memcmp(widest[i].coeffs().data(), four[i].coeffs().data(), sizeof(Quat)), 0) << trial << " " << i;
     }
 }
 
