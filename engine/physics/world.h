@@ -21,7 +21,7 @@
 
 namespace substep {
 
-class ColouredSolve;
+struct ColouredSolve;
 class JointBlockSolver;
 class SoftSystem;
 class SubstepCorrections;
