@@ -21,6 +21,21 @@ namespace {
     return handedOver;
 }
 
+/// Whether two rows batches (or contiguous ones) of one wave can be projected side by side: the
+/// kernel writes back each corner's four rows whole, the doubles past a corner's run as they were
+/// read, so no such double may be a particle that the pair moves within its runs (their strays
+/// are written after every row).
+bool rowsPairSafe(const ElementBatch& a, const ElementBatch& b) {
+    std::vector<uint32_t> moved, kept;
+    for (const ElementBatch* batch : {&a, &b})
+        for (int j = 0; j < 8; ++j)
+            for (uint32_t l = 0; l < kBatchLanes; ++l)
+                (l < batch->run[j] ? moved : kept).push_back(batch->particle[j][0] + l);
+    for (const uint32_t p : kept)
+        if (std::find(moved.begin(), moved.end(), p) != moved.end()) return false;
+    return true;
+}
+
 }  // namespace
 
 std::vector<uint32_t> elementWaves(std::span<const HexElement> elements, size_t particleCount) {
@@ -62,19 +77,33 @@ void appendBatches(const ElementArrays& arrays, std::span<const uint32_t> wave, 
         if (added) shapes.push_back(shape);
         return at->second;
     };
+    // The body's particles end here: rows never reach past it (nor past its elements), since
+    // the kernel writes back the doubles it read and another body's may be solved meanwhile on
+    // another thread.
+    uint32_t particleEnd = 0;
+    for (uint32_t e = first; e < end; ++e)
+        for (const uint32_t p : arrays.elements[e]) particleEnd = std::max(particleEnd, p + 1);
+    std::vector<uint32_t> shapeOfElement(count);
+    for (uint32_t e = first; e < end; ++e) shapeOfElement[e - first] = shapeOf(e);
     for (uint32_t e = first; e < end;) {
         ElementBatch batch{};
         batch.firstElement = e;
         batch.lanes = 1;
+        // A batch whose first two elements have one shape stays within it: a tyre's batch ends
+        // with its ring, so that the ring's last cells load as rows too (`rows`) instead of
+        // being gathered together with the next ring's first.
+        const uint32_t shape = shapeOfElement[e - first];
+        const bool oneShapeStart = e + 1 < end && shapeOfElement[e + 1 - first] == shape;
         while (batch.lanes < kBatchLanes && e + batch.lanes < end &&
                wave[e + batch.lanes - first] == wave[e - first] &&
+               !(oneShapeStart && shapeOfElement[e + batch.lanes - first] != shape) &&
                !shares(e + batch.lanes, e, e + batch.lanes))
             ++batch.lanes;
         for (int l = 0; l < kBatchLanes; ++l) {
             const uint32_t element =
                 e + static_cast<uint32_t>(l < static_cast<int>(batch.lanes) ? l : 0);
             for (int j = 0; j < 8; ++j) batch.particle[j][l] = arrays.elements[element][j];
-            batch.shape[l] = shapeOf(element);
+            batch.shape[l] = shapeOfElement[element - first];
             batch.volume = batch.volume || arrays.volumeCompliance[element] >= 0.0;
         }
         batch.oneShape = true;
@@ -83,29 +112,47 @@ void appendBatches(const ElementArrays& arrays, std::span<const uint32_t> wave, 
         for (int j = 0; j < 8; ++j)
             for (int l = 1; l < kBatchLanes; ++l)
                 batch.contiguous = batch.contiguous && batch.particle[j][l] == batch.particle[j][0] + l;
+        // Rows: four rows from lane 0's particles and element must lie inside the body, and each
+        // corner has at most one lane outside its run.
+        batch.rows = !batch.contiguous && batch.lanes >= 2 && !batch.volume && batch.oneShape && e + kBatchLanes <= end;
+        for (int j = 0; j < 8; ++j) {
+            uint32_t run = 1;
+            while (run < batch.lanes && batch.particle[j][run] == batch.particle[j][0] + run) ++run;
+            batch.run[j] = static_cast<uint8_t>(run);
+            batch.strayLane[j] = run < batch.lanes ? static_cast<uint8_t>(run) : 0;
+            batch.strayParticle[j] = batch.particle[j][batch.strayLane[j]];
+            batch.rows = batch.rows && batch.lanes - run <= 1 && batch.particle[j][0] + kBatchLanes <= particleEnd;
+        }
         batches.push_back(batch);
         e += batch.lanes;
     }
     // Each contiguous batch paired with the next unpaired contiguous one of its wave, of its own
-    // shape where there is one (the kernel then broadcasts one shape to all eight lanes).
-    const auto free = [&](size_t b) {
-        return batches[b].contiguous && batches[b].partnerAhead == 0 && batches[b].partnerBehind == 0;
-    };
-    for (size_t b = start; b < batches.size(); ++b) {
-        if (!free(b)) continue;
-        const uint32_t ownWave = wave[batches[b].firstElement - first];
-        size_t partner = 0, sameShape = 0;
-        for (size_t next = b + 1; next < batches.size() && wave[batches[next].firstElement - first] == ownWave; ++next) {
-            if (!free(next)) continue;
-            if (partner == 0) partner = next;
-            if (batches[next].shape[0] == batches[b].shape[0]) {
-                sameShape = next;
-                break;
+    // shape where there is one (the kernel then broadcasts one shape to all eight lanes); then
+    // the rows batches and the contiguous ones left, among themselves.
+    const auto pairUp = [&](auto&& free, auto&& safe, bool rowsPair) {
+        for (size_t b = start; b < batches.size(); ++b) {
+            if (!free(b)) continue;
+            const uint32_t ownWave = wave[batches[b].firstElement - first];
+            size_t partner = 0, sameShape = 0;
+            for (size_t next = b + 1; next < batches.size() && wave[batches[next].firstElement - first] == ownWave;
+                 ++next) {
+                if (!free(next) || !safe(b, next)) continue;
+                if (partner == 0) partner = next;
+                if (batches[next].shape[0] == batches[b].shape[0]) {
+                    sameShape = next;
+                    break;
+                }
             }
+            if (sameShape != 0) partner = sameShape;
+            if (partner == 0) continue;
+            batches[b].partnerAhead = batches[partner].partnerBehind = static_cast<uint32_t>(partner - b);
+            batches[b].rowsPair = batches[partner].rowsPair = rowsPair;
         }
-        if (sameShape != 0) partner = sameShape;
-        if (partner != 0) batches[b].partnerAhead = batches[partner].partnerBehind = static_cast<uint32_t>(partner - b);
-    }
+    };
+    const auto unpaired = [&](size_t b) { return batches[b].partnerAhead == 0 && batches[b].partnerBehind == 0; };
+    pairUp([&](size_t b) { return batches[b].contiguous && unpaired(b); }, [](size_t, size_t) { return true; }, false);
+    pairUp([&](size_t b) { return (batches[b].contiguous || batches[b].rows) && unpaired(b); },
+           [&](size_t b, size_t partner) { return rowsPairSafe(batches[b], batches[partner]); }, true);
 }
 
 bool wideElementLanes() {

@@ -7,7 +7,8 @@
 /// with and before every later one, so the sweep is the Gauss-Seidel sweep in the lattice's
 /// order (the order decides how fast a stiff lattice converges: a sweep bottom to top carries a
 /// push through a whole column). Elements of one wave share no particle; runs of up to four
-/// consecutive elements of one wave form a batch, projected side by side, one per SIMD lane. The
+/// consecutive elements of one wave form a batch (of one rest shape, where its first two have
+/// one: a tyre's ring), projected side by side, one per SIMD lane. The
 /// kernel is the one of shape_matching.h (Eq. 4 on C = sqrt(Σ ⅛ |x_j − c − R q_j|²)) with
 /// projectionRotation's warm-started Newton step of the rotation extraction in the lanes; the
 /// rare element that needs more (a turn over 0.1 rad, an inverted or collapsed shape) and the
@@ -58,12 +59,27 @@ struct ElementBatch {
     /// consecutive (lane l's is lane 0's + l, as a tyre's are): the kernel loads corners and
     /// rotations as rows and transposes them in registers instead of gathering them value by value.
     bool contiguous = false;
-    /// A contiguous batch of the same wave and body this many batches ahead (0: none) is
+    /// Not contiguous, but loaded as rows all the same when paired (`rowsPair`): at least two
+    /// lanes of one shape without the volume constraint, each corner's particles consecutive for
+    /// its first `run[j]` lanes (lane l's is lane 0's + l) and at most one more lane, a "stray",
+    /// anywhere. A tyre's batch at the end of a ring: three cells, and on the odd cells the last
+    /// one's corners wrap around to the ring's first particles. The kernel reads four rows from
+    /// lane 0's particle and element, which must be the body's (`rows` is false where they would
+    /// run past its particles or elements: another thread may be solving the next body), puts
+    /// each corner's stray in by a select, writes back the batch's own doubles of the rows (the
+    /// others as they are in memory) and then the strays.
+    bool rows = false;
+    uint8_t run[8] = {};          ///< per corner, the lanes consecutive from lane 0's particle
+    uint8_t strayLane[8] = {};    ///< per corner, the stray's lane (none: lane 0, its own particle)
+    uint32_t strayParticle[8] = {};  ///< per corner, the stray's particle (none: lane 0's)
+    /// A contiguous or rows batch of the same wave and body this many batches ahead (0: none) is
     /// projected with this one, side by side in eight lanes, on a CPU with AVX-512 (elements of
     /// one wave share no particle: projecting a later one early gives the same bits); the
-    /// partner records the distance back. A batch pairs with one of its own shape where its
-    /// wave has one.
+    /// partner records the distance back. Contiguous batches pair first, each with one of its
+    /// own shape where its wave has one; then the rest and the rows batches, with `rowsPair` set
+    /// on both partners.
     uint32_t partnerAhead = 0, partnerBehind = 0;
+    bool rowsPair = false;
 };
 
 /// The state the kernel reads and writes, the SoftSystem's arrays.

@@ -114,17 +114,50 @@ static_assert(sizeof(Quat) == 4 * sizeof(double), "rotations are read as packed 
     simd::store(p + 12, __builtin_shufflevector(xy23, zw23, 2, 3, 6, 7));
 }
 
-/// The inverse of the two runs' loadRotations.
+/// The inverse of the two runs' loadRotations, for the first `countA` and `countB` quaternions.
 [[gnu::always_inline]] inline void storeRotations(double* a, double* b, const WideLanes& w, const WideLanes& x,
-                                                  const WideLanes& y, const WideLanes& z) {
+                                                  const WideLanes& y, const WideLanes& z, int countA = 4,
+                                                  int countB = 4) {
     const WideLanes xy01 = __builtin_shufflevector(x, y, 0, 8, 1, 9, 4, 12, 5, 13);
     const WideLanes xy23 = __builtin_shufflevector(x, y, 2, 10, 3, 11, 6, 14, 7, 15);
     const WideLanes zw01 = __builtin_shufflevector(z, w, 0, 8, 1, 9, 4, 12, 5, 13);
     const WideLanes zw23 = __builtin_shufflevector(z, w, 2, 10, 3, 11, 6, 14, 7, 15);
-    split(a, b, __builtin_shufflevector(xy01, zw01, 0, 1, 8, 9, 4, 5, 12, 13));
-    split(a + 4, b + 4, __builtin_shufflevector(xy01, zw01, 2, 3, 10, 11, 6, 7, 14, 15));
-    split(a + 8, b + 8, __builtin_shufflevector(xy23, zw23, 0, 1, 8, 9, 4, 5, 12, 13));
-    split(a + 12, b + 12, __builtin_shufflevector(xy23, zw23, 2, 3, 10, 11, 6, 7, 14, 15));
+    const WideLanes q[4] = {__builtin_shufflevector(xy01, zw01, 0, 1, 8, 9, 4, 5, 12, 13),
+                            __builtin_shufflevector(xy01, zw01, 2, 3, 10, 11, 6, 7, 14, 15),
+                            __builtin_shufflevector(xy23, zw23, 0, 1, 8, 9, 4, 5, 12, 13),
+                            __builtin_shufflevector(xy23, zw23, 2, 3, 10, 11, 6, 7, 14, 15)};
+    for (int k = 0; k < 4; ++k) {
+        if (countA == 4 && countB == 4) {
+            split(a + 4 * k, b + 4 * k, q[k]);
+            continue;
+        }
+        if (k < countA) simd::store(a + 4 * k, __builtin_shufflevector(q[k], q[k], 0, 1, 2, 3));
+        if (k < countB) simd::store(b + 4 * k, __builtin_shufflevector(q[k], q[k], 4, 5, 6, 7));
+    }
+}
+
+/// storePoints for two runs, of their first `countA` and `countB` points: the other doubles of
+/// the three rows are written back as they are in memory (ElementBatch::rows).
+[[gnu::always_inline]] inline void storePoints(double* a, double* b, const WideLanes& x, const WideLanes& y,
+                                               const WideLanes& z, int countA, int countB) {
+    const WideLanes xy01 = __builtin_shufflevector(x, y, 0, 8, 1, 9, 4, 12, 5, 13);
+    const WideLanes xy23 = __builtin_shufflevector(x, y, 2, 10, 3, 11, 6, 14, 7, 15);
+    const WideLanes yz12 = __builtin_shufflevector(y, z, 1, 9, 2, 10, 5, 13, 6, 14);
+    const WideLanes xyz23 = __builtin_shufflevector(xy23, z, 2, 3, 10, 11, 6, 7, 14, 15);
+    const WideLanes v[3] = {__builtin_shufflevector(xy01, z, 0, 1, 8, 2, 4, 5, 12, 6),
+                            __builtin_shufflevector(yz12, xy23, 0, 1, 8, 9, 4, 5, 12, 13),
+                            __builtin_shufflevector(xyz23, xyz23, 2, 0, 1, 3, 6, 4, 5, 7)};
+    const double ownA = 3.0 * countA, ownB = 3.0 * countB;  // the doubles of each run's points
+    const WideLanes own = {ownA, ownA, ownA, ownA, ownB, ownB, ownB, ownB};
+    for (int k = 0; k < 3; ++k) {
+        const double d = 4.0 * k;
+        const WideLanes index = {d, d + 1, d + 2, d + 3, d, d + 1, d + 2, d + 3};  // of each double
+        simd::Lanes lo, hi;
+        simd::load(lo, a + 4 * k), simd::load(hi, b + 4 * k);
+        WideLanes kept;
+        join(kept, lo, hi);
+        split(a + 4 * k, b + 4 * k, index < own ? v[k] : kept);
+    }
 }
 
 /// The kernel over `Lanes` (simd::Lanes: one batch; WideLanes: two).
@@ -142,6 +175,29 @@ struct BatchKernel {
         for (int l = 1; l < kLanes; ++l)
             bits |= m[l];
         return bits != 0;
+    }
+
+    /// Rows (two batches side by side): the lanes of corner j's strays, one lane of each batch at
+    /// most (a corner without one names lane 0 and its own particle, which the select and the
+    /// write-back leave as they are). The strays go in by a select: a lane picked at run time
+    /// would take the vector through memory.
+    [[gnu::always_inline]] static void strayMask(const ElementBatch* const* batches, int j, Mask& stray) {
+        Lanes index, lane;
+        for (int l = 0; l < kLanes; ++l)
+            index[l] = l % kBatchLanes, lane[l] = batches[l / kBatchLanes]->strayLane[j];
+        stray = index == lane;
+    }
+
+    /// Rows: corner j's strays' values, base[stride p + offset] for each batch's stray p, in
+    /// that batch's lanes.
+    [[gnu::always_inline]] static void strayValues(const ElementBatch* const* batches, int j, const double* base,
+                                                   int stride, int offset, Lanes& v) {
+        if constexpr (kHalves == 2) {
+            const double lo = base[stride * size_t(batches[0]->strayParticle[j]) + offset];
+            const double hi = base[stride * size_t(batches[1]->strayParticle[j]) + offset];
+            const simd::Lanes a = {lo, lo, lo, lo}, b = {hi, hi, hi, hi};
+            join(v, a, b);
+        }
     }
 
     /// Square roots in place, lane by lane (vectorised with -fno-math-errno).
@@ -172,7 +228,8 @@ struct BatchKernel {
                 return;
             }
             const double hi = *shapes[batches[1]->shape[0]].row(index);
-            v = Lanes{lo, lo, lo, lo, hi, hi, hi, hi};
+            const simd::Lanes a = {lo, lo, lo, lo}, b = {hi, hi, hi, hi};
+            join(v, a, b);
         }
     }
 
@@ -257,7 +314,11 @@ struct BatchKernel {
     /// side have one), the inverse masses from the particles', one warm-started Newton step of
     /// the rotation extraction, the deviations and the XPBD update (Eq. 4), and the corners
     /// scattered back.
-    template <bool Contiguous, bool Held, bool OneShape = false>
+    ///
+    /// `Rows` (two batches side by side, contiguous or rows, ElementBatch::rows): each batch's
+    /// rows are loaded from its lane 0 as a contiguous batch's and its strays put in by a
+    /// select; only its own lanes' doubles, rotations and multipliers are written back.
+    template <bool Contiguous, bool Held, bool OneShape = false, bool Rows = false>
     [[gnu::always_inline]] static uint32_t solve(const ElementBatch* const* batches, const ElementArrays& arrays,
                                                  double invH2);
 
@@ -272,9 +333,10 @@ struct BatchKernel {
 };
 
 template <class Lanes>
-template <bool Contiguous, bool Held, bool OneShape>
+template <bool Contiguous, bool Held, bool OneShape, bool Rows>
 [[gnu::always_inline]] inline uint32_t BatchKernel<Lanes>::solve(const ElementBatch* const* batches, const ElementArrays& arrays, double invH2) {
     static_assert(kHalves == 1 || (Contiguous && !Held), "two batches side by side: the common path only");
+    static_assert(!Rows || kHalves == 2, "rows: two batches side by side");
     const ElementBatch& batch = *batches[0];  // the one batch of the gathers and held corners
     uint32_t handedOver = 0;
     const uint32_t first = batch.firstElement;
@@ -287,6 +349,9 @@ template <bool Contiguous, bool Held, bool OneShape>
     const auto corner = [&](int h, int j) { return pos + 3 * size_t(batches[h]->particle[j][0]); };
     const auto rotationsOf = [&](int h) { return arrays.rotations[batches[h]->firstElement].coeffs().data(); };
     const auto lambdaOf = [&](int h) { return &arrays.lambda[batches[h]->firstElement]; };
+    // Rows: each batch's lanes, and whether lane l is one of them.
+    const int lanesOf[2] = {static_cast<int>(batches[0]->lanes), kHalves == 2 ? static_cast<int>(batches[kHalves - 1]->lanes) : 0};
+    const auto own = [&](int l) { return !Rows || l % kBatchLanes < lanesOf[l / kBatchLanes]; };
 
     Lanes px[8], py[8], pz[8];
     Lanes w, qx, qy, qz, lambda, spread, alpha;
@@ -296,8 +361,17 @@ template <bool Contiguous, bool Held, bool OneShape>
         loadRotations(rotationsOf(0), w, qx, qy, qz);
         simd::load(lambda, lambdaOf(0));
     } else if constexpr (Contiguous) {
-        for (int j = 0; j < 8; ++j)
+        for (int j = 0; j < 8; ++j) {
             loadPoints(corner(0, j), corner(1, j), px[j], py[j], pz[j]);
+            if constexpr (Rows) {
+                Mask stray;
+                strayMask(batches, j, stray);
+                Lanes sx, sy, sz;
+                strayValues(batches, j, pos, 3, 0, sx), strayValues(batches, j, pos, 3, 1, sy);
+                strayValues(batches, j, pos, 3, 2, sz);
+                px[j] = stray ? sx : px[j], py[j] = stray ? sy : py[j], pz[j] = stray ? sz : pz[j];
+            }
+        }
         loadRotations(rotationsOf(0), rotationsOf(1), w, qx, qy, qz);
         simd::Lanes lo, hi;
         simd::load(lo, lambdaOf(0)), simd::load(hi, lambdaOf(1));
@@ -336,6 +410,13 @@ template <bool Contiguous, bool Held, bool OneShape>
             simd::Lanes lo, hi;
             simd::load(lo, invMass + batches[0]->particle[j][0]), simd::load(hi, invMass + batches[1]->particle[j][0]);
             join(wj, lo, hi);
+            if constexpr (Rows) {
+                Mask stray;
+                strayMask(batches, j, stray);
+                Lanes sw;
+                strayValues(batches, j, invMass, 1, 0, sw);
+                wj = stray ? sw : wj;
+            }
         } else {
             for (int l = 0; l < kLanes; ++l) wj[l] = invMass[batch.particle[j][l]];
         }
@@ -381,8 +462,10 @@ template <bool Contiguous, bool Held, bool OneShape>
     }
     // A lane handed over kept its warm start in (w, qx, qy, qz): extractRotation starts from it.
     if constexpr (Contiguous && kHalves == 1) storeRotations(rotationsOf(0), w, qx, qy, qz);
-    if constexpr (Contiguous && kHalves == 2) storeRotations(rotationsOf(0), rotationsOf(1), w, qx, qy, qz);
+    if constexpr (Contiguous && kHalves == 2)
+        storeRotations(rotationsOf(0), rotationsOf(1), w, qx, qy, qz, Rows ? lanesOf[0] : 4, Rows ? lanesOf[1] : 4);
     for (int l = 0; l < lanes; ++l) {
+        if (!own(l)) continue;  // rows: a lane past its batch's
         const uint32_t e = elementOf(l);
         if (handOver[l] == 0) {
             if constexpr (!Contiguous) arrays.rotations[e] = Quat(w[l], qx[l], qy[l], qz[l]);
@@ -476,6 +559,19 @@ template <bool Contiguous, bool Held, bool OneShape>
         simd::store(lambdaOf(0), lambda);
         for (int j = 0; j < 8; ++j)
             simd::storePoints(corner(0, j), px[j], py[j], pz[j]);
+        return handedOver;
+    } else if constexpr (Rows) {
+        for (int l = 0; l < kLanes; ++l)
+            if (own(l)) lambdaOf(l / kBatchLanes)[l % kBatchLanes] = lambda[l];
+        for (int j = 0; j < 8; ++j)
+            storePoints(corner(0, j), corner(1, j), px[j], py[j], pz[j], batches[0]->run[j], batches[1]->run[j]);
+        // The strays after every row (a row's doubles past its run may be one: appendBatches).
+        for (int j = 0; j < 8; ++j)
+            for (int h = 0; h < kHalves; ++h) {
+                const int lane = h * kBatchLanes + batches[h]->strayLane[j];
+                double* p = pos + 3 * size_t(batches[h]->strayParticle[j]);
+                p[0] = px[j][lane], p[1] = py[j][lane], p[2] = pz[j][lane];
+            }
         return handedOver;
     } else if constexpr (Contiguous) {
         split(lambdaOf(0), lambdaOf(1), lambda);

@@ -1,7 +1,8 @@
 // The element sweep eight lanes at a time, for CPUs with x86-64-v4 (element_batch_kernel.h):
-// pairs of contiguous batches of one wave side by side, in one AVX-512 register; the other
-// batches (gathered, held, with the volume constraint or unpaired) four lanes at a time as in
-// element_batch.cpp, compiled for the same target.
+// pairs of contiguous batches of one wave side by side, in one AVX-512 register, and pairs with
+// a rows batch (a tyre's ring ends: ElementBatch::rows) likewise; the other batches (gathered,
+// held, with the volume constraint or unpaired) four lanes at a time as in element_batch.cpp,
+// compiled for the same target.
 #include "physics/soft/element_batch.h"
 #include "physics/soft/lanes.h"
 #include "physics/soft/shape_matching.h"
@@ -36,9 +37,13 @@ namespace substep {
         if (batch.partnerBehind != 0 && !held(b) && !held(b - batch.partnerBehind)) continue;
         const size_t ahead = b + batch.partnerAhead;
         const ElementBatch* const pair[2] = {&batch, &batches[ahead]};
-        if (!held(b) && batch.partnerAhead != 0 && !held(ahead))
-            handedOver += batch.shape[0] == batches[ahead].shape[0] ? Eight::solve<true, false, true>(pair, arrays, invH2)
-                                                                    : Eight::solve<true, false>(pair, arrays, invH2);
+        const bool oneShape = batch.shape[0] == batches[ahead].shape[0];
+        if (!held(b) && batch.partnerAhead != 0 && !held(ahead) && batch.rowsPair)
+            handedOver += oneShape ? Eight::solve<true, false, true, true>(pair, arrays, invH2)
+                                   : Eight::solve<true, false, false, true>(pair, arrays, invH2);
+        else if (!held(b) && batch.partnerAhead != 0 && !held(ahead))
+            handedOver += oneShape ? Eight::solve<true, false, true>(pair, arrays, invH2)
+                                   : Eight::solve<true, false>(pair, arrays, invH2);
         else
             handedOver += Four::solveOne(batch, held(b), arrays, invH2);
     }

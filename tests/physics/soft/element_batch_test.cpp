@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <map>
 #include <string>
 
 namespace substep {
@@ -59,7 +60,10 @@ struct Elements {
     std::vector<double> scale2, compliance, volumeCompliance, lambda, volumeLambda, invMass;
     std::vector<BatchShape> shapes;  ///< appendBatches' (batch(), below)
 
-    Elements(const Lattice& lattice, bool byWave, bool someKeepVolume = true) : x(lattice.positions) {
+    /// `oneCompliance`: every element's compliance the same, as a soft body's (else rigid and soft
+    /// in runs, below).
+    Elements(const Lattice& lattice, bool byWave, bool someKeepVolume = true, bool oneCompliance = false)
+        : x(lattice.positions) {
         const std::vector<uint32_t> waves = elementWaves(lattice.elements, x.size());
         std::vector<size_t> order(lattice.elements.size());
         for (size_t k = 0; k < order.size(); ++k)
@@ -96,7 +100,7 @@ struct Elements {
             // Rigid and soft, in runs of 16 elements of the lattice's order: most batches have one
             // shape, some two or more (gathered lane by lane).
             const size_t softness = (k / 16 + lattice.shape[k]) % 3;
-            compliance.push_back(softness == 0 ? 0.0 : 1e-7 * double(softness));
+            compliance.push_back(oneCompliance ? 1e-7 : softness == 0 ? 0.0 : 1e-7 * double(softness));
             volumeCompliance.push_back(someKeepVolume && k % 4 == 1 ? 1e-6 : -1.0);
             lambda.push_back(0.0);
             volumeLambda.push_back(0.0);
@@ -369,17 +373,53 @@ TEST(ElementBatch, HeldCornersTakeNoCorrectionIntoTheirContact) {
     }
 }
 
+/// Whether the kernel's write-back of a rows pair's four rows per corner leaves every particle
+/// it moves in a run alone outside that run (ElementBatch::rows): the doubles past a run are
+/// written back as read, so none may be a particle the pair moves.
+bool rowsWriteBackIsSafe(const ElementBatch& a, const ElementBatch& b) {
+    std::vector<uint32_t> moved, kept;
+    for (const ElementBatch* batch : {&a, &b})
+        for (int j = 0; j < 8; ++j)
+            for (uint32_t l = 0; l < kBatchLanes; ++l)
+                (l < batch->run[j] ? moved : kept).push_back(batch->particle[j][0] + l);
+    for (const uint32_t p : kept)
+        if (std::count(moved.begin(), moved.end(), p) != 0) return false;
+    return true;
+}
+
+/// Whether a rows batch's description is the one its particles give: each corner's run from
+/// lane 0, one stray at most, named with its particle (none: lane 0 and its own).
+void expectRowsDescribeTheirLanes(const ElementBatch& batch) {
+    ASSERT_TRUE(batch.rows || batch.contiguous);
+    for (int j = 0; j < 8; ++j) {
+        ASSERT_GE(batch.run[j], 1);
+        for (uint32_t l = 0; l < batch.run[j]; ++l) EXPECT_EQ(batch.particle[j][l], batch.particle[j][0] + l);
+        if (batch.run[j] == batch.lanes) {
+            EXPECT_EQ(batch.strayLane[j], 0);
+            EXPECT_EQ(batch.strayParticle[j], batch.particle[j][0]);
+            continue;
+        }
+        EXPECT_NE(batch.particle[j][batch.run[j]], batch.particle[j][0] + batch.run[j]);
+        EXPECT_EQ(batch.run[j] + 1u, batch.lanes);  // one stray, the last lane
+        EXPECT_EQ(batch.strayLane[j], batch.run[j]);
+        EXPECT_EQ(batch.strayParticle[j], batch.particle[j][batch.run[j]]);
+    }
+}
+
 TEST(ElementBatch, PairedBatchesAreContiguousAndOfOneWave) {
     // The wide sweep projects a batch with its partner ahead where the batch names one: both
-    // must load their corners as rows and be of one wave (so share no particle with each other
-    // or with the batches between them) and of one body; each batch has one partner at most,
-    // and partners name each other.
+    // must load their corners as rows (contiguous, or rows with `rowsPair` on both) and be of
+    // one wave (so share no particle with each other or with the batches between them) and of
+    // one body; each batch has one partner at most, and partners name each other.
     for (const Lattice& lattice : lattices()) {
         for (const bool volume : {false, true}) {
             Elements s(lattice, true, volume);
             const uint32_t half = static_cast<uint32_t>(s.elements.size() / 2);
             std::vector<ElementBatch> batches = s.batch(0, half);  // two "bodies"
             const size_t firstOfSecond = batches.size();
+            uint32_t firstParticleEnd = 0;  // the first body's particles end here
+            for (uint32_t e = 0; e < half; ++e)
+                for (const uint32_t p : s.elements[e]) firstParticleEnd = std::max(firstParticleEnd, p + 1);
             const std::vector<ElementBatch> second = s.batch(half);
             batches.insert(batches.end(), second.begin(), second.end());
             for (size_t b = 0; b < batches.size(); ++b) {
@@ -394,12 +434,26 @@ TEST(ElementBatch, PairedBatchesAreContiguousAndOfOneWave) {
                 ASSERT_LT(ahead, batches.size());
                 EXPECT_EQ(batches[ahead].partnerBehind, batch.partnerAhead);
                 EXPECT_EQ(b < firstOfSecond, ahead < firstOfSecond);
-                EXPECT_TRUE(batch.contiguous && batches[ahead].contiguous);
+                // Rows stay within their body's particles (the second's start after the first's).
+                if (batch.rowsPair && b < firstOfSecond) {
+                    for (const ElementBatch* rows : {&batch, static_cast<const ElementBatch*>(&batches[ahead])})
+                        for (int j = 0; j < 8; ++j) {
+                            EXPECT_LE(rows->particle[j][0] + kBatchLanes, firstParticleEnd);
+                        }
+                }
+                EXPECT_EQ(batch.rowsPair, batches[ahead].rowsPair);
+                if (batch.rowsPair) {
+                    expectRowsDescribeTheirLanes(batch);
+                    expectRowsDescribeTheirLanes(batches[ahead]);
+                    EXPECT_TRUE(rowsWriteBackIsSafe(batch, batches[ahead]));
+                } else {
+                    EXPECT_TRUE(batch.contiguous && batches[ahead].contiguous);
+                }
                 for (size_t between = b; between <= ahead; ++between)
                     EXPECT_EQ(s.wave[batches[between].firstElement], s.wave[batch.firstElement]);
-                for (uint32_t k = 0; k < kBatchLanes; ++k)
+                for (uint32_t k = 0; k < batch.lanes; ++k)
                     for (uint32_t p : s.elements[batch.firstElement + k])
-                        for (uint32_t l = 0; l < kBatchLanes; ++l)
+                        for (uint32_t l = 0; l < batches[ahead].lanes; ++l)
                             for (uint32_t q : s.elements[batches[ahead].firstElement + l])
                                 EXPECT_NE(p, q);
             }
@@ -425,6 +479,75 @@ TEST(ElementBatch, PairedBatchesAreContiguousAndOfOneWave) {
     // record each for its 1100 elements; most pairs have one shape in all eight lanes.
     EXPECT_LE(tyre.shapes.size(), 75u);
     EXPECT_GT(2 * pairsOfOneShape, pairs) << pairsOfOneShape << " of " << pairs;
+}
+
+TEST(ElementBatch, RingEndsLoadAsRowsInEightLanes) {
+    // A tyre's ring (an even count around: the car's 46, 44, and rings of 15 and 7 cells of a
+    // parity) has its cells of one parity in runs of four and the rest at the ring's end; a
+    // batch stops there (its shape), and the ends load as rows, paired in eight lanes. Where the
+    // ring closes, the odd cells' last one has corners that wrap around to the ring's first
+    // particles: that lane is a stray. With one compliance as in a soft body: every batch of two
+    // or more lanes loads as rows (but at the tyre's last particles, where four rows would run
+    // past the arrays), and the sweep gives the four-lane sweep's bits and the scalar sweep's
+    // result.
+    if (!wideElementLanes()) GTEST_SKIP() << "this CPU has no x86-64-v4: the sweep is four lanes wide";
+    const Mat3 turn = Quat(Eigen::AngleAxisd(0.3, Vec3(1, 2, 3).normalized())).toRotationMatrix();
+    for (const std::array<int, 3> cells : {std::array{46, 4, 6}, std::array{44, 5, 5}, std::array{30, 3, 2},
+                                          std::array{14, 4, 3}}) {
+        const std::string label = std::to_string(cells[0]) + " around";
+        Elements wide(buildTyreLattice(0.3, 0.2, 0.15, cells), true, false, true);
+        for (size_t i = 0; i < wide.x.size(); ++i) {
+            const double k = double(i);
+            wide.x[i] = turn * wide.x[i] + 0.01 * Vec3(std::sin(k), std::cos(3 * k), std::sin(7 * k));
+        }
+        const std::vector<ElementBatch> batches = wide.batch();
+        size_t strays = 0, rowsBatches = 0;
+        std::map<uint32_t, int> unpairedOfWave;  // rows or contiguous batches without a partner
+        for (size_t b = 0; b < batches.size(); ++b) {
+            const ElementBatch& batch = batches[b];
+            if ((batch.rows || batch.contiguous) && batch.partnerAhead + batch.partnerBehind == 0)
+                ++unpairedOfWave[wide.wave[batch.firstElement]];
+            // (Rows need four rows inside the arrays: not so at the tyre's last particles.)
+            bool pastTheEnd = batch.firstElement + kBatchLanes > wide.elements.size();
+            for (int j = 0; j < 8; ++j) pastTheEnd = pastTheEnd || batch.particle[j][0] + kBatchLanes > wide.x.size();
+            EXPECT_TRUE(batch.contiguous || batch.rows || batch.lanes == 1 || pastTheEnd)
+                << label << ", batch " << b << " of " << batches.size() << ", " << batch.lanes << " lanes, runs "
+                << int(batch.run[0]) << int(batch.run[1]) << int(batch.run[2]) << int(batch.run[3]) << int(batch.run[4])
+                << int(batch.run[5]) << int(batch.run[6]) << int(batch.run[7]) << " one shape " << batch.oneShape;
+            rowsBatches += batch.rows ? 1 : 0;
+            if (!batch.rowsPair) continue;
+            for (int j = 0; j < 8; ++j) strays += batch.run[j] < batch.lanes ? 1 : 0;
+        }
+        EXPECT_GT(rowsBatches, 0u) << label;
+        EXPECT_GT(strays, 0u) << label;  // paired
+        // The car's: a wave's ring ends pair among themselves (small rings can leave a ring end
+        // whose rows' doubles past its run are particles its partner would move: unpaired).
+        if (cells[0] == 46) {
+            for (const auto& [wave, unpaired] : unpairedOfWave) {
+                EXPECT_LE(unpaired, 1) << label << ", wave " << wave;
+            }
+        }
+        Elements four = wide, scalar(buildTyreLattice(0.3, 0.2, 0.15, cells), false, false, true);
+        scalar.x = wide.x;  // the scalar sweep, in the lattice's order: the same particles
+        const double invH2 = 1e6;
+        for (int sweep = 0; sweep < 5; ++sweep) {
+            solveElementBatches(batches, wide.arrays(), invH2, ElementLanes::Widest);
+            solveElementBatches(batches, four.arrays(), invH2, ElementLanes::Four);
+            scalarSweep(scalar, invH2);
+        }
+        const auto same = [](const auto& a, const auto& b) {
+            return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(a[0])) == 0;
+        };
+        EXPECT_TRUE(same(wide.x, four.x)) << label;
+        EXPECT_TRUE(same(wide.rotations, four.rotations)) << label;
+        EXPECT_TRUE(same(wide.lambda, four.lambda)) << label;
+        double largest = 0.0, size = 0.0;
+        for (size_t i = 0; i < wide.x.size(); ++i) {
+            largest = std::max(largest, (wide.x[i] - scalar.x[i]).norm());
+            size = std::max(size, wide.x[i].norm());
+        }
+        EXPECT_LT(largest, 1e-9 * size) << label;
+    }
 }
 
 TEST(ElementBatch, EightLanesGiveTheBitsOfFour) {
