@@ -121,6 +121,7 @@ void appendBatches(const ElementArrays& arrays, std::span<const uint32_t> wave, 
             batch.run[j] = static_cast<uint8_t>(run);
             batch.strayLane[j] = run < batch.lanes ? static_cast<uint8_t>(run) : 0;
             batch.strayParticle[j] = batch.particle[j][batch.strayLane[j]];
+            batch.strayCorners |= static_cast<uint8_t>(run < batch.lanes ? 1 << j : 0);
             batch.rows = batch.rows && batch.lanes - run <= 1 && batch.particle[j][0] + kBatchLanes <= particleEnd;
         }
         batches.push_back(batch);

@@ -72,6 +72,7 @@ struct ElementBatch {
     uint8_t run[8] = {};          ///< per corner, the lanes consecutive from lane 0's particle
     uint8_t strayLane[8] = {};    ///< per corner, the stray's lane (none: lane 0, its own particle)
     uint32_t strayParticle[8] = {};  ///< per corner, the stray's particle (none: lane 0's)
+    uint8_t strayCorners = 0;        ///< bit j: corner j has a stray
     /// A contiguous or rows batch of the same wave and body this many batches ahead (0: none) is
     /// projected with this one, side by side in eight lanes, on a CPU with AVX-512 (elements of
     /// one wave share no particle: projecting a later one early gives the same bits); the

@@ -182,10 +182,14 @@ struct BatchKernel {
     /// write-back leave as they are). The strays go in by a select: a lane picked at run time
     /// would take the vector through memory.
     [[gnu::always_inline]] static void strayMask(const ElementBatch* const* batches, int j, Mask& stray) {
-        Lanes index, lane;
-        for (int l = 0; l < kLanes; ++l)
-            index[l] = l % kBatchLanes, lane[l] = batches[l / kBatchLanes]->strayLane[j];
-        stray = index == lane;
+        if constexpr (kHalves == 2) {
+            const double lo = batches[0]->strayLane[j], hi = batches[1]->strayLane[j];
+            const simd::Lanes a = {lo, lo, lo, lo}, b = {hi, hi, hi, hi};
+            Lanes lane;
+            join(lane, a, b);
+            const Lanes index = {0, 1, 2, 3, 0, 1, 2, 3};
+            stray = index == lane;
+        }
     }
 
     /// Rows: corner j's strays' values, base[stride p + offset] for each batch's stray p, in
@@ -355,6 +359,9 @@ template <bool Contiguous, bool Held, bool OneShape, bool Rows>
 
     Lanes px[8], py[8], pz[8];
     Lanes w, qx, qy, qz, lambda, spread, alpha;
+    Mask strays[8];  // rows: each corner's stray lanes (strayMask)
+    // Rows: the corners with a stray in either batch (the odd cells' at a tyre's ring end).
+    const unsigned strayCorners = Rows ? batches[0]->strayCorners | batches[kHalves - 1]->strayCorners : 0;
     if constexpr (Contiguous && kHalves == 1) {
         for (int j = 0; j < 8; ++j)
             simd::loadPoints(corner(0, j), px[j], py[j], pz[j]);
@@ -363,13 +370,12 @@ template <bool Contiguous, bool Held, bool OneShape, bool Rows>
     } else if constexpr (Contiguous) {
         for (int j = 0; j < 8; ++j) {
             loadPoints(corner(0, j), corner(1, j), px[j], py[j], pz[j]);
-            if constexpr (Rows) {
-                Mask stray;
-                strayMask(batches, j, stray);
+            if (Rows && (strayCorners >> j & 1) != 0) {
+                strayMask(batches, j, strays[j]);
                 Lanes sx, sy, sz;
                 strayValues(batches, j, pos, 3, 0, sx), strayValues(batches, j, pos, 3, 1, sy);
                 strayValues(batches, j, pos, 3, 2, sz);
-                px[j] = stray ? sx : px[j], py[j] = stray ? sy : py[j], pz[j] = stray ? sz : pz[j];
+                px[j] = strays[j] ? sx : px[j], py[j] = strays[j] ? sy : py[j], pz[j] = strays[j] ? sz : pz[j];
             }
         }
         loadRotations(rotationsOf(0), rotationsOf(1), w, qx, qy, qz);
@@ -410,12 +416,10 @@ template <bool Contiguous, bool Held, bool OneShape, bool Rows>
             simd::Lanes lo, hi;
             simd::load(lo, invMass + batches[0]->particle[j][0]), simd::load(hi, invMass + batches[1]->particle[j][0]);
             join(wj, lo, hi);
-            if constexpr (Rows) {
-                Mask stray;
-                strayMask(batches, j, stray);
+            if (Rows && (strayCorners >> j & 1) != 0) {
                 Lanes sw;
                 strayValues(batches, j, invMass, 1, 0, sw);
-                wj = stray ? sw : wj;
+                wj = strays[j] ? sw : wj;
             }
         } else {
             for (int l = 0; l < kLanes; ++l) wj[l] = invMass[batch.particle[j][l]];
@@ -568,6 +572,7 @@ template <bool Contiguous, bool Held, bool OneShape, bool Rows>
         // The strays after every row (a row's doubles past its run may be one: appendBatches).
         for (int j = 0; j < 8; ++j)
             for (int h = 0; h < kHalves; ++h) {
+                if ((strayCorners >> j & 1) == 0) continue;
                 const int lane = h * kBatchLanes + batches[h]->strayLane[j];
                 double* p = pos + 3 * size_t(batches[h]->strayParticle[j]);
                 p[0] = px[j][lane], p[1] = py[j][lane], p[2] = pz[j][lane];
