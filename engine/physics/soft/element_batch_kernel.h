@@ -136,8 +136,20 @@ static_assert(sizeof(Quat) == 4 * sizeof(double), "rotations are read as packed 
     }
 }
 
+/// The first `count` doubles of v at p (all four, or none), the others as they are in memory.
+[[gnu::always_inline]] inline void storeFirst(double* p, const simd::Lanes& v, int count) {
+    if (count >= 4) {
+        simd::store(p, v);
+    } else if (count > 0) {
+        simd::Lanes kept;
+        simd::load(kept, p);
+        const simd::Lanes index = {0, 1, 2, 3}, own = {double(count), double(count), double(count), double(count)};
+        simd::store(p, index < own ? v : kept);
+    }
+}
+
 /// storePoints for two runs, of their first `countA` and `countB` points: the other doubles of
-/// the three rows are written back as they are in memory (ElementBatch::rows).
+/// the three rows they span are written back as they are in memory (ElementBatch::rows).
 [[gnu::always_inline]] inline void storePoints(double* a, double* b, const WideLanes& x, const WideLanes& y,
                                                const WideLanes& z, int countA, int countB) {
     const WideLanes xy01 = __builtin_shufflevector(x, y, 0, 8, 1, 9, 4, 12, 5, 13);
@@ -147,16 +159,9 @@ static_assert(sizeof(Quat) == 4 * sizeof(double), "rotations are read as packed 
     const WideLanes v[3] = {__builtin_shufflevector(xy01, z, 0, 1, 8, 2, 4, 5, 12, 6),
                             __builtin_shufflevector(yz12, xy23, 0, 1, 8, 9, 4, 5, 12, 13),
                             __builtin_shufflevector(xyz23, xyz23, 2, 0, 1, 3, 6, 4, 5, 7)};
-    const double ownA = 3.0 * countA, ownB = 3.0 * countB;  // the doubles of each run's points
-    const WideLanes own = {ownA, ownA, ownA, ownA, ownB, ownB, ownB, ownB};
     for (int k = 0; k < 3; ++k) {
-        const double d = 4.0 * k;
-        const WideLanes index = {d, d + 1, d + 2, d + 3, d, d + 1, d + 2, d + 3};  // of each double
-        simd::Lanes lo, hi;
-        simd::load(lo, a + 4 * k), simd::load(hi, b + 4 * k);
-        WideLanes kept;
-        join(kept, lo, hi);
-        split(a + 4 * k, b + 4 * k, index < own ? v[k] : kept);
+        storeFirst(a + 4 * k, __builtin_shufflevector(v[k], v[k], 0, 1, 2, 3), 3 * countA - 4 * k);
+        storeFirst(b + 4 * k, __builtin_shufflevector(v[k], v[k], 4, 5, 6, 7), 3 * countB - 4 * k);
     }
 }
 
