@@ -21,21 +21,6 @@ namespace {
     return handedOver;
 }
 
-/// Whether two rows batches (or contiguous ones) of one wave can be projected side by side: the
-/// kernel writes back each corner's four rows whole, the doubles past a corner's run as they were
-/// read, so no such double may be a particle that the pair moves within its runs (their strays
-/// are written after every row).
-bool rowsPairSafe(const ElementBatch& a, const ElementBatch& b) {
-    std::vector<uint32_t> moved, kept;
-    for (const ElementBatch* batch : {&a, &b})
-        for (int j = 0; j < 8; ++j)
-            for (uint32_t l = 0; l < kBatchLanes; ++l)
-                (l < batch->run[j] ? moved : kept).push_back(batch->particle[j][0] + l);
-    for (const uint32_t p : kept)
-        if (std::find(moved.begin(), moved.end(), p) != moved.end()) return false;
-    return true;
-}
-
 }  // namespace
 
 std::vector<uint32_t> elementWaves(std::span<const HexElement> elements, size_t particleCount) {
@@ -77,9 +62,8 @@ void appendBatches(const ElementArrays& arrays, std::span<const uint32_t> wave, 
         if (added) shapes.push_back(shape);
         return at->second;
     };
-    // The body's particles end here: rows never reach past it (nor past its elements), since
-    // the kernel writes back the doubles it read and another body's may be solved meanwhile on
-    // another thread.
+    // The body's particles end here: rows never reach past it (nor past its elements), whose
+    // particles another thread may be solving meanwhile.
     uint32_t particleEnd = 0;
     for (uint32_t e = first; e < end; ++e)
         for (const uint32_t p : arrays.elements[e]) particleEnd = std::max(particleEnd, p + 1);
@@ -130,14 +114,14 @@ void appendBatches(const ElementArrays& arrays, std::span<const uint32_t> wave, 
     // Each contiguous batch paired with the next unpaired contiguous one of its wave, of its own
     // shape where there is one (the kernel then broadcasts one shape to all eight lanes); then
     // the rows batches and the contiguous ones left, among themselves.
-    const auto pairUp = [&](auto&& free, auto&& safe, bool rowsPair) {
+    const auto pairUp = [&](auto&& free, bool rowsPair) {
         for (size_t b = start; b < batches.size(); ++b) {
             if (!free(b)) continue;
             const uint32_t ownWave = wave[batches[b].firstElement - first];
             size_t partner = 0, sameShape = 0;
             for (size_t next = b + 1; next < batches.size() && wave[batches[next].firstElement - first] == ownWave;
                  ++next) {
-                if (!free(next) || !safe(b, next)) continue;
+                if (!free(next)) continue;
                 if (partner == 0) partner = next;
                 if (batches[next].shape[0] == batches[b].shape[0]) {
                     sameShape = next;
@@ -151,9 +135,8 @@ void appendBatches(const ElementArrays& arrays, std::span<const uint32_t> wave, 
         }
     };
     const auto unpaired = [&](size_t b) { return batches[b].partnerAhead == 0 && batches[b].partnerBehind == 0; };
-    pairUp([&](size_t b) { return batches[b].contiguous && unpaired(b); }, [](size_t, size_t) { return true; }, false);
-    pairUp([&](size_t b) { return (batches[b].contiguous || batches[b].rows) && unpaired(b); },
-           [&](size_t b, size_t partner) { return rowsPairSafe(batches[b], batches[partner]); }, true);
+    pairUp([&](size_t b) { return batches[b].contiguous && unpaired(b); }, false);
+    pairUp([&](size_t b) { return (batches[b].contiguous || batches[b].rows) && unpaired(b); }, true);
 }
 
 bool wideElementLanes() {

@@ -66,8 +66,8 @@ struct ElementBatch {
     /// one's corners wrap around to the ring's first particles. The kernel reads four rows from
     /// lane 0's particle and element, which must be the body's (`rows` is false where they would
     /// run past its particles or elements: another thread may be solving the next body), puts
-    /// each corner's stray in by a select, writes back the batch's own doubles of the rows (the
-    /// others as they are in memory) and then the strays.
+    /// each corner's stray in by a select, and writes back the batch's own doubles, rotations,
+    /// multipliers and strays only.
     bool rows = false;
     uint8_t run[8] = {};          ///< per corner, the lanes consecutive from lane 0's particle
     uint8_t strayLane[8] = {};    ///< per corner, the stray's lane (none: lane 0, its own particle)

@@ -136,20 +136,20 @@ static_assert(sizeof(Quat) == 4 * sizeof(double), "rotations are read as packed 
     }
 }
 
-/// The first `count` doubles of v at p (all four, or none), the others as they are in memory.
+/// The first `count` doubles of v at p (all four, or none), the others left alone: written back
+/// as read, they would make the next wave's loads of them wait for this store (a load that
+/// spans two stores is not forwarded from them).
 [[gnu::always_inline]] inline void storeFirst(double* p, const simd::Lanes& v, int count) {
     if (count >= 4) {
         simd::store(p, v);
     } else if (count > 0) {
-        simd::Lanes kept;
-        simd::load(kept, p);
-        const simd::Lanes index = {0, 1, 2, 3}, own = {double(count), double(count), double(count), double(count)};
-        simd::store(p, index < own ? v : kept);
+        p[0] = v[0];
+        if (count > 1) p[1] = v[1];
+        if (count > 2) p[2] = v[2];
     }
 }
 
-/// storePoints for two runs, of their first `countA` and `countB` points: the other doubles of
-/// the three rows they span are written back as they are in memory (ElementBatch::rows).
+/// storePoints for two runs, of their first `countA` and `countB` points only (ElementBatch::rows).
 [[gnu::always_inline]] inline void storePoints(double* a, double* b, const WideLanes& x, const WideLanes& y,
                                                const WideLanes& z, int countA, int countB) {
     const WideLanes xy01 = __builtin_shufflevector(x, y, 0, 8, 1, 9, 4, 12, 5, 13);
@@ -574,7 +574,6 @@ template <bool Contiguous, bool Held, bool OneShape, bool Rows>
             if (own(l)) lambdaOf(l / kBatchLanes)[l % kBatchLanes] = lambda[l];
         for (int j = 0; j < 8; ++j)
             storePoints(corner(0, j), corner(1, j), px[j], py[j], pz[j], batches[0]->run[j], batches[1]->run[j]);
-        // The strays after every row (a row's doubles past its run may be one: appendBatches).
         for (int j = 0; j < 8; ++j)
             for (int h = 0; h < kHalves; ++h) {
                 if ((strayCorners >> j & 1) == 0) continue;
