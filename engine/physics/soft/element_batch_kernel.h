@@ -359,7 +359,7 @@ template <bool Contiguous, bool Held, bool OneShape, bool Rows>
     const auto rotationsOf = [&](int h) { return arrays.rotations[batches[h]->firstElement].coeffs().data(); };
     const auto lambdaOf = [&](int h) { return &arrays.lambda[batches[h]->firstElement]; };
     // Rows: each batch's lanes, and whether lane l is one of them.
-    const int lanesOf[2] = {static_cast<int>(batches[0]->lanes), kHalves == 2 ? static_cast<int>(batches[kHalves - 1]->lanes) : 0};
+    const int lanesOf[2] = {static_cast<int>(batches[0]->lanes), static_cast<int>(batches[kHalves - 1]->lanes)};
     const auto own = [&](int l) { return !Rows || l % kBatchLanes < lanesOf[l / kBatchLanes]; };
 
     Lanes px[8], py[8], pz[8];
