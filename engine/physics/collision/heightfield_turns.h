@@ -8,6 +8,8 @@
 /// each cross product's components a·b − c·d in Eigen's order; the turns here do those operations
 /// in that order per coordinate, scalar or two vectors side by side in a pair of SSE2 lanes
 /// (IEEE operations lane by lane, no contraction in the base ISA), so the bits are Eigen's.
+/// A field in the world's axes (the identity with +0 vector part, rc_car's ground) needs no turn
+/// at all: for finite vectors Eigen's gives v + 0, which the overloads taking `plain` return.
 
 #include "physics/collision/contact_manifold.h"
 
