@@ -243,8 +243,8 @@ void addSphereContacts(const HeightfieldGrid& grid, const SphereQuery& s, int i0
 /// triangles' outcomes, and where they are at most one face point, that point (or none) straight
 /// into `out` (cleared), turned as ContactBuffer::emit turns it (heightfield_turns.h): no buffer,
 /// sort or loop. False, `out` untouched, where a triangle needs the full test or both give a
-/// point (the buffer merges those).
-bool oneCellContact(const HeightfieldGrid& grid, const SphereQuery& s, int i, int j, const Pose& pose,
+/// point (the buffer merges those). `plain`: pose.rotation is the plain identity.
+bool oneCellContact(const HeightfieldGrid& grid, const SphereQuery& s, int i, int j, const Pose& pose, bool plain,
                     ContactManifold& out) {
     const int columns = grid.field->columns;
     const double* heights = grid.field->heights.data();
@@ -281,16 +281,16 @@ bool oneCellContact(const HeightfieldGrid& grid, const SphereQuery& s, int i, in
     ContactPoint p;
     p.depth = s.r - h;
     if (p.depth < -s.margin) return true;
-    heightfield_turns::turnContact(pose, s.c - s.r * n, s.c - h * n, n, p);
+    heightfield_turns::turnContact(pose, plain, s.c - s.r * n, s.c - h * n, n, p);
     p.feature = triangleFeatureId(static_cast<uint32_t>(2 * (j * (columns - 1) + i) + face), 0);
     out.add(p);
     return true;
 }
 
 /// collideSphereHeightfield with the centre c in the field's frame; `oneCell`: whether to try
-/// oneCellContact.
+/// oneCellContact; `plain`: pose.rotation is the plain identity (heightfield_turns.h).
 void collideInFieldFrame(const HeightfieldGrid& grid, const Vec3& c, double r, const Pose& pose, double margin,
-                         bool oneCell, ContactManifold& out) {
+                         bool oneCell, bool plain, ContactManifold& out) {
     out.clear();
     const SphereQuery s(grid, c, r, margin);
     const HeightfieldData& field = *grid.field;
@@ -298,7 +298,7 @@ void collideInFieldFrame(const HeightfieldGrid& grid, const Vec3& c, double r, c
     if (!cellsReached(c.x(), s.reach, grid.originX, grid.cellX, grid.inverseCellX, field.columns - 1, i0, i1) ||
         !cellsReached(c.z(), s.reach, grid.originZ, grid.cellZ, grid.inverseCellZ, field.rows - 1, j0, j1))
         return;
-    if (oneCell && i0 == i1 && j0 == j1 && oneCellContact(grid, s, i0, j0, pose, out)) return;
+    if (oneCell && i0 == i1 && j0 == j1 && oneCellContact(grid, s, i0, j0, pose, plain, out)) return;
     ContactBuffer buffer(kMergeFraction * r);
     addSphereContacts(grid, s, i0, i1, j0, j1, buffer);
     if (buffer.count() > 1) {
@@ -306,7 +306,7 @@ void collideInFieldFrame(const HeightfieldGrid& grid, const Vec3& c, double r, c
     } else if (buffer.count() == 1) {
         // ContactBuffer::emit for its one point, without the call to sort it.
         ContactPoint p = buffer[0];
-        heightfield_turns::turnContact(pose, buffer[0].point0, buffer[0].point1, buffer[0].normal, p);
+        heightfield_turns::turnContact(pose, plain, buffer[0].point0, buffer[0].point1, buffer[0].normal, p);
         out.add(p);
     }
 }
@@ -343,12 +343,15 @@ void HeightfieldGrid::keepNormals(const Aabb& box, int mostCells) {
 
 void collideSphereHeightfield(const HeightfieldGrid& grid, const Vec3& centre, double r, const Pose& pose,
                               double margin, ContactManifold& out) {
-    collideInFieldFrame(grid, heightfield_turns::applyInverse(pose, centre), r, pose, margin, true, out);
+    // A field in the world's axes (rc_car's ground): its turns are shifts (heightfield_turns.h).
+    const bool plain = heightfield_turns::isPlainIdentity(pose.rotation);
+    collideInFieldFrame(grid, heightfield_turns::applyInverse(pose, plain, centre), r, pose, margin, true, plain, out);
 }
 
 void collideSphereHeightfieldCellByCell(const HeightfieldGrid& grid, const Vec3& centre, double r, const Pose& pose,
                                         double margin, ContactManifold& out) {
-    collideInFieldFrame(grid, heightfield_turns::applyInverse(pose, centre), r, pose, margin, false, out);
+    const bool plain = heightfield_turns::isPlainIdentity(pose.rotation);
+    collideInFieldFrame(grid, heightfield_turns::applyInverse(pose, plain, centre), r, pose, margin, false, plain, out);
 }
 
 bool heightfieldCellsReached(const HeightfieldGrid& grid, const Vec3& c, double reach, int& i0, int& i1, int& j0,

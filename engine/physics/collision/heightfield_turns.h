@@ -8,8 +8,12 @@
 /// each cross product's components a·b − c·d in Eigen's order; the turns here do those operations
 /// in that order per coordinate, scalar or two vectors side by side in a pair of SSE2 lanes
 /// (IEEE operations lane by lane, no contraction in the base ISA), so the bits are Eigen's.
+/// A field in the world's axes (the identity with +0 vector part, rc_car's ground) needs no turn
+/// at all: for finite vectors Eigen's gives v + 0, which the overloads taking `plain` return.
 
 #include "physics/collision/contact_manifold.h"
+
+#include <cmath>
 
 namespace substep::heightfield_turns {
 
@@ -50,6 +54,43 @@ template <class T>
     double nx, ny, nz;
     turn<double>(q.x(), q.y(), q.z(), q.w(), n.x(), n.y(), n.z(), nx, ny, nz);
     p.normal = Vec3(nx, ny, nz);
+}
+
+/// Whether q is the identity with +0 for its vector part, bit for bit (a field in the world's
+/// axes): Eigen's turn of a finite vector by it or by its conjugate is then `unturned`'s.
+[[gnu::always_inline]] inline bool isPlainIdentity(const Quat& q) {
+    return q.w() == 1.0 && q.x() == 0.0 && q.y() == 0.0 && q.z() == 0.0 && !std::signbit(q.x()) &&
+           !std::signbit(q.y()) && !std::signbit(q.z());
+}
+
+/// Whether every coordinate of v is finite (x − x is +0 for those, NaN for ±∞ and NaN).
+[[gnu::always_inline]] inline bool isFinite(const Vec3& v) {
+    return ((v.x() - v.x()) + (v.y() - v.y()) + (v.z() - v.z())) == 0.0;
+}
+
+/// Eigen's turn of a finite v by the plain identity (q.vec +0, w 1) or by its conjugate (q.vec −0):
+/// each product of a vector-part zero is a zero, so uv and q.vec × uv are zeros, a non-zero
+/// coordinate of v comes out as it went in, and a zero one as +0 (the signs of the zeros added
+/// never make a −0 from a −0; the test tries every pattern): v + 0. Not for ±∞ or NaN (0 ∞ is NaN).
+[[gnu::always_inline]] inline Vec3 unturned(const Vec3& v) { return {v.x() + 0.0, v.y() + 0.0, v.z() + 0.0}; }
+
+/// turnContact(pose, a, b, n, p) where `plain` says pose.rotation is the plain identity: for
+/// finite a, b and n only shifted by the position, with the same bits.
+[[gnu::always_inline]] inline void turnContact(const Pose& pose, bool plain, const Vec3& a, const Vec3& b,
+                                               const Vec3& n, ContactPoint& p) {
+    if (!plain || !(isFinite(a) && isFinite(b) && isFinite(n))) return turnContact(pose, a, b, n, p);
+    const Vec3& o = pose.position;
+    p.point0 = Vec3(o.x() + (a.x() + 0.0), o.y() + (a.y() + 0.0), o.z() + (a.z() + 0.0));
+    p.point1 = Vec3(o.x() + (b.x() + 0.0), o.y() + (b.y() + 0.0), o.z() + (b.z() + 0.0));
+    p.normal = unturned(n);
+}
+
+/// applyInverse(pose, world) where `plain` says pose.rotation is the plain identity: for a
+/// finite world − position, only that difference, with the same bits.
+[[gnu::always_inline]] inline Vec3 applyInverse(const Pose& pose, bool plain, const Vec3& world) {
+    const Vec3 d(world.x() - pose.position.x(), world.y() - pose.position.y(), world.z() - pose.position.z());
+    if (!plain || !isFinite(d)) return applyInverse(pose, world);
+    return unturned(d);
 }
 
 }  // namespace substep::heightfield_turns

@@ -3,6 +3,7 @@
 // candidates those bounds do not skip. Solved in soft_coupling.cpp (Eqs. 26-30 and 34).
 #include "physics/collision/heightfield.h"
 #include "physics/collision/heightfield_sphere.h"
+#include "physics/collision/heightfield_turns.h"
 #include "physics/collision/narrowphase.h"
 #include "physics/collision/shape_bounds.h"
 #include "physics/soft/soft_body_loops.h"
@@ -56,6 +57,14 @@ double highestSampleUnder(const HeightfieldData& field, const Vec3& lo, const Ve
     return highest;
 }
 
+/// pose.applyInverse(p), the same bits: for a pose in the world's axes (`plain`: its rotation
+/// the plain identity) and a finite p − position, that difference (heightfield_turns.h).
+Vec3 intoFrame(const Pose& pose, bool plain, const Vec3& p) {
+    const Vec3 d = p - pose.position;
+    if (plain && heightfield_turns::isFinite(d)) return heightfield_turns::unturned(d);
+    return pose.applyInverse(p);
+}
+
 /// Lower bounds on the gap between a particle's sphere and a static shape, for the particles of
 /// one soft body in a frame (all inside `softBox`, world). The narrowphase's points are not a
 /// bound (a heightfield reports the triangles under the sphere), so each shape gets its own:
@@ -73,7 +82,8 @@ public:
     /// `grid`: a heightfield's, which keeps the normals of the cells under the soft body's box.
     StaticGap(const Shape& shape, const Pose& pose, const Aabb& bounds, const Aabb& softBox, double radius,
               HeightfieldGrid* grid)
-        : shape_(shape), pose_(pose), bounds_(bounds), radius_(radius), grid_(grid) {
+        : shape_(shape), pose_(pose), plain_(heightfield_turns::isPlainIdentity(pose.rotation)), bounds_(bounds),
+          radius_(radius), grid_(grid) {
         if (shape.type != ShapeType::Heightfield || !shape.heightfield || !grid) return;
         for (int corner = 0; corner < 8; ++corner)
             column_.grow(pose.applyInverse(Vec3(corner & 1 ? softBox.max.x() : softBox.min.x(),
@@ -88,13 +98,13 @@ public:
     double operator()(const Vec3& p, double reach) const {
         switch (shape_.type) {
             case ShapeType::Box: {
-                const Vec3 local = pose_.applyInverse(p);
+                const Vec3 local = intoFrame(pose_, plain_, p);
                 return (local.cwiseAbs() - 0.5 * shape_.size).cwiseMax(0.0).norm() - radius_;
             }
             case ShapeType::Plane: return shape_.normal.dot(p) - shape_.offset - radius_;
             case ShapeType::Heightfield: {
                 if (!shape_.heightfield || !grid_) return 0.0;
-                const Vec3 local = pose_.applyInverse(p);
+                const Vec3 local = intoFrame(pose_, plain_, p);
                 const double side = std::min({local.x() - column_.min.x(), column_.max.x() - local.x(),
                                               local.z() - column_.min.z(), column_.max.z() - local.z()});
                 // The old bound, the height above the whole field's highest sample, can be the
@@ -118,6 +128,7 @@ public:
 private:
     const Shape& shape_;
     Pose pose_;
+    bool plain_;  ///< pose_ is in the world's axes: its turns are shifts
     Aabb bounds_;
     double radius_;
     Aabb column_;  ///< heightfield: the soft body's box in its frame
@@ -296,6 +307,7 @@ void SoftSystem::findBodyContacts(BodyCandidates& own, std::span<const Body> bod
     HeightfieldGrid ownGrid;  // a heightfield's without candidates kept by collectCandidates
     double staticFriction = 0.0, dynamicFriction = 0.0, restitution = 0.0;
     bool still = false;
+    bool plain = false;  // the body's rotation is the plain identity (heightfield_turns.h)
     // Candidates come grouped by soft body, then rigid body: poses and probes are made once
     // per group.
     // The particle's distance to a static shape changes by at most its own displacement: a
@@ -351,6 +363,7 @@ void SoftSystem::findBodyContacts(BodyCandidates& own, std::span<const Body> bod
             dynamicFriction = 0.5 * (soft.dynamicFriction + b.dynamicFriction);
             restitution = 0.5 * (soft.restitution + b.restitution);
             still = isStill(b);
+            plain = heightfield_turns::isPlainIdentity(b.q);
         }
         // A heightfield's cells straight from its heights (heightfield_sphere.h), the same points.
         if (grid) collideSphereHeightfield(*grid, x_[candidate.particle], soft.radius, pose, margin, manifold);
@@ -358,7 +371,11 @@ void SoftSystem::findBodyContacts(BodyCandidates& own, std::span<const Body> bod
         const Quat inverse = b.q.conjugate();
         for (int m = 0; m < manifold.count; ++m) {
             const ContactPoint& point = manifold.points[m];
-            const Vec3 local1 = inverse * (point.point1 - b.x);
+            const Vec3 offset = point.point1 - b.x;
+            // A body in the world's axes (rc_car's ground) turns a finite vector, either way, by
+            // a shift of nothing: the same bits as Eigen's two turns (heightfield_turns.h).
+            const bool shift = plain && heightfield_turns::isFinite(offset);
+            const Vec3 local1 = shift ? heightfield_turns::unturned(offset) : Vec3(inverse * offset);
             out.push_back({.particle = candidate.particle,
                            .body = candidate.body,
                            .local1 = local1,
@@ -368,7 +385,9 @@ void SoftSystem::findBodyContacts(BodyCandidates& own, std::span<const Body> bod
                            .dynamicFriction = dynamicFriction,
                            .restitution = restitution,
                            .still = still,
-                           .anchor = still ? b.pointToWorld(local1) : Vec3::Zero()});
+                           .anchor = !still ? Vec3::Zero()
+                                     : shift ? Vec3(b.x + heightfield_turns::unturned(local1))
+                                             : b.pointToWorld(local1)});
         }
     }
 }

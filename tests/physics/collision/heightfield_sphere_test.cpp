@@ -255,6 +255,43 @@ TEST(HeightfieldSphere, OneCellPathGivesTheCellByCellContactsBitForBit) {
     EXPECT_GT(several, cases / 50);
 }
 
+TEST(HeightfieldSphere, AFieldInTheWorldsAxesGivesTheReferenceContactsBitForBit) {
+    // A field whose rotation is the plain identity (Quat::Identity()) shifts the centre and the
+    // points by its position instead of turning them (heightfield_turns.h): against the
+    // reference's turns, bit for bit, where zeros of either sign meet. Flat fields (samples of
+    // ±0: points at height ±0, normals with ±0 sideways), gentle and steep ones; positions and
+    // centres with coordinates of ±0; identities with a −0 in their vector part, which turn.
+    std::mt19937 rng(1814);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    const auto someZero = [&] { return unit(rng) < 0.5 ? -0.0 : 0.0; };
+    int cases = 0, withContacts = 0;
+    for (int f = 0; f < 400; ++f) {
+        const auto field = randomField(rng, f % 8 < 4 ? 0 : f % 4);
+        HeightfieldGrid grid(*field);
+        if (f % 2 == 1) grid.keepNormals(someCells(*field, rng), 256);
+        Pose pose = randomPose(rng, false);
+        for (int k = 0; k < 3; ++k)
+            if (unit(rng) < 0.5) pose.position[k] = someZero();
+        if (f % 5 == 4) pose.rotation.coeffs()[f % 3] = -0.0;
+        for (int k = 0; k < 200; ++k) {
+            const double r = std::min(field->cellX(), field->cellZ()) * std::pow(10.0, -3.0 + 3.3 * unit(rng));
+            const double margin = unit(rng) < 0.2 ? 0.0 : 0.4 * r * unit(rng);
+            Vec3 local = pointNear(*field, rng, r);
+            for (int a = 0; a < 3; a += 2)
+                if (unit(rng) < 0.1) local[a] = someZero();  // over a cell line through the origin
+            Vec3 centre = pose.apply(local);
+            for (int a = 0; a < 3; a += 2)
+                if (unit(rng) < 0.1) centre[a] = someZero();
+            int expected = 0;
+            ++cases;
+            ASSERT_TRUE(sameContactsAsReference(*field, grid, centre, r, pose, margin, expected))
+                << "field " << f << " case " << k;
+            withContacts += expected > 0;
+        }
+    }
+    EXPECT_GT(withContacts, cases / 4);
+}
+
 TEST(HeightfieldSphere, ReachesTheCellsForTrianglesInVisits) {
     // The narrowphase's cells (two ends at once in SSE2 lanes, or one by one near a cell line)
     // against HeightfieldData::forTrianglesIn's floor((t − origin) / cell), over random fields,
