@@ -116,25 +116,6 @@ inline void changeVelocityOnStill(Vec3& v, double w, const Vec3& change) {
     v += w * p;
 }
 
-/// Eq. 4 for an attachment whose particle is `delta` short of the body's point (c = |delta|,
-/// c2 = c²), multiplier lambda (updated) and compliance term α̃ = α / h², between generalised
-/// inverse masses w + w_body = wLinear + angular / c² (Eqs. 2-3: `angular` is
-/// (r × delta)ᵀ I⁻¹ (r × delta), 0 when wLinear holds the whole sum). Returns the factor f of
-/// the impulse Δλ n = Δλ delta / c = f delta. Written over c² (Δλ = c² (c − α̃ λ) /
-/// ((wLinear + α̃) c² + angular)), a hard attachment's impulse waits for one division and no
-/// square root: the rim's run of attachments is a chain, each correction moving the body the
-/// next one starts from. A hard attachment (α̃ = 0) leaves λ alone: with no α̃ λ term and no
-/// force readout nothing reads it, so its link costs one division, not two and a square root.
-inline double attachmentImpulse(double& lambda, double alphaTilde, double c2, double wLinear, double angular) {
-    const double denominator = (wLinear + alphaTilde) * c2 + angular;
-    if (alphaTilde == 0.0) return c2 / denominator;  // Eq. 4 with α̃ = 0: Δλ = c / (w + w_body)
-    const double c = std::sqrt(c2);
-    const double deltaLambda = c2 * (c - alphaTilde * lambda) / denominator;  // Eq. 4
-    const double factor = (c2 - alphaTilde * lambda * c) / denominator;
-    lambda += deltaLambda;
-    return factor;
-}
-
 }  // namespace
 
 void SoftSystem::addAttachments(const SoftBodyDef& def, SoftBodyData& data,
@@ -189,26 +170,6 @@ void SoftSystem::solveAttachments(SolverContext& ctx) {
     solveAttachmentRange(ctx, 0, attachments_.size());
 }
 
-// Inlined into the runs' loop: a link is a few dozen operations, and a call's saves and the
-// run's state reloaded after it cost a good part of them.
-[[gnu::always_inline]] inline void SoftSystem::solveAttachmentLink(AttachmentRun& run, Attachment& a, double invH2) {
-    const Vec3 r0 = run.rotation * a.local;
-    const Vec3 r = r0 + run.turned.cross(r0);
-    const Vec3 delta = run.position + r - x_[a.particle];
-    const double c2 = delta.squaredNorm();
-    if (!(c2 > kDirectionEpsilon * kDirectionEpsilon)) return;
-    const double w = invMass_[a.particle];
-    const Vec3 rd = r.cross(delta);
-    const Vec3 spin = run.inverseInertia * rd;
-    const double angular = rd.dot(spin);  // Eqs. 2-3, times c²
-    // p = f delta, so I⁻¹ (r × p) = f I⁻¹ (r × delta): the body's turn reuses what its inverse
-    // mass took, one multiplication after the division on the chain.
-    const double factor = attachmentImpulse(a.lambda, a.compliance * invH2, c2, w + run.inverseMass, angular);
-    x_[a.particle] += (w * factor) * delta;          // Eq. 6
-    run.position -= (run.inverseMass * factor) * delta;  // Eq. 7, the body receiving −p
-    run.turned -= factor * spin;                      // Eq. 8
-}
-
 void SoftSystem::solveAttachmentRange(SolverContext& ctx, size_t first, size_t end) {
     // Gauss-Seidel: attachments come grouped by rigid body, and a run of them to one body (a
     // rim holds hundreds) keeps the body's pose in local variables: its rotation matrix and
@@ -219,9 +180,10 @@ void SoftSystem::solveAttachmentRange(SolverContext& ctx, size_t first, size_t e
     //
     // Each correction moves the body the next one starts from, so a run is one dependent chain
     // (a division and two dozen products per link). Runs that share no body and no particle
-    // touch disjoint state, so up to kAttachmentLanes consecutive ones are stepped in turn,
-    // link by link: the same operations in the same order per run, the same bits as one run
-    // after the other, with the chains overlapping in the processor (rc_car's four rims).
+    // touch disjoint state, so up to kAttachmentLanes consecutive ones are stepped side by side,
+    // link by link (attachment_run.h: in vector lanes where the CPU has them): the same
+    // operations in the same order per run, the same bits as one run after the other, with the
+    // chains overlapping in the processor (rc_car's four rims).
     size_t k = first;
     while (k < end) {
         std::array<AttachmentRun, kAttachmentLanes> lanes;
@@ -237,21 +199,13 @@ void SoftSystem::solveAttachmentRange(SolverContext& ctx, size_t first, size_t e
             lanes[laneCount++] = run;
         }
         for (int l = 0; l < laneCount; ++l) lanes[l].begin(ctx.bodies[lanes[l].bodyIndex]);
-        size_t shortest = lanes[0].end - lanes[0].next;
-        for (int l = 1; l < laneCount; ++l) shortest = std::min(shortest, lanes[l].end - lanes[l].next);
-        const double invH2 = ctx.invH2;
-        // The common length link by link across the lanes, then each lane's rest.
-        for (size_t link = 0; link < shortest; ++link)
-            for (int l = 0; l < laneCount; ++l) solveAttachmentLink(lanes[l], attachments_[lanes[l].next++], invH2);
-        for (int l = 0; l < laneCount; ++l) {
-            AttachmentRun& run = lanes[l];
-            while (run.next < run.end) solveAttachmentLink(run, attachments_[run.next++], invH2);
-            run.finish(ctx.bodies[run.bodyIndex]);
-        }
+        solveAttachmentRuns(std::span(lanes.data(), laneCount), attachments_.data(), x_.data(), invMass_.data(),
+                            ctx.invH2);
+        for (int l = 0; l < laneCount; ++l) lanes[l].finish(ctx.bodies[lanes[l].bodyIndex]);
     }
 }
 
-SoftSystem::AttachmentRun SoftSystem::attachmentRunAt(size_t first, size_t end) const {
+AttachmentRun SoftSystem::attachmentRunAt(size_t first, size_t end) const {
     AttachmentRun run;
     run.bodyIndex = attachments_[first].body;
     run.next = run.end = first;
@@ -262,22 +216,6 @@ SoftSystem::AttachmentRun SoftSystem::attachmentRunAt(size_t first, size_t end) 
         ++run.end;
     }
     return run;
-}
-
-void SoftSystem::AttachmentRun::begin(const Body& b) {
-    moves = b.invMass > 0.0;
-    turns = moves && b.rotates();
-    rotation = b.q.toRotationMatrix();
-    inverseInertia = turns ? Mat3(rotation * b.invInertia.asDiagonal() * rotation.transpose()) : Mat3::Zero();
-    inverseMass = moves ? b.invMass : 0.0;
-    position = b.x;
-    turned = Vec3::Zero();
-}
-
-void SoftSystem::AttachmentRun::finish(Body& b) const {
-    if (!moves) return;
-    b.x = position;
-    if (turns) integrateRotation(b.q, turned);  // Eq. 9 by the exact map, as moveBody does
 }
 
 void SoftSystem::groupContactPatches() {

@@ -15,6 +15,7 @@
 #include "physics/correction.h"
 #include "physics/handles.h"
 #include "physics/math.h"
+#include "physics/soft/attachment_run.h"
 #include "physics/soft/element_batch.h"
 #include "physics/soft/lattice.h"
 #include "physics/soft/rigid_mode.h"
@@ -152,36 +153,8 @@ private:
         RigidModeMoments moments;
         bool momentsKept = false;
     };
-    /// A particle held to a point of a rigid body (principal frame).
-    struct Attachment {
-        uint32_t particle = 0;
-        uint32_t body = 0;
-        Vec3 local = Vec3::Zero();
-        double compliance = 0.0;
-        double lambda = 0.0;
-    };
-    /// solveAttachments' Gauss-Seidel state of a run of attachments to one body: the body's
-    /// pose in local variables (its rotation matrix and world inverse inertia from the run's
-    /// start, its position and the run's accumulated turn), and the particles it holds.
-    struct AttachmentRun {
-        size_t next = 0, end = 0;  ///< the attachments still to solve
-        uint32_t bodyIndex = 0;
-        uint32_t lowParticle = 0, highParticle = 0;
-        bool moves = false, turns = false;
-        double inverseMass = 0.0;
-        Mat3 rotation = Mat3::Identity();
-        Mat3 inverseInertia = Mat3::Zero();
-        Vec3 position = Vec3::Zero(), turned = Vec3::Zero();
-        void begin(const Body& b);
-        /// Writes the position and the turn back to the body.
-        void finish(Body& b) const;
-    };
-    /// Runs solved link by link in turn (solveAttachments).
-    static constexpr int kAttachmentLanes = 4;
     /// The run of attachments to one body that starts at `first` (and ends by `end`).
     AttachmentRun attachmentRunAt(size_t first, size_t end) const;
-    /// One attachment of a run (Eqs. 2-9): moves its particle and the run's body.
-    void solveAttachmentLink(AttachmentRun& run, Attachment& a, double invH2);
     /// The Gauss-Seidel attachments [first, end) of attachments_.
     void solveAttachmentRange(SolverContext& ctx, size_t first, size_t end);
     /// What every substep reads of a candidate (BodyCandidates::skips, beside its candidates): the
