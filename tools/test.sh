@@ -58,9 +58,9 @@ if [[ $stages == *" asan "* ]]; then
     registry_test view_test body_components_test physics_system_test physics_system_changes_test
     scene_entities_test
     # engine/physics: the world, contacts and corrections; the soft kernels' lanes alike
-    world_test contact_test correction_test mass_properties_test heightfield_test
+    world_test contact_test correction_test mass_properties_test heightfield_test heightfield_turns_test
     distance_joint_test hinge_joint_test spherical_joint_test prismatic_joint_test fixed_joint_test
-    soft_element_batch_test soft_shape_matching_test soft_rigid_mode_test
+    soft_element_batch_test soft_shape_matching_test soft_rigid_mode_test soft_attachment_run_test
     # sandbox: whole-or-nothing outputs
     atomic_file_test output_transaction_test csv_writer_test
   )

@@ -53,16 +53,25 @@ constexpr double kLaneTurn2 = 1e-6;
     z = __builtin_shufflevector(__builtin_shufflevector(v0, v1, 2, 9, 0, 0, 6, 13, 4, 4), v2, 0, 1, 8, 11, 4, 5, 12, 15);
 }
 
-/// The inverse of the above (simd::storePoints on both halves).
-[[gnu::always_inline]] inline void storePoints(double* a, double* b, const WideLanes& x, const WideLanes& y,
-                                               const WideLanes& z) {
+/// The inverse of the above, as rows: row k holds doubles 4k to 4k + 3 of the first run's 12 in
+/// lanes 0-3 and of the second's in lanes 4-7 (simd::storePoints' on both halves).
+[[gnu::always_inline]] inline void pointRows(const WideLanes& x, const WideLanes& y, const WideLanes& z,
+                                             WideLanes (&rows)[3]) {
     const WideLanes xy01 = __builtin_shufflevector(x, y, 0, 8, 1, 9, 4, 12, 5, 13);
     const WideLanes xy23 = __builtin_shufflevector(x, y, 2, 10, 3, 11, 6, 14, 7, 15);
     const WideLanes yz12 = __builtin_shufflevector(y, z, 1, 9, 2, 10, 5, 13, 6, 14);
-    split(a, b, __builtin_shufflevector(xy01, z, 0, 1, 8, 2, 4, 5, 12, 6));
-    split(a + 4, b + 4, __builtin_shufflevector(yz12, xy23, 0, 1, 8, 9, 4, 5, 12, 13));
+    rows[0] = __builtin_shufflevector(xy01, z, 0, 1, 8, 2, 4, 5, 12, 6);
+    rows[1] = __builtin_shufflevector(yz12, xy23, 0, 1, 8, 9, 4, 5, 12, 13);
     const WideLanes xyz23 = __builtin_shufflevector(xy23, z, 2, 3, 10, 11, 6, 7, 14, 15);
-    split(a + 8, b + 8, __builtin_shufflevector(xyz23, xyz23, 2, 0, 1, 3, 6, 4, 5, 7));
+    rows[2] = __builtin_shufflevector(xyz23, xyz23, 2, 0, 1, 3, 6, 4, 5, 7);
+}
+
+/// The inverse of the two runs' loadPoints.
+[[gnu::always_inline]] inline void storePoints(double* a, double* b, const WideLanes& x, const WideLanes& y,
+                                               const WideLanes& z) {
+    WideLanes rows[3];
+    pointRows(x, y, z, rows);
+    for (int k = 0; k < 3; ++k) split(a + 4 * k, b + 4 * k, rows[k]);
 }
 
 static_assert(sizeof(Quat) == 4 * sizeof(double), "rotations are read as packed (x, y, z, w)");
@@ -152,16 +161,11 @@ static_assert(sizeof(Quat) == 4 * sizeof(double), "rotations are read as packed 
 /// storePoints for two runs, of their first `countA` and `countB` points only (ElementBatch::rows).
 [[gnu::always_inline]] inline void storePoints(double* a, double* b, const WideLanes& x, const WideLanes& y,
                                                const WideLanes& z, int countA, int countB) {
-    const WideLanes xy01 = __builtin_shufflevector(x, y, 0, 8, 1, 9, 4, 12, 5, 13);
-    const WideLanes xy23 = __builtin_shufflevector(x, y, 2, 10, 3, 11, 6, 14, 7, 15);
-    const WideLanes yz12 = __builtin_shufflevector(y, z, 1, 9, 2, 10, 5, 13, 6, 14);
-    const WideLanes xyz23 = __builtin_shufflevector(xy23, z, 2, 3, 10, 11, 6, 7, 14, 15);
-    const WideLanes v[3] = {__builtin_shufflevector(xy01, z, 0, 1, 8, 2, 4, 5, 12, 6),
-                            __builtin_shufflevector(yz12, xy23, 0, 1, 8, 9, 4, 5, 12, 13),
-                            __builtin_shufflevector(xyz23, xyz23, 2, 0, 1, 3, 6, 4, 5, 7)};
+    WideLanes rows[3];
+    pointRows(x, y, z, rows);
     for (int k = 0; k < 3; ++k) {
-        storeFirst(a + 4 * k, __builtin_shufflevector(v[k], v[k], 0, 1, 2, 3), 3 * countA - 4 * k);
-        storeFirst(b + 4 * k, __builtin_shufflevector(v[k], v[k], 4, 5, 6, 7), 3 * countB - 4 * k);
+        storeFirst(a + 4 * k, __builtin_shufflevector(rows[k], rows[k], 0, 1, 2, 3), 3 * countA - 4 * k);
+        storeFirst(b + 4 * k, __builtin_shufflevector(rows[k], rows[k], 4, 5, 6, 7), 3 * countB - 4 * k);
     }
 }
 
