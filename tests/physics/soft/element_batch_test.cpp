@@ -506,10 +506,8 @@ TEST(ElementBatch, RingEndsLoadAsRowsInEightLanes) {
         EXPECT_GT(rowsBatches, 0u) << label;
         EXPECT_GT(strays, 0u) << label;  // paired
         // A wave's ring ends pair among themselves and with the contiguous batches left over.
-        {
-            for (const auto& [wave, unpaired] : unpairedOfWave) {
-                EXPECT_LE(unpaired, 1) << label << ", wave " << wave;
-            }
+        for (const auto& [wave, unpaired] : unpairedOfWave) {
+            EXPECT_LE(unpaired, 1) << label << ", wave " << wave;
         }
         Elements four = wide, scalar(buildTyreLattice(0.3, 0.2, 0.15, cells), false, false, true);
         scalar.x = wide.x;  // the scalar sweep, in the lattice's order: the same particles
