@@ -57,14 +57,6 @@ double highestSampleUnder(const HeightfieldData& field, const Vec3& lo, const Ve
     return highest;
 }
 
-/// pose.applyInverse(p), the same bits: for a pose in the world's axes (`plain`: its rotation
-/// the plain identity) and a finite p − position, that difference (heightfield_turns.h).
-Vec3 intoFrame(const Pose& pose, bool plain, const Vec3& p) {
-    const Vec3 d = p - pose.position;
-    if (plain && heightfield_turns::isFinite(d)) return heightfield_turns::unturned(d);
-    return pose.applyInverse(p);
-}
-
 /// Lower bounds on the gap between a particle's sphere and a static shape, for the particles of
 /// one soft body in a frame (all inside `softBox`, world). The narrowphase's points are not a
 /// bound (a heightfield reports the triangles under the sphere), so each shape gets its own:
@@ -98,13 +90,13 @@ public:
     double operator()(const Vec3& p, double reach) const {
         switch (shape_.type) {
             case ShapeType::Box: {
-                const Vec3 local = intoFrame(pose_, plain_, p);
+                const Vec3 local = heightfield_turns::applyInverse(pose_, plain_, p);
                 return (local.cwiseAbs() - 0.5 * shape_.size).cwiseMax(0.0).norm() - radius_;
             }
             case ShapeType::Plane: return shape_.normal.dot(p) - shape_.offset - radius_;
             case ShapeType::Heightfield: {
                 if (!shape_.heightfield || !grid_) return 0.0;
-                const Vec3 local = intoFrame(pose_, plain_, p);
+                const Vec3 local = heightfield_turns::applyInverse(pose_, plain_, p);
                 const double side = std::min({local.x() - column_.min.x(), column_.max.x() - local.x(),
                                               local.z() - column_.min.z(), column_.max.z() - local.z()});
                 // The old bound, the height above the whole field's highest sample, can be the
@@ -128,7 +120,7 @@ public:
 private:
     const Shape& shape_;
     Pose pose_;
-    bool plain_;  ///< pose_ is in the world's axes: its turns are shifts
+    bool plain_;  ///< pose_ is in the world's axes: its turns are shifts (heightfield_turns.h)
     Aabb bounds_;
     double radius_;
     Aabb column_;  ///< heightfield: the soft body's box in its frame
