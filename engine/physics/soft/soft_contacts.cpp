@@ -235,7 +235,7 @@ void SoftSystem::BodyCandidates::clear() {
 }
 
 SoftSystem::Candidate& SoftSystem::BodyCandidates::add(const Candidate& candidate, double gap, const Vec3& origin) {
-    skips.push_back({.origin = origin, .gap = gap, .particle = candidate.particle});
+    skips.add(origin, gap, candidate.particle);
     return candidates.emplace_back(candidate);
 }
 
@@ -302,26 +302,18 @@ void SoftSystem::findBodyContacts(BodyCandidates& own, std::span<const Body> bod
     bool plain = false;  // the body's rotation is the plain identity (heightfield_turns.h)
     // Candidates come grouped by soft body, then rigid body: poses and probes are made once
     // per group.
-    // The particle's distance to a static shape changes by at most its own displacement: a
-    // particle still further than the margin from it cannot touch it in this substep (compared
-    // squared: most candidates of a rolling tyre are skipped here). The test runs over every
-    // candidate first, without a branch, listing those it keeps in order: a rolling tyre's
-    // candidates pass and fail it at random, and the mispredicted branch cost more than the test.
+    // The candidates that may touch in this substep (candidate_skips.h: most candidates of a
+    // rolling tyre are skipped there).
     own.kept.resize(own.candidates.size());
-    uint32_t* kept = own.kept.data();
-    size_t keptCount = 0;
-    // The kept ones' records are fetched meanwhile, for the loop after this one: a rolling tyre
-    // keeps about a fifth of its candidates, scattered, and each was a cache miss there.
-    const Candidate* candidates = own.candidates.data();
-    for (size_t index = 0; index < own.skips.size(); ++index) {
-        const CandidateSkip& skip = own.skips[index];
-        const double slack = skip.gap - margin;
-        const bool skipped = (slack > 0.0) & ((x_[skip.particle] - skip.origin).squaredNorm() < slack * slack);
-        kept[keptCount] = static_cast<uint32_t>(index);
-        keptCount += !skipped;
-        __builtin_prefetch(candidates + (index & (size_t{0} - !skipped)));  // a skipped one: the first's
-    }
+    const uint32_t* const kept = own.kept.data();
+    const size_t keptCount = keepUnskipped(own.skips, x_.data(), margin, own.kept.data());
+    // The kept ones' records are fetched ahead: a rolling tyre keeps about a fifth of its
+    // candidates, scattered, and each was a cache miss.
+    const Candidate* const candidates = own.candidates.data();
+    constexpr size_t kFetchAhead = 8;
+    for (size_t n = 0; n < std::min(keptCount, kFetchAhead); ++n) __builtin_prefetch(candidates + kept[n]);
     for (size_t n = 0; n < keptCount; ++n) {
+        if (n + kFetchAhead < keptCount) __builtin_prefetch(candidates + kept[n + kFetchAhead]);
         Candidate& candidate = own.candidates[kept[n]];
         const Vec3& x = x_[candidate.particle];
         // Or it is above every sample of the cells the narrowphase would visit (a rolling tread

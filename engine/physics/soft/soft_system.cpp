@@ -267,7 +267,7 @@ void SoftSystem::forgetBody(uint32_t bodyIndex) {
         for (size_t k = 0; k < own.candidates.size(); ++k) {
             if (own.candidates[k].body == bodyIndex) continue;
             own.candidates[kept] = own.candidates[k];
-            own.skips[kept++] = own.skips[k];
+            own.skips.move(k, kept++);
         }
         own.candidates.resize(kept);
         own.skips.resize(kept);

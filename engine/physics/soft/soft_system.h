@@ -16,6 +16,7 @@
 #include "physics/handles.h"
 #include "physics/math.h"
 #include "physics/soft/attachment_run.h"
+#include "physics/soft/candidate_skips.h"
 #include "physics/soft/element_batch.h"
 #include "physics/soft/lattice.h"
 #include "physics/soft/rigid_mode.h"
@@ -157,17 +158,8 @@ private:
     AttachmentRun attachmentRunAt(size_t first, size_t end) const;
     /// The Gauss-Seidel attachments [first, end) of attachments_.
     void solveAttachmentRange(SolverContext& ctx, size_t first, size_t end);
-    /// What every substep reads of a candidate (BodyCandidates::skips, beside its candidates): the
-    /// particle sphere's gap to a static body's shape when the frame began (m), and where the
-    /// particle was: the substeps skip the pair while the gap less the particle's displacement
-    /// exceeds the contact margin. −∞ for a moving body (never skipped). Kept apart from the
-    /// rest, so that the skip loop over every candidate reads 40 bytes of each, not 96.
-    struct CandidateSkip {
-        Vec3 origin = Vec3::Zero();
-        double gap = 0.0;
-        uint32_t particle = 0;
-    };
-    /// A particle and a rigid body that may touch this frame (its skip data in CandidateSkip).
+    /// A particle and a rigid body that may touch this frame (its skip data, which every substep
+    /// reads, apart in BodyCandidates::skips: candidate_skips.h).
     struct Candidate {
         uint32_t particle = 0;
         uint32_t body = 0;
@@ -299,7 +291,7 @@ private:
     /// are in contacts_. One per soft body slot, its storage reused frame after frame.
     struct BodyCandidates {
         std::vector<Candidate> candidates;
-        std::vector<CandidateSkip> skips;
+        CandidateSkips skips;
         std::vector<uint32_t> kept;
         std::vector<FieldGrid> fieldGrids;  ///< the first fieldGridCount are this frame's
         size_t fieldGridCount = 0;
