@@ -527,13 +527,13 @@ void SoftSystem::keepPassedMoments(size_t first, size_t end) {
     keep();
 }
 
-void SoftSystem::damp(double dt, WorkerPool* pool) {
+void SoftSystem::damp(double dt, WorkerPool* pool, ElementLanes lanes) {
     for (SoftBodyData& body : bodies_) body.momentsKept = false;  // the velocities change
     // Each element's deformation rate, its batches' lanes side by side (element_damping.h);
     // with a pool, each body's batches on a thread of their own.
     const DampingArrays arrays{.positions = x_, .velocities = v_, .mass = mass_, .damping = elementDamping_};
     forEachBodyBatches(pool, [&](uint32_t first, uint32_t end) {
-        dampElementBatches(std::span(batches_).subspan(first, end - first), arrays, dt);
+        dampElementBatches(std::span(batches_).subspan(first, end - first), arrays, dt, lanes);
     });
 }
 

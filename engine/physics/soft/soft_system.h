@@ -97,8 +97,8 @@ public:
     bool bodiesApart() const { return bodiesApart_; }
 
     /// Once per frame, after the substeps: damps each element's deformation rate (elementDamping_;
-    /// with a pool, body by body on its threads).
-    void damp(double dt, WorkerPool* pool = nullptr);
+    /// with a pool, body by body on its threads; `lanes`: element_damping.h, the same bits).
+    void damp(double dt, WorkerPool* pool = nullptr, ElementLanes lanes = ElementLanes::Widest);
 
     SoftEnergies energies(const Vec3& gravity) const;
     bool isFinite() const;
