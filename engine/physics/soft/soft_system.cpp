@@ -169,7 +169,7 @@ void SoftSystem::destroy(SoftBodyId id) {
         if (a.particle >= endParticle) a.particle -= particleCount;
     for (BodyCandidates& own : bodyCandidates_) own.clear();
     contacts_.clear();
-    attachmentRangesListed_ = false;
+    attachmentsChanged();
     dead = SoftBodyData{};
     freeBodies_.push_back(id.index);
     --liveBodies_;
@@ -272,7 +272,7 @@ void SoftSystem::forgetBody(uint32_t bodyIndex) {
         own.candidates.resize(kept);
         own.skips.resize(kept);
     }
-    attachmentRangesListed_ = false;
+    attachmentsChanged();
     std::erase_if(contacts_, [&](const ParticleContact& c) { return c.body == bodyIndex; });
     bodiesApart_ = false;  // the shares' contact ranges are gone: the serial solve until findContacts
 }
