@@ -59,6 +59,25 @@ void solveAttachmentRuns(std::span<AttachmentRun> runs, Attachment* attachments,
         while (run.next < run.end) solveAttachmentLink(run, attachments[run.next++], x, invMass, invH2);
 }
 
+AttachmentRun attachmentRunAt(std::span<const Attachment> attachments, size_t first, size_t end) {
+    AttachmentRun run;
+    run.bodyIndex = attachments[first].body;
+    run.next = run.end = first;
+    run.lowParticle = run.highParticle = attachments[first].particle;
+    while (run.end < end && attachments[run.end].body == run.bodyIndex) {
+        run.lowParticle = std::min(run.lowParticle, attachments[run.end].particle);
+        run.highParticle = std::max(run.highParticle, attachments[run.end].particle);
+        ++run.end;
+    }
+    return run;
+}
+
+void listAttachmentRuns(std::span<const Attachment> attachments, std::vector<AttachmentRun>& runs) {
+    runs.clear();
+    for (size_t k = 0; k < attachments.size(); k = runs.back().end)
+        runs.push_back(attachmentRunAt(attachments, k, attachments.size()));
+}
+
 void AttachmentRun::begin(const Body& b) {
     moves = b.invMass > 0.0;
     turns = moves && b.rotates();

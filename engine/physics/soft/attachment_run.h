@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstdint>
 #include <span>
+#include <vector>
 
 namespace substep {
 
@@ -42,6 +43,15 @@ struct AttachmentRun {
     /// Writes the position and the turn back to the body.
     void finish(Body& b) const;
 };
+
+/// The run of attachments to one body that starts at `first` and ends by `end` (not begun):
+/// the longest such stretch, with the range of the particles it holds.
+AttachmentRun attachmentRunAt(std::span<const Attachment> attachments, size_t first, size_t end);
+
+/// Every run of `attachments` (attachmentRunAt one after the other, to the list's end) into
+/// `runs` (replaced). The solve steps them every substep; they change only with the
+/// attachments (SoftSystem keeps them).
+void listAttachmentRuns(std::span<const Attachment> attachments, std::vector<AttachmentRun>& runs);
 
 /// Runs stepped side by side (rc_car's four rims; four doubles in an AVX2 register).
 inline constexpr int kAttachmentLanes = 4;

@@ -1,8 +1,8 @@
 #pragma once
 /// Each element's deformation rate damped once per frame (SoftSystem::damp), four elements at a
-/// time: the batches of the shape-matching projection (element_batch.h) hold elements that
-/// share no particle, so their lanes damp side by side what the elements one after the other
-/// would.
+/// time (eight with AVX-512): the batches of the shape-matching projection (element_batch.h)
+/// hold elements that share no particle, so their lanes damp side by side what the elements one
+/// after the other would.
 ///
 /// Per element, each corner's velocity moves towards the element's rigid motion
 /// v̄ + ω × (x − c) (mass-weighted with the particles' masses: c the centre of mass, v̄ the mean
@@ -26,7 +26,15 @@ struct DampingArrays {
     std::span<const double> damping;    ///< per element: k (1/s); ≤ 0 leaves it alone
 };
 
-/// Damps every batch's elements over a frame of length dt.
-void dampElementBatches(std::span<const ElementBatch> batches, const DampingArrays& arrays, double dt);
+/// Damps every batch's elements over a frame of length dt: eight lanes (the sweep's pairs of
+/// batches, ElementBatch::partnerAhead) where the CPU has x86-64-v4 and `lanes` is Widest,
+/// else four; the same bits either way (each lane's arithmetic is the same, and a pair's
+/// batches, of one wave, share no particle).
+void dampElementBatches(std::span<const ElementBatch> batches, const DampingArrays& arrays, double dt,
+                        ElementLanes lanes = ElementLanes::Widest);
+
+/// The eight lanes (element_damping_wide.cpp); only on a CPU where wideElementLanes().
+[[gnu::target("arch=x86-64-v4")]] void dampElementBatchesWide(std::span<const ElementBatch> batches,
+                                                              const DampingArrays& arrays, double dt);
 
 }  // namespace substep

@@ -120,7 +120,6 @@ inline void changeVelocityOnStill(Vec3& v, double w, const Vec3& change) {
 
 void SoftSystem::addAttachments(const SoftBodyDef& def, SoftBodyData& data,
                                 const Lattice& lattice, std::span<const Body> bodies) {
-    attachmentRangesListed_ = false;
     ContactManifold manifold;
     for (const SoftAttachmentDef& attach : def.attachments) {
         const uint32_t bodyIndex = attach.body.isNull() ? 0 : attach.body.index;
@@ -146,6 +145,12 @@ void SoftSystem::addAttachments(const SoftBodyDef& def, SoftBodyData& data,
                                     .compliance = attach.compliance});
         }
     }
+    attachmentsChanged();
+}
+
+void SoftSystem::attachmentsChanged() {
+    listAttachmentRuns(attachments_, attachmentRuns_);
+    attachmentRangesListed_ = false;
 }
 
 void SoftSystem::solveAttachments(SolverContext& ctx) {
@@ -184,12 +189,26 @@ void SoftSystem::solveAttachmentRange(SolverContext& ctx, size_t first, size_t e
     // link by link (attachment_run.h: in vector lanes where the CPU has them): the same
     // operations in the same order per run, the same bits as one run after the other, with the
     // chains overlapping in the processor (rc_car's four rims).
+    //
+    // The runs come from attachmentRuns_, listed when the attachments change, not every
+    // substep; a run that [first, end) cuts (two soft bodies' shares holding one still body one
+    // after the other) is found afresh.
+    size_t cached = static_cast<size_t>(
+        std::partition_point(attachmentRuns_.begin(), attachmentRuns_.end(),
+                             [&](const AttachmentRun& run) { return run.next < first; }) -
+        attachmentRuns_.begin());
+    const auto runAt = [&](size_t k) {
+        while (cached < attachmentRuns_.size() && attachmentRuns_[cached].next < k) ++cached;
+        const bool kept = cached < attachmentRuns_.size() && attachmentRuns_[cached].next == k &&
+                          attachmentRuns_[cached].end <= end;
+        return kept ? attachmentRuns_[cached] : attachmentRunAt(attachments_, k, end);
+    };
     size_t k = first;
     while (k < end) {
         std::array<AttachmentRun, kAttachmentLanes> lanes;
         int laneCount = 0;
         while (laneCount < kAttachmentLanes && k < end) {
-            AttachmentRun run = attachmentRunAt(k, end);
+            const AttachmentRun run = runAt(k);
             bool independent = true;
             for (int l = 0; l < laneCount; ++l)
                 independent = independent && run.bodyIndex != lanes[l].bodyIndex &&
@@ -203,19 +222,6 @@ void SoftSystem::solveAttachmentRange(SolverContext& ctx, size_t first, size_t e
                             ctx.invH2);
         for (int l = 0; l < laneCount; ++l) lanes[l].finish(ctx.bodies[lanes[l].bodyIndex]);
     }
-}
-
-AttachmentRun SoftSystem::attachmentRunAt(size_t first, size_t end) const {
-    AttachmentRun run;
-    run.bodyIndex = attachments_[first].body;
-    run.next = run.end = first;
-    run.lowParticle = run.highParticle = attachments_[first].particle;
-    while (run.end < end && attachments_[run.end].body == run.bodyIndex) {
-        run.lowParticle = std::min(run.lowParticle, attachments_[run.end].particle);
-        run.highParticle = std::max(run.highParticle, attachments_[run.end].particle);
-        ++run.end;
-    }
-    return run;
 }
 
 void SoftSystem::groupContactPatches() {

@@ -169,7 +169,7 @@ void SoftSystem::destroy(SoftBodyId id) {
         if (a.particle >= endParticle) a.particle -= particleCount;
     for (BodyCandidates& own : bodyCandidates_) own.clear();
     contacts_.clear();
-    attachmentRangesListed_ = false;
+    attachmentsChanged();
     dead = SoftBodyData{};
     freeBodies_.push_back(id.index);
     --liveBodies_;
@@ -272,7 +272,7 @@ void SoftSystem::forgetBody(uint32_t bodyIndex) {
         own.candidates.resize(kept);
         own.skips.resize(kept);
     }
-    attachmentRangesListed_ = false;
+    attachmentsChanged();
     std::erase_if(contacts_, [&](const ParticleContact& c) { return c.body == bodyIndex; });
     bodiesApart_ = false;  // the shares' contact ranges are gone: the serial solve until findContacts
 }
@@ -527,13 +527,13 @@ void SoftSystem::keepPassedMoments(size_t first, size_t end) {
     keep();
 }
 
-void SoftSystem::damp(double dt, WorkerPool* pool) {
+void SoftSystem::damp(double dt, WorkerPool* pool, ElementLanes lanes) {
     for (SoftBodyData& body : bodies_) body.momentsKept = false;  // the velocities change
     // Each element's deformation rate, its batches' lanes side by side (element_damping.h);
     // with a pool, each body's batches on a thread of their own.
     const DampingArrays arrays{.positions = x_, .velocities = v_, .mass = mass_, .damping = elementDamping_};
     forEachBodyBatches(pool, [&](uint32_t first, uint32_t end) {
-        dampElementBatches(std::span(batches_).subspan(first, end - first), arrays, dt);
+        dampElementBatches(std::span(batches_).subspan(first, end - first), arrays, dt, lanes);
     });
 }
 

@@ -98,8 +98,8 @@ public:
     bool bodiesApart() const { return bodiesApart_; }
 
     /// Once per frame, after the substeps: damps each element's deformation rate (elementDamping_;
-    /// with a pool, body by body on its threads).
-    void damp(double dt, WorkerPool* pool = nullptr);
+    /// with a pool, body by body on its threads; `lanes`: element_damping.h, the same bits).
+    void damp(double dt, WorkerPool* pool = nullptr, ElementLanes lanes = ElementLanes::Widest);
 
     SoftEnergies energies(const Vec3& gravity) const;
     bool isFinite() const;
@@ -127,6 +127,9 @@ public:
     std::span<const Vec3> particleVelocities() const { return v_; }
     /// Element count over all soft bodies.
     size_t elementCount() const { return elements_.size(); }
+    /// The attachments, and their runs as the solve steps them (attachment_run.h; for tests).
+    std::span<const Attachment> attachments() const { return attachments_; }
+    std::span<const AttachmentRun> attachmentRuns() const { return attachmentRuns_; }
 
     /// One Gauss-Seidel sweep over every element's shape-matching (and volume) constraint;
     /// public for the benchmarks of the projection cost (`lanes`: element_batch.h).
@@ -154,8 +157,8 @@ private:
         RigidModeMoments moments;
         bool momentsKept = false;
     };
-    /// The run of attachments to one body that starts at `first` (and ends by `end`).
-    AttachmentRun attachmentRunAt(size_t first, size_t end) const;
+    /// Lists attachmentRuns_ and the ranges again: every edit of attachments_ calls it.
+    void attachmentsChanged();
     /// The Gauss-Seidel attachments [first, end) of attachments_.
     void solveAttachmentRange(SolverContext& ctx, size_t first, size_t end);
     /// A particle and a rigid body that may touch this frame (its skip data, which every substep
@@ -277,6 +280,9 @@ private:
     std::vector<uint32_t> freeBodies_;
     int liveBodies_ = 0;
     std::vector<Attachment> attachments_;
+    /// attachments_' runs (listAttachmentRuns), listed when they change (attachmentsChanged), not
+    /// every substep.
+    std::vector<AttachmentRun> attachmentRuns_;
     /// A soft body and a static heightfield it has candidates on this frame: the field's grid
     /// with the normals of the cells under the soft body kept (heightfield_sphere.h), for the
     /// candidates' gap bounds and every substep's contacts.

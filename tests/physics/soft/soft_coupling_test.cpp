@@ -5,7 +5,8 @@
 // which rigid bodies a soft body's particles meet (collectCandidates): never the bodies it is
 // attached to, only those the collision filters let through, and every other one, a tyre resting
 // on a box at its closed-form height; attachments one after the other close their gaps to a light
-// body as to a heavy one, and rims whose runs are solved side by side move as each alone.
+// body as to a heavy one, and rims whose runs are solved side by side move as each alone; the
+// runs kept between substeps follow every edit of the attachments.
 #include "soft_test_support.h"
 
 #include "physics_test_support.h"
@@ -13,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <span>
 #include <utility>
 #include <vector>
 
@@ -375,6 +377,87 @@ TEST(SoftCoupling, RimsSolvedSideBySideMoveAsEachAlone) {
         ASSERT_EQ(x.size(), y.size());
         EXPECT_TRUE(std::equal(x.begin(), x.end(), y.begin())) << "tyre " << k;
     }
+}
+
+/// The runs of `attachments` found afresh: each stretch of consecutive attachments to one body.
+std::vector<AttachmentRun> freshRuns(std::span<const Attachment> attachments) {
+    std::vector<AttachmentRun> runs;
+    for (size_t k = 0; k < attachments.size(); ++k) {
+        if (k == 0 || attachments[k].body != attachments[k - 1].body) {
+            runs.emplace_back();
+            runs.back().bodyIndex = attachments[k].body, runs.back().next = k;
+            runs.back().lowParticle = runs.back().highParticle = attachments[k].particle;
+        }
+        AttachmentRun& run = runs.back();
+        run.end = k + 1;
+        run.lowParticle = std::min(run.lowParticle, attachments[k].particle);
+        run.highParticle = std::max(run.highParticle, attachments[k].particle);
+    }
+    return runs;
+}
+
+/// Whether the soft system's kept runs are the runs of its attachments now.
+::testing::AssertionResult runsAreFresh(const World& world) {
+    const SoftSystem& soft = *world.softBodies();
+    const std::vector<AttachmentRun> fresh = freshRuns(soft.attachments());
+    const std::span<const AttachmentRun> kept = soft.attachmentRuns();
+    if (kept.size() != fresh.size())
+        return ::testing::AssertionFailure() << kept.size() << " runs kept, " << fresh.size() << " now";
+    for (size_t r = 0; r < kept.size(); ++r) {
+        const AttachmentRun &a = kept[r], &b = fresh[r];
+        if (a.next != b.next || a.end != b.end || a.bodyIndex != b.bodyIndex || a.lowParticle != b.lowParticle ||
+            a.highParticle != b.highParticle)
+            return ::testing::AssertionFailure() << "run " << r << " of body " << a.bodyIndex << " kept, of body "
+                                                 << b.bodyIndex << " now";
+    }
+    return ::testing::AssertionSuccess();
+}
+
+TEST(SoftCoupling, KeptAttachmentRunsFollowEveryEditOfTheAttachments) {
+    // The runs the solve steps are listed when the attachments change, not every substep: after
+    // each kind of edit (a soft body added, one destroyed, a rigid body destroyed) they are the
+    // runs of the attachments as they are, and the world steps on with them.
+    World world = worldWithGround(20, false);
+    std::vector<std::pair<BodyId, SoftBodyId>> parts;
+    const auto step = [&] {
+        for (int frame = 0; frame < 3; ++frame) world.step(1.0 / 60.0);
+    };
+    for (int k = 0; k < 3; ++k) parts.push_back(addSwingingTyre(world, Vec3(2.0 * k, 1, 0), 0.1, 24 + 6 * k));
+    // A tyre held by two rims: two runs of one soft body.
+    const auto [second, unused] = addSwingingTyre(world, Vec3(8.0, 1, 0), 0.1, 24);
+    (void)unused;
+    SoftBodyDef twice{.type = SoftBodyType::Tyre, .outerRadius = 0.35, .innerRadius = 0.25, .width = 0.1,
+                      .cells = {24, 2, 2}, .position = world.body(parts[1].first).x, .orientation = kAxisAlongZ,
+                      .density = 500.0, .compliance = 1e-7, .collide = false};
+    twice.attachments.push_back({.body = parts[1].first, .particles = SoftAttachmentParticles::Inner});
+    twice.attachments.push_back({.body = second, .particles = SoftAttachmentParticles::Inner});
+    const SoftBodyId shared = world.createSoftBody(twice);
+    EXPECT_TRUE(runsAreFresh(world));
+    EXPECT_EQ(world.softBodies()->attachmentRuns().size(), 6u);
+    step();
+    EXPECT_TRUE(runsAreFresh(world));
+
+    world.destroySoftBody(parts[0].second);  // the first: every later particle moves down
+    EXPECT_TRUE(runsAreFresh(world));
+    EXPECT_EQ(world.softBodies()->attachmentRuns().size(), 5u);
+    step();
+
+    parts.push_back(addSwingingTyre(world, Vec3(10.0, 1, 0), 0.1, 30));  // into the freed slot
+    EXPECT_TRUE(runsAreFresh(world));
+    EXPECT_EQ(world.softBodies()->attachmentRuns().size(), 6u);
+    step();
+
+    world.destroyBody(second);  // a rigid body: its runs go, the shared tyre keeps the other
+    EXPECT_TRUE(runsAreFresh(world));
+    EXPECT_EQ(world.softBodies()->attachmentRuns().size(), 4u);
+    step();
+
+    world.destroySoftBody(shared);
+    EXPECT_TRUE(runsAreFresh(world));
+    EXPECT_EQ(world.softBodies()->attachmentRuns().size(), 3u);
+    step();
+    EXPECT_TRUE(runsAreFresh(world));
+    EXPECT_TRUE(world.softBodies()->isFinite());
 }
 
 }  // namespace
