@@ -1,0 +1,29 @@
+// Groups of still contacts in the four lanes of an AVX2 register (still_contact_lanes_kernel.h).
+#include "physics/soft/still_contacts.h"
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+
+#if !defined(__clang__)
+#pragma GCC push_options
+#pragma GCC target("avx2")
+#endif
+#include "physics/soft/still_contact_lanes_kernel.h"
+#if !defined(__clang__)
+#pragma GCC pop_options
+#endif
+
+namespace substep {
+
+[[gnu::target("avx2")]] void solveStillPositionsInLanes(ParticleContact* contacts, size_t groups, const ContactParticles& particles,
+        const ContactStep& step) {
+    for (size_t g = 0; g < groups; ++g) stillPositionsInLanes<4>(contacts + g * 4, particles, step);
+}
+
+[[gnu::target("avx2")]] void solveStillVelocitiesInLanes(const ParticleContact* contacts, size_t groups,
+        const ContactParticles& particles, const ContactStep& step) {
+    for (size_t g = 0; g < groups; ++g) stillVelocitiesInLanes<4>(contacts + g * 4, particles, step);
+}
+
+}  // namespace substep
