@@ -246,7 +246,7 @@ void SoftSystem::solveContactsPerParticle(SolverContext& ctx, size_t first, size
     const int group = stillContactGroup(StillContactLanes::Widest);
     forContactGroups(
         contacts, group,
-        [&](size_t k, size_t groups) { solveStillPositionGroups(&contacts[k], group, groups, particles, step); },
+        [&](size_t k, size_t count) { solveStillPositionGroups(&contacts[k], group, count, particles, step); },
         [&](size_t k) {
             ParticleContact& c = contacts[k];
             if (c.still) {
@@ -380,8 +380,8 @@ void SoftSystem::solveContactVelocities(Body* bodies, double h, double gravity, 
     const int group = patchFriction_ ? 0 : stillContactGroup(StillContactLanes::Widest);
     forContactGroups(
         std::span(contacts_).subspan(first, end - first), group,
-        [&](size_t k, size_t groups) {
-            solveStillVelocityGroups(&contacts_[first + k], group, groups, particles, step);
+        [&](size_t k, size_t count) {
+            solveStillVelocityGroups(&contacts_[first + k], group, count, particles, step);
         },
         [&](size_t index) {
             const size_t k = first + index;

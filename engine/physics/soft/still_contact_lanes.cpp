@@ -1,6 +1,7 @@
 // Groups of still contacts in the four lanes of an AVX2 register (still_contact_lanes_kernel.h).
 #include "physics/soft/still_contacts.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -16,14 +17,16 @@
 
 namespace substep {
 
-[[gnu::target("avx2")]] void solveStillPositionsInLanes(ParticleContact* contacts, size_t groups, const ContactParticles& particles,
+[[gnu::target("avx2")]] void solveStillPositionsInLanes(ParticleContact* contacts, size_t count, const ContactParticles& particles,
         const ContactStep& step) {
-    for (size_t g = 0; g < groups; ++g) stillPositionsInLanes<4>(contacts + g * 4, particles, step);
+    for (size_t first = 0; first < count; first += 4)
+        stillPositionsInLanes<4>(contacts + first, static_cast<int>(std::min<size_t>(4, count - first)), particles, step);
 }
 
-[[gnu::target("avx2")]] void solveStillVelocitiesInLanes(const ParticleContact* contacts, size_t groups,
+[[gnu::target("avx2")]] void solveStillVelocitiesInLanes(const ParticleContact* contacts, size_t count,
         const ContactParticles& particles, const ContactStep& step) {
-    for (size_t g = 0; g < groups; ++g) stillVelocitiesInLanes<4>(contacts + g * 4, particles, step);
+    for (size_t first = 0; first < count; first += 4)
+        stillVelocitiesInLanes<4>(contacts + first, static_cast<int>(std::min<size_t>(4, count - first)), particles, step);
 }
 
 }  // namespace substep

@@ -71,32 +71,42 @@ static_assert(offsetof(ParticleContact, anchor) + 3 * sizeof(double) == sizeof(P
     r[3] = __builtin_shufflevector(t1, t3, 2, 3, 10, 11, 6, 7, 14, 15);
 }
 
-/// The four doubles at byte `offset` of contacts[0, 4) as four lanes each.
-[[gnu::always_inline]] inline void loadColumns(const ParticleContact* contacts, size_t offset, FourLanes (&out)[4]) {
-    for (int l = 0; l < 4; ++l) load(out[l], reinterpret_cast<const char*>(contacts + l) + offset);
+/// The four doubles at byte `offset` of lane l's contact as four lanes each.
+template <class C>
+[[gnu::always_inline]] inline void loadColumns(C* const (&lane)[4], size_t offset, FourLanes (&out)[4]) {
+    for (int l = 0; l < 4; ++l) load(out[l], reinterpret_cast<const char*>(lane[l]) + offset);
     transpose(out);
 }
-/// ... of contacts[0, 8): contact l's and l + 4's rows side by side, transposed by halves.
-[[gnu::always_inline]] inline void loadColumns(const ParticleContact* contacts, size_t offset, EightLanes (&out)[4]) {
+/// ... of eight lanes: contact l's and l + 4's rows side by side, transposed by halves.
+template <class C>
+[[gnu::always_inline]] inline void loadColumns(C* const (&lane)[8], size_t offset, EightLanes (&out)[4]) {
     for (int l = 0; l < 4; ++l) {
         FourLanes low, high;
-        load(low, reinterpret_cast<const char*>(contacts + l) + offset);
-        load(high, reinterpret_cast<const char*>(contacts + l + 4) + offset);
+        load(low, reinterpret_cast<const char*>(lane[l]) + offset);
+        load(high, reinterpret_cast<const char*>(lane[l + 4]) + offset);
         out[l] = __builtin_shufflevector(low, high, 0, 1, 2, 3, 4, 5, 6, 7);
     }
     transpose(out);
 }
 /// The inverse of loadColumns.
-[[gnu::always_inline]] inline void storeColumns(ParticleContact* contacts, size_t offset, FourLanes (&in)[4]) {
+[[gnu::always_inline]] inline void storeColumns(ParticleContact* const (&lane)[4], size_t offset, FourLanes (&in)[4]) {
     transpose(in);
-    for (int l = 0; l < 4; ++l) store(reinterpret_cast<char*>(contacts + l) + offset, in[l]);
+    for (int l = 0; l < 4; ++l) store(reinterpret_cast<char*>(lane[l]) + offset, in[l]);
 }
-[[gnu::always_inline]] inline void storeColumns(ParticleContact* contacts, size_t offset, EightLanes (&in)[4]) {
+[[gnu::always_inline]] inline void storeColumns(ParticleContact* const (&lane)[8], size_t offset, EightLanes (&in)[4]) {
     transpose(in);
     for (int l = 0; l < 4; ++l) {
-        store(reinterpret_cast<char*>(contacts + l) + offset, __builtin_shufflevector(in[l], in[l], 0, 1, 2, 3));
-        store(reinterpret_cast<char*>(contacts + l + 4) + offset, __builtin_shufflevector(in[l], in[l], 4, 5, 6, 7));
+        store(reinterpret_cast<char*>(lane[l]) + offset, __builtin_shufflevector(in[l], in[l], 0, 1, 2, 3));
+        store(reinterpret_cast<char*>(lane[l + 4]) + offset, __builtin_shufflevector(in[l], in[l], 4, 5, 6, 7));
     }
+}
+
+/// Lane l's contact: contacts[l], the last of `count` (1 to L) in the lanes past it. A lane
+/// that repeats a contact reads what the other one reads and writes what it writes: the group
+/// solves each contact once.
+template <int L, class C>
+[[gnu::always_inline]] inline void laneContacts(C* contacts, int count, C* (&lane)[L]) {
+    for (int l = 0; l < L; ++l) lane[l] = contacts + (l < count ? l : count - 1);
 }
 
 /// L doubles, the comparisons' lanes (all ones where true), and three coordinates by lanes.
@@ -179,21 +189,23 @@ struct StillLanes {
     [[gnu::always_inline]] static Vec3 get(const V& in, int l) { return Vec3(in.x[l], in.y[l], in.z[l]); }
 };
 
-/// solveStillContactPosition of contacts[0, L) in lanes.
+/// solveStillContactPosition of contacts[0, count) in lanes, count ≤ L.
 template <int L>
-[[gnu::always_inline]] inline void stillPositionsInLanes(ParticleContact* contacts, const ContactParticles& particles,
-                                                         const ContactStep& step) {
+[[gnu::always_inline]] inline void stillPositionsInLanes(ParticleContact* contacts, int count,
+                                                         const ContactParticles& particles, const ContactStep& step) {
     using S = StillLanes<L>;
     using D = typename S::D;
     using M = typename S::M;
     using V = typename S::V;
     uint32_t index[L];
-    for (int l = 0; l < L; ++l) index[l] = contacts[l].particle;
+    decltype(contacts) lane[L];
+    laneContacts<L>(contacts, count, lane);
+    for (int l = 0; l < L; ++l) index[l] = lane[l]->particle;
     D normal[4], coefficients[4], tangent[4], anchored[4];
-    loadColumns(contacts, offsetof(ParticleContact, normal), normal);                // n, radius
-    loadColumns(contacts, offsetof(ParticleContact, staticFriction), coefficients);  // μ_s, μ_d, e, λ_n
-    loadColumns(contacts, offsetof(ParticleContact, lambdaTangent), tangent);        // λ_t, friction impulse
-    loadColumns(contacts, offsetof(ParticleContact, anchor) - sizeof(double), anchored);  // (still), anchor
+    loadColumns(lane, offsetof(ParticleContact, normal), normal);                // n, radius
+    loadColumns(lane, offsetof(ParticleContact, staticFriction), coefficients);  // μ_s, μ_d, e, λ_n
+    loadColumns(lane, offsetof(ParticleContact, lambdaTangent), tangent);        // λ_t, friction impulse
+    loadColumns(lane, offsetof(ParticleContact, anchor) - sizeof(double), anchored);  // (still), anchor
     const V n = {normal[0], normal[1], normal[2]}, anchor = {anchored[1], anchored[2], anchored[3]};
     const D radius = normal[3], mu = coefficients[0];
     D lambdaNormal = coefficients[3], lambdaTangent = tangent[0];
@@ -241,27 +253,29 @@ template <int L>
 
     coefficients[3] = lambdaNormal;
     tangent[0] = lambdaTangent, tangent[1] = friction.x, tangent[2] = friction.y, tangent[3] = friction.z;
-    storeColumns(contacts, offsetof(ParticleContact, staticFriction), coefficients);
-    storeColumns(contacts, offsetof(ParticleContact, lambdaTangent), tangent);
+    storeColumns(lane, offsetof(ParticleContact, staticFriction), coefficients);
+    storeColumns(lane, offsetof(ParticleContact, lambdaTangent), tangent);
     for (int l = 0; l < L; ++l) {
         particles.x[index[l]] = S::get(x, l);
         particles.heldImpulse[index[l]] = held[l];
     }
 }
 
-/// solveStillContactVelocity (not slid) of contacts[0, L) in lanes.
+/// solveStillContactVelocity (not slid) of contacts[0, count) in lanes, count ≤ L.
 template <int L>
-[[gnu::always_inline]] inline void stillVelocitiesInLanes(const ParticleContact* contacts,
+[[gnu::always_inline]] inline void stillVelocitiesInLanes(const ParticleContact* contacts, int count,
                                                           const ContactParticles& particles, const ContactStep& step) {
     using S = StillLanes<L>;
     using D = typename S::D;
     using M = typename S::M;
     using V = typename S::V;
     uint32_t index[L];
-    for (int l = 0; l < L; ++l) index[l] = contacts[l].particle;
+    decltype(contacts) lane[L];
+    laneContacts<L>(contacts, count, lane);
+    for (int l = 0; l < L; ++l) index[l] = lane[l]->particle;
     D normal[4], coefficients[4];
-    loadColumns(contacts, offsetof(ParticleContact, normal), normal);                // n, radius
-    loadColumns(contacts, offsetof(ParticleContact, staticFriction), coefficients);  // μ_s, μ_d, e, λ_n
+    loadColumns(lane, offsetof(ParticleContact, normal), normal);                // n, radius
+    loadColumns(lane, offsetof(ParticleContact, staticFriction), coefficients);  // μ_s, μ_d, e, λ_n
     const V n = {normal[0], normal[1], normal[2]};
     const D mu = coefficients[1], restitution = coefficients[2], lambdaNormal = coefficients[3];
     V v = S::gather(particles.v, index);

@@ -94,16 +94,16 @@ void solveStillContactVelocity(const ParticleContact& c, const ContactParticles&
     changeVelocityOnStill(v, w, -std::min(maxChange, slipSpeed) * t);
 }
 
-void solveStillPositionGroups(ParticleContact* contacts, int group, size_t groups, const ContactParticles& particles,
+void solveStillPositionGroups(ParticleContact* contacts, int group, size_t count, const ContactParticles& particles,
                               const ContactStep& step) {
-    if (group == 8) solveStillPositionsInWideLanes(contacts, groups, particles, step);
-    else solveStillPositionsInLanes(contacts, groups, particles, step);
+    if (group == 8) solveStillPositionsInWideLanes(contacts, count, particles, step);
+    else solveStillPositionsInLanes(contacts, count, particles, step);
 }
 
-void solveStillVelocityGroups(const ParticleContact* contacts, int group, size_t groups,
+void solveStillVelocityGroups(const ParticleContact* contacts, int group, size_t count,
                               const ContactParticles& particles, const ContactStep& step) {
-    if (group == 8) solveStillVelocitiesInWideLanes(contacts, groups, particles, step);
-    else solveStillVelocitiesInLanes(contacts, groups, particles, step);
+    if (group == 8) solveStillVelocitiesInWideLanes(contacts, count, particles, step);
+    else solveStillVelocitiesInLanes(contacts, count, particles, step);
 }
 
 }  // namespace substep

@@ -11,6 +11,7 @@
 #include "physics/math.h"
 #include "physics/soft/particle_contact.h"
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -74,39 +75,57 @@ void solveStillContactPosition(ParticleContact& c, const ContactParticles& parti
 void solveStillContactVelocity(const ParticleContact& c, const ContactParticles& particles, const ContactStep& step,
                                bool slid);
 
-/// solveStillContactPosition / solveStillContactVelocity (not slid) of contacts[0, groups
-/// group): `groups` consecutive groups (isStillGroup) of `group` = stillContactGroup(...)
-/// contacts, each group's side by side.
-void solveStillPositionGroups(ParticleContact* contacts, int group, size_t groups, const ContactParticles& particles,
+/// The number of contacts from `contacts` on (at most `most`) that are still, on distinct
+/// particles: a run's end that one more group takes.
+inline size_t stillPrefix(const ParticleContact* contacts, size_t most) {
+    size_t p = 0;
+    for (; p < most && contacts[p].still; ++p)
+        for (size_t j = 0; j < p; ++j)
+            if (contacts[j].particle == contacts[p].particle) return p;
+    return p;
+}
+
+/// A run's end this short goes one by one (a group costs about as much as three contacts one
+/// by one).
+inline constexpr size_t kShortestGroup = 3;
+
+/// solveStillContactPosition / solveStillContactVelocity (not slid) of contacts[0, count), in
+/// groups of `group` = stillContactGroup(...) side by side, the last one maybe shorter: each
+/// group (its first `group` contacts and the rest) still on distinct particles (isStillGroup).
+void solveStillPositionGroups(ParticleContact* contacts, int group, size_t count, const ContactParticles& particles,
                               const ContactStep& step);
-void solveStillVelocityGroups(const ParticleContact* contacts, int group, size_t groups,
+void solveStillVelocityGroups(const ParticleContact* contacts, int group, size_t count,
                               const ContactParticles& particles, const ContactStep& step);
 
 /// The kernels, compiled for AVX2 (four lanes) and x86-64-v4 (eight); only on a CPU with them.
-void solveStillPositionsInLanes(ParticleContact* contacts, size_t groups, const ContactParticles& particles,
+void solveStillPositionsInLanes(ParticleContact* contacts, size_t count, const ContactParticles& particles,
                                 const ContactStep& step);
-void solveStillVelocitiesInLanes(const ParticleContact* contacts, size_t groups, const ContactParticles& particles,
+void solveStillVelocitiesInLanes(const ParticleContact* contacts, size_t count, const ContactParticles& particles,
                                  const ContactStep& step);
-void solveStillPositionsInWideLanes(ParticleContact* contacts, size_t groups, const ContactParticles& particles,
+void solveStillPositionsInWideLanes(ParticleContact* contacts, size_t count, const ContactParticles& particles,
                                     const ContactStep& step);
-void solveStillVelocitiesInWideLanes(const ParticleContact* contacts, size_t groups,
+void solveStillVelocitiesInWideLanes(const ParticleContact* contacts, size_t count,
                                      const ContactParticles& particles, const ContactStep& step);
 
 /// The contacts in order, each run of consecutive groups of `group` still contacts on distinct
-/// particles (isStillGroup) solved in lanes by `inGroups(first, groups)`, every other contact
-/// by `one(index)`: the bits of `one` for every contact, where `inGroups` gives `one`'s bits.
-/// (A run goes to the lanes whole: consecutive groups overlap in the processor.)
-template <class InGroups, class One>
-void forContactGroups(std::span<const ParticleContact> contacts, int group, InGroups&& inGroups, One&& one) {
+/// particles (isStillGroup), and its end where kShortestGroup or more of them, solved in lanes
+/// by `inLanes(first, count)`, every other contact by `one(index)`: the bits of `one` for every
+/// contact, where `inLanes` gives `one`'s bits. (A run goes to the lanes whole: consecutive
+/// groups overlap in the processor.)
+template <class InLanes, class One>
+void forContactGroups(std::span<const ParticleContact> contacts, int group, InLanes&& inLanes, One&& one) {
     const size_t n = contacts.size(), size = static_cast<size_t>(group);
     size_t k = 0;
     while (k < n) {
-        size_t groups = 0;
-        while (group > 0 && n - k - groups * size >= size && isStillGroup(contacts.data() + k + groups * size, group))
-            ++groups;
-        if (groups > 0) {
-            inGroups(k, groups);
-            k += groups * size;
+        size_t run = 0;
+        if (group > 0) {
+            while (n - k - run >= size && isStillGroup(contacts.data() + k + run, group)) run += size;
+            const size_t end = stillPrefix(contacts.data() + k + run, std::min(size - 1, n - k - run));
+            if (end >= kShortestGroup) run += end;
+        }
+        if (run > 0) {
+            inLanes(k, run);
+            k += run;
             continue;
         }
         one(k);

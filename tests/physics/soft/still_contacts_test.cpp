@@ -175,7 +175,7 @@ int solveInGroups(ContactsCase& c, int group) {
         c.contacts, group,
         [&](size_t k, size_t count) {
             solveStillPositionGroups(&c.contacts[k], group, count, particles, c.step);
-            groups += static_cast<int>(count);
+            groups += static_cast<int>((count + static_cast<size_t>(group) - 1) / static_cast<size_t>(group));
         },
         [&](size_t k) {
             ParticleContact& contact = c.contacts[k];
