@@ -17,16 +17,23 @@
 
 namespace substep {
 
-[[gnu::target("avx2")]] void solveStillPositionsInLanes(ParticleContact* contacts, size_t count, const ContactParticles& particles,
-        const ContactStep& step) {
+[[gnu::target("avx2")]] void solveStillPositionsInLanes(ParticleContact* contacts, size_t count,
+                                                        const ContactParticles& particles,
+                                                        const ContactStep& step) {
     for (size_t first = 0; first < count; first += 4)
-        stillPositionsInLanes<4>(contacts + first, static_cast<int>(std::min<size_t>(4, count - first)), particles, step);
+        stillPositionsInLanes<4>(contacts + first,
+                                 static_cast<int>(std::min<size_t>(4, count - first)), particles,
+                                 step);
 }
 
-[[gnu::target("avx2")]] void solveStillVelocitiesInLanes(const ParticleContact* contacts, size_t count,
-        const ContactParticles& particles, const ContactStep& step) {
+[[gnu::target("avx2")]] void solveStillVelocitiesInLanes(const ParticleContact* contacts,
+                                                         size_t count,
+                                                         const ContactParticles& particles,
+                                                         const ContactStep& step) {
     for (size_t first = 0; first < count; first += 4)
-        stillVelocitiesInLanes<4>(contacts + first, static_cast<int>(std::min<size_t>(4, count - first)), particles, step);
+        stillVelocitiesInLanes<4>(contacts + first,
+                                  static_cast<int>(std::min<size_t>(4, count - first)), particles,
+                                  step);
 }
 
 }  // namespace substep

@@ -1,11 +1,11 @@
 #pragma once
 /// The kernel of still contacts in vector lanes (still_contacts.h): a group of L contacts on
-/// distinct particles, one per lane, each lane doing still_contacts.cpp's operations in its
-/// order, so the same bits: Eigen's dot products and squared norms of 3-vectors sum as
-/// (p0 + p1) + p2, std::min(a, b) is b < a ? b : a and std::max(a, b) a < b ? b : a (their
-/// NaN and ±0 cases alike), and each early return is a lane mask, the lane's state kept where it
-/// is clear. The files that include it (still_contact_lanes.cpp for AVX2, *_wide.cpp for
-/// x86-64-v4) are compiled without fusing a multiply and an add (-ffp-contract=off,
+/// distinct particles (or fewer, the last repeated in the spare lanes), one per lane, each doing
+/// still_contacts.cpp's operations in its order, so the same bits: Eigen's dot products and squared
+/// norms of 3-vectors sum as (p0 + p1) + p2, std::min(a, b) is b < a ? b : a and std::max(a, b) a <
+/// b ? b : a (their NaN and ±0 cases alike), and each early return is a lane mask, the lane's state
+/// kept where it is clear. The files that include it (still_contact_lanes.cpp for AVX2, *_wide.cpp
+/// for x86-64-v4) are compiled without fusing a multiply and an add (-ffp-contract=off,
 /// engine/physics/CMakeLists.txt), and include it under their target pragma (GCC lowers the
 /// vector compares and selects of a function for the target it is defined under).
 
@@ -44,21 +44,34 @@ struct LaneType<8> {
 // four contacts (each half of eight lanes alike), its own inverse. Lanes are built from loads
 // and shuffles in registers: filled element by element, GCC wrote them to the stack and read
 // them back whole, which store forwarding cannot serve.
-static_assert(offsetof(ParticleContact, radius) == offsetof(ParticleContact, normal) + 3 * sizeof(double));
-static_assert(offsetof(ParticleContact, staticFriction) == offsetof(ParticleContact, normal) + 4 * sizeof(double));
-static_assert(offsetof(ParticleContact, lambdaNormal) == offsetof(ParticleContact, staticFriction) + 3 * sizeof(double));
-static_assert(offsetof(ParticleContact, frictionImpulse) == offsetof(ParticleContact, lambdaTangent) + sizeof(double));
-static_assert(offsetof(ParticleContact, lambdaTangent) == offsetof(ParticleContact, staticFriction) + 4 * sizeof(double));
+static_assert(offsetof(ParticleContact, radius) ==
+              offsetof(ParticleContact, normal) + 3 * sizeof(double));
+static_assert(offsetof(ParticleContact, staticFriction) ==
+              offsetof(ParticleContact, normal) + 4 * sizeof(double));
+static_assert(offsetof(ParticleContact, lambdaNormal) ==
+              offsetof(ParticleContact, staticFriction) + 3 * sizeof(double));
+static_assert(offsetof(ParticleContact, frictionImpulse) ==
+              offsetof(ParticleContact, lambdaTangent) + sizeof(double));
+static_assert(offsetof(ParticleContact, lambdaTangent) ==
+              offsetof(ParticleContact, staticFriction) + 4 * sizeof(double));
 static_assert(offsetof(ParticleContact, anchor) + 3 * sizeof(double) == sizeof(ParticleContact));
 
-[[gnu::always_inline]] inline void load(FourLanes& v, const void* p) { std::memcpy(&v, p, sizeof v); }
-[[gnu::always_inline]] inline void store(void* p, const FourLanes& v) { std::memcpy(p, &v, sizeof v); }
+[[gnu::always_inline]] inline void load(FourLanes& v, const void* p) {
+    std::memcpy(&v, p, sizeof v);
+}
+[[gnu::always_inline]] inline void store(void* p, const FourLanes& v) {
+    std::memcpy(p, &v, sizeof v);
+}
 
 [[gnu::always_inline]] inline void transpose(FourLanes (&r)[4]) {
-    const FourLanes t0 = __builtin_shufflevector(r[0], r[1], 0, 4, 2, 6), t1 = __builtin_shufflevector(r[0], r[1], 1, 5, 3, 7);
-    const FourLanes t2 = __builtin_shufflevector(r[2], r[3], 0, 4, 2, 6), t3 = __builtin_shufflevector(r[2], r[3], 1, 5, 3, 7);
-    r[0] = __builtin_shufflevector(t0, t2, 0, 1, 4, 5), r[1] = __builtin_shufflevector(t1, t3, 0, 1, 4, 5);
-    r[2] = __builtin_shufflevector(t0, t2, 2, 3, 6, 7), r[3] = __builtin_shufflevector(t1, t3, 2, 3, 6, 7);
+    const FourLanes t0 = __builtin_shufflevector(r[0], r[1], 0, 4, 2, 6),
+                    t1 = __builtin_shufflevector(r[0], r[1], 1, 5, 3, 7);
+    const FourLanes t2 = __builtin_shufflevector(r[2], r[3], 0, 4, 2, 6),
+                    t3 = __builtin_shufflevector(r[2], r[3], 1, 5, 3, 7);
+    r[0] = __builtin_shufflevector(t0, t2, 0, 1, 4, 5),
+    r[1] = __builtin_shufflevector(t1, t3, 0, 1, 4, 5);
+    r[2] = __builtin_shufflevector(t0, t2, 2, 3, 6, 7),
+    r[3] = __builtin_shufflevector(t1, t3, 2, 3, 6, 7);
 }
 [[gnu::always_inline]] inline void transpose(EightLanes (&r)[4]) {
     const EightLanes t0 = __builtin_shufflevector(r[0], r[1], 0, 8, 2, 10, 4, 12, 6, 14);
@@ -73,13 +86,16 @@ static_assert(offsetof(ParticleContact, anchor) + 3 * sizeof(double) == sizeof(P
 
 /// The four doubles at byte `offset` of lane l's contact as four lanes each.
 template <class C>
-[[gnu::always_inline]] inline void loadColumns(C* const (&lane)[4], size_t offset, FourLanes (&out)[4]) {
-    for (int l = 0; l < 4; ++l) load(out[l], reinterpret_cast<const char*>(lane[l]) + offset);
+[[gnu::always_inline]] inline void loadColumns(C* const (&lane)[4], size_t offset,
+                                               FourLanes (&out)[4]) {
+    for (int l = 0; l < 4; ++l)
+        load(out[l], reinterpret_cast<const char*>(lane[l]) + offset);
     transpose(out);
 }
 /// ... of eight lanes: contact l's and l + 4's rows side by side, transposed by halves.
 template <class C>
-[[gnu::always_inline]] inline void loadColumns(C* const (&lane)[8], size_t offset, EightLanes (&out)[4]) {
+[[gnu::always_inline]] inline void loadColumns(C* const (&lane)[8], size_t offset,
+                                               EightLanes (&out)[4]) {
     for (int l = 0; l < 4; ++l) {
         FourLanes low, high;
         load(low, reinterpret_cast<const char*>(lane[l]) + offset);
@@ -89,15 +105,20 @@ template <class C>
     transpose(out);
 }
 /// The inverse of loadColumns.
-[[gnu::always_inline]] inline void storeColumns(ParticleContact* const (&lane)[4], size_t offset, FourLanes (&in)[4]) {
+[[gnu::always_inline]] inline void storeColumns(ParticleContact* const (&lane)[4], size_t offset,
+                                                FourLanes (&in)[4]) {
     transpose(in);
-    for (int l = 0; l < 4; ++l) store(reinterpret_cast<char*>(lane[l]) + offset, in[l]);
+    for (int l = 0; l < 4; ++l)
+        store(reinterpret_cast<char*>(lane[l]) + offset, in[l]);
 }
-[[gnu::always_inline]] inline void storeColumns(ParticleContact* const (&lane)[8], size_t offset, EightLanes (&in)[4]) {
+[[gnu::always_inline]] inline void storeColumns(ParticleContact* const (&lane)[8], size_t offset,
+                                                EightLanes (&in)[4]) {
     transpose(in);
     for (int l = 0; l < 4; ++l) {
-        store(reinterpret_cast<char*>(lane[l]) + offset, __builtin_shufflevector(in[l], in[l], 0, 1, 2, 3));
-        store(reinterpret_cast<char*>(lane[l + 4]) + offset, __builtin_shufflevector(in[l], in[l], 4, 5, 6, 7));
+        store(reinterpret_cast<char*>(lane[l]) + offset,
+              __builtin_shufflevector(in[l], in[l], 0, 1, 2, 3));
+        store(reinterpret_cast<char*>(lane[l + 4]) + offset,
+              __builtin_shufflevector(in[l], in[l], 4, 5, 6, 7));
     }
 }
 
@@ -106,7 +127,8 @@ template <class C>
 /// solves each contact once.
 template <int L, class C>
 [[gnu::always_inline]] inline void laneContacts(C* contacts, int count, C* (&lane)[L]) {
-    for (int l = 0; l < L; ++l) lane[l] = contacts + (l < count ? l : count - 1);
+    for (int l = 0; l < L; ++l)
+        lane[l] = contacts + (l < count ? l : count - 1);
 }
 
 /// L doubles, the comparisons' lanes (all ones where true), and three coordinates by lanes.
@@ -121,7 +143,8 @@ struct StillLanes {
     /// s in every lane (bit for bit: adding it to zeros would turn −0 into +0).
     [[gnu::always_inline]] static D all(double s) {
         D out;
-        for (int l = 0; l < L; ++l) out[l] = s;
+        for (int l = 0; l < L; ++l)
+            out[l] = s;
         return out;
     }
     /// f(l) in lane l, built in registers.
@@ -141,7 +164,8 @@ struct StillLanes {
     /// elements (a 32-byte load would read past the last particle).
     [[gnu::always_inline]] static V gather(const Vec3* points, const uint32_t (&index)[L]) {
         TwoDoubles xy[L];
-        for (int l = 0; l < L; ++l) std::memcpy(&xy[l], points[index[l]].data(), sizeof xy[l]);
+        for (int l = 0; l < L; ++l)
+            std::memcpy(&xy[l], points[index[l]].data(), sizeof xy[l]);
         D pairs0, pairs1;  // x0 y0 x1 y1 ..., the first and second half of the lanes
         if constexpr (L == 4) {
             pairs0 = __builtin_shufflevector(xy[0], xy[1], 0, 1, 2, 3);
@@ -165,15 +189,16 @@ struct StillLanes {
         out.z = lanesOf([&](size_t l) { return points[index[l]].z(); });
         return out;
     }
-    [[gnu::always_inline]] static D dot(const V& a, const V& b) { return (a.x * b.x + a.y * b.y) + a.z * b.z; }
+    [[gnu::always_inline]] static D dot(const V& a, const V& b) {
+        return (a.x * b.x + a.y * b.y) + a.z * b.z;
+    }
     [[gnu::always_inline]] static D sqrt(D a) {
-        for (int l = 0; l < L; ++l) a[l] = std::sqrt(a[l]);
+        for (int l = 0; l < L; ++l)
+            a[l] = std::sqrt(a[l]);
         return a;
     }
     /// |a| (the sign bit cleared, as std::abs).
-    [[gnu::always_inline]] static D abs(const D& a) {
-        return (D)((M)a & (M{} + INT64_MAX));
-    }
+    [[gnu::always_inline]] static D abs(const D& a) { return (D)((M)a & (M{} + INT64_MAX)); }
     [[gnu::always_inline]] static D select(const M& m, const D& a, const D& b) { return m ? a : b; }
     [[gnu::always_inline]] static V select(const M& m, const V& a, const V& b) {
         return {m ? a.x : b.x, m ? a.y : b.y, m ? a.z : b.z};
@@ -185,14 +210,19 @@ struct StillLanes {
     [[gnu::always_inline]] static V plusScaled(const V& a, const D& s, const V& b) {
         return {a.x + s * b.x, a.y + s * b.y, a.z + s * b.z};
     }
-    [[gnu::always_inline]] static V divided(const V& a, const D& s) { return {a.x / s, a.y / s, a.z / s}; }
-    [[gnu::always_inline]] static Vec3 get(const V& in, int l) { return Vec3(in.x[l], in.y[l], in.z[l]); }
+    [[gnu::always_inline]] static V divided(const V& a, const D& s) {
+        return {a.x / s, a.y / s, a.z / s};
+    }
+    [[gnu::always_inline]] static Vec3 get(const V& in, int l) {
+        return Vec3(in.x[l], in.y[l], in.z[l]);
+    }
 };
 
 /// solveStillContactPosition of contacts[0, count) in lanes, count ≤ L.
 template <int L>
 [[gnu::always_inline]] inline void stillPositionsInLanes(ParticleContact* contacts, int count,
-                                                         const ContactParticles& particles, const ContactStep& step) {
+                                                         const ContactParticles& particles,
+                                                         const ContactStep& step) {
     using S = StillLanes<L>;
     using D = typename S::D;
     using M = typename S::M;
@@ -200,12 +230,14 @@ template <int L>
     uint32_t index[L];
     decltype(contacts) lane[L];
     laneContacts<L>(contacts, count, lane);
-    for (int l = 0; l < L; ++l) index[l] = lane[l]->particle;
+    for (int l = 0; l < L; ++l)
+        index[l] = lane[l]->particle;
     D normal[4], coefficients[4], tangent[4], anchored[4];
     loadColumns(lane, offsetof(ParticleContact, normal), normal);                // n, radius
     loadColumns(lane, offsetof(ParticleContact, staticFriction), coefficients);  // μ_s, μ_d, e, λ_n
-    loadColumns(lane, offsetof(ParticleContact, lambdaTangent), tangent);        // λ_t, friction impulse
-    loadColumns(lane, offsetof(ParticleContact, anchor) - sizeof(double), anchored);  // (still), anchor
+    loadColumns(lane, offsetof(ParticleContact, lambdaTangent), tangent);  // λ_t, friction impulse
+    // (still), anchor
+    loadColumns(lane, offsetof(ParticleContact, anchor) - sizeof(double), anchored);
     const V n = {normal[0], normal[1], normal[2]}, anchor = {anchored[1], anchored[2], anchored[3]};
     const D radius = normal[3], mu = coefficients[0];
     D lambdaNormal = coefficients[3], lambdaTangent = tangent[0];
@@ -215,7 +247,8 @@ template <int L>
     const D w = S::gather(particles.invMass, index);
     D held = S::gather(particles.heldImpulse, index);
     const D zero = S::all(0.0);
-    v = {v.x + S::all(step.gravityStep.x()), v.y + S::all(step.gravityStep.y()), v.z + S::all(step.gravityStep.z())};
+    v = {v.x + S::all(step.gravityStep.x()), v.y + S::all(step.gravityStep.y()),
+         v.z + S::all(step.gravityStep.z())};
 
     // The held impulse goes to λ_n and leaves the particle.
     const M take = held > zero;
@@ -252,7 +285,8 @@ template <int L>
     x = S::select(holds, S::minusScaled(x, w * deltaTangent, t), x);
 
     coefficients[3] = lambdaNormal;
-    tangent[0] = lambdaTangent, tangent[1] = friction.x, tangent[2] = friction.y, tangent[3] = friction.z;
+    tangent[0] = lambdaTangent, tangent[1] = friction.x, tangent[2] = friction.y,
+    tangent[3] = friction.z;
     storeColumns(lane, offsetof(ParticleContact, staticFriction), coefficients);
     storeColumns(lane, offsetof(ParticleContact, lambdaTangent), tangent);
     for (int l = 0; l < L; ++l) {
@@ -263,8 +297,10 @@ template <int L>
 
 /// solveStillContactVelocity (not slid) of contacts[0, count) in lanes, count ≤ L.
 template <int L>
-[[gnu::always_inline]] inline void stillVelocitiesInLanes(const ParticleContact* contacts, int count,
-                                                          const ContactParticles& particles, const ContactStep& step) {
+[[gnu::always_inline]] inline void stillVelocitiesInLanes(const ParticleContact* contacts,
+                                                          int count,
+                                                          const ContactParticles& particles,
+                                                          const ContactStep& step) {
     using S = StillLanes<L>;
     using D = typename S::D;
     using M = typename S::M;
@@ -272,7 +308,8 @@ template <int L>
     uint32_t index[L];
     decltype(contacts) lane[L];
     laneContacts<L>(contacts, count, lane);
-    for (int l = 0; l < L; ++l) index[l] = lane[l]->particle;
+    for (int l = 0; l < L; ++l)
+        index[l] = lane[l]->particle;
     D normal[4], coefficients[4];
     loadColumns(lane, offsetof(ParticleContact, normal), normal);                // n, radius
     loadColumns(lane, offsetof(ParticleContact, staticFriction), coefficients);  // μ_s, μ_d, e, λ_n
@@ -311,7 +348,8 @@ template <int L>
     const V frictionPulse = S::divided(frictionChange, w);
     v = S::select(slides, S::plusScaled(v, w, frictionPulse), v);
 
-    for (int l = 0; l < L; ++l) particles.v[index[l]] = S::get(v, l);
+    for (int l = 0; l < L; ++l)
+        particles.v[index[l]] = S::get(v, l);
 }
 
 }  // namespace

@@ -1,4 +1,5 @@
-// Groups of still contacts in the eight lanes of an AVX-512 register (still_contact_lanes_kernel.h).
+// Groups of still contacts in the eight lanes of an AVX-512 register
+// (still_contact_lanes_kernel.h).
 #include "physics/soft/still_contacts.h"
 
 #include <algorithm>
@@ -17,16 +18,22 @@
 
 namespace substep {
 
-[[gnu::target("arch=x86-64-v4")]] void solveStillPositionsInWideLanes(ParticleContact* contacts, size_t count, const ContactParticles& particles,
-        const ContactStep& step) {
+[[gnu::target("arch=x86-64-v4")]] void solveStillPositionsInWideLanes(
+    ParticleContact* contacts, size_t count, const ContactParticles& particles,
+    const ContactStep& step) {
     for (size_t first = 0; first < count; first += 8)
-        stillPositionsInLanes<8>(contacts + first, static_cast<int>(std::min<size_t>(8, count - first)), particles, step);
+        stillPositionsInLanes<8>(contacts + first,
+                                 static_cast<int>(std::min<size_t>(8, count - first)), particles,
+                                 step);
 }
 
-[[gnu::target("arch=x86-64-v4")]] void solveStillVelocitiesInWideLanes(const ParticleContact* contacts, size_t count,
-        const ContactParticles& particles, const ContactStep& step) {
+[[gnu::target("arch=x86-64-v4")]] void solveStillVelocitiesInWideLanes(
+    const ParticleContact* contacts, size_t count, const ContactParticles& particles,
+    const ContactStep& step) {
     for (size_t first = 0; first < count; first += 8)
-        stillVelocitiesInLanes<8>(contacts + first, static_cast<int>(std::min<size_t>(8, count - first)), particles, step);
+        stillVelocitiesInLanes<8>(contacts + first,
+                                  static_cast<int>(std::min<size_t>(8, count - first)), particles,
+                                  step);
 }
 
 }  // namespace substep

@@ -18,7 +18,8 @@ int stillContactGroup(StillContactLanes lanes) {
     return 0;
 }
 
-void solveStillContactPosition(ParticleContact& c, const ContactParticles& particles, const ContactStep& step) {
+void solveStillContactPosition(ParticleContact& c, const ContactParticles& particles,
+                               const ContactStep& step) {
     // The elements' push this particle's normal did not take first (SoftSystem::takeHeldImpulse;
     // a still body receives nothing of it).
     double& heldImpulse = particles.heldImpulse[c.particle];
@@ -72,8 +73,8 @@ inline void changeVelocityOnStill(Vec3& v, double w, const Vec3& change) {
 
 }  // namespace
 
-void solveStillContactVelocity(const ParticleContact& c, const ContactParticles& particles, const ContactStep& step,
-                               bool slid) {
+void solveStillContactVelocity(const ParticleContact& c, const ContactParticles& particles,
+                               const ContactStep& step, bool slid) {
     if (!(c.lambdaNormal > 0.0)) return;
     const Vec3& n = c.normal;
     Vec3& v = particles.v[c.particle];
@@ -94,16 +95,20 @@ void solveStillContactVelocity(const ParticleContact& c, const ContactParticles&
     changeVelocityOnStill(v, w, -std::min(maxChange, slipSpeed) * t);
 }
 
-void solveStillPositionGroups(ParticleContact* contacts, int group, size_t count, const ContactParticles& particles,
-                              const ContactStep& step) {
-    if (group == 8) solveStillPositionsInWideLanes(contacts, count, particles, step);
-    else solveStillPositionsInLanes(contacts, count, particles, step);
+void solveStillPositionGroups(ParticleContact* contacts, int group, size_t count,
+                              const ContactParticles& particles, const ContactStep& step) {
+    if (group == 8)
+        solveStillPositionsInWideLanes(contacts, count, particles, step);
+    else
+        solveStillPositionsInLanes(contacts, count, particles, step);
 }
 
 void solveStillVelocityGroups(const ParticleContact* contacts, int group, size_t count,
                               const ContactParticles& particles, const ContactStep& step) {
-    if (group == 8) solveStillVelocitiesInWideLanes(contacts, count, particles, step);
-    else solveStillVelocitiesInLanes(contacts, count, particles, step);
+    if (group == 8)
+        solveStillVelocitiesInWideLanes(contacts, count, particles, step);
+    else
+        solveStillVelocitiesInLanes(contacts, count, particles, step);
 }
 
 }  // namespace substep

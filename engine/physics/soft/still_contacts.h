@@ -21,7 +21,8 @@ namespace substep {
 /// The speed (m/s) at which an overlap the motion does not explain is pushed out: the rigid
 /// contacts' value (contact_kinematics.h), so a particle created sunk into the ground rises gently.
 inline constexpr double kParticlePushOutSpeed = 1.0;
-/// Below this speed a particle contact's velocity is left alone (contact_kinematics.h's kRestingSpeed).
+/// Below this speed a particle contact's velocity is left alone (contact_kinematics.h's
+/// kRestingSpeed).
 inline constexpr double kParticleRestingSpeed = 1e-9;
 
 /// The particles' arrays the contacts read and write (SoftSystem's, indexed by particle).
@@ -36,8 +37,8 @@ struct ContactParticles {
 
 /// What a substep's contact solve reads besides the contacts and particles.
 struct ContactStep {
-    double h = 0.0;           ///< the substep (s)
-    bool capPushOut = false;  ///< SolverContext::capPushOut
+    double h = 0.0;                   ///< the substep (s)
+    bool capPushOut = false;          ///< SolverContext::capPushOut
     Vec3 gravityStep = Vec3::Zero();  ///< g h: the position solve's particle velocity is v + g h
     double restingSpeed = 0.0;        ///< 2 |g| h: no bounce below it (Eq. 34)
 };
@@ -69,11 +70,12 @@ inline bool isStillGroup(const ParticleContact* contacts, int group) {
 
 /// The position solve of one still contact: the particle's held impulse taken into λ_n, then
 /// Eq. 26's push-out and Eqs. 27-28's static friction (SoftSystem::solveContactsPerParticle).
-void solveStillContactPosition(ParticleContact& c, const ContactParticles& particles, const ContactStep& step);
+void solveStillContactPosition(ParticleContact& c, const ContactParticles& particles,
+                               const ContactStep& step);
 /// The velocity pass of one still contact: Eq. 34's restitution and, unless `slid` (its patch
 /// slid, static friction per patch), Eq. 30's dynamic friction.
-void solveStillContactVelocity(const ParticleContact& c, const ContactParticles& particles, const ContactStep& step,
-                               bool slid);
+void solveStillContactVelocity(const ParticleContact& c, const ContactParticles& particles,
+                               const ContactStep& step, bool slid);
 
 /// The number of contacts from `contacts` on (at most `most`) that are still, on distinct
 /// particles: a run's end that one more group takes.
@@ -92,18 +94,18 @@ inline constexpr size_t kShortestGroup = 3;
 /// solveStillContactPosition / solveStillContactVelocity (not slid) of contacts[0, count), in
 /// groups of `group` = stillContactGroup(...) side by side, the last one maybe shorter: each
 /// group (its first `group` contacts and the rest) still on distinct particles (isStillGroup).
-void solveStillPositionGroups(ParticleContact* contacts, int group, size_t count, const ContactParticles& particles,
-                              const ContactStep& step);
+void solveStillPositionGroups(ParticleContact* contacts, int group, size_t count,
+                              const ContactParticles& particles, const ContactStep& step);
 void solveStillVelocityGroups(const ParticleContact* contacts, int group, size_t count,
                               const ContactParticles& particles, const ContactStep& step);
 
 /// The kernels, compiled for AVX2 (four lanes) and x86-64-v4 (eight); only on a CPU with them.
-void solveStillPositionsInLanes(ParticleContact* contacts, size_t count, const ContactParticles& particles,
-                                const ContactStep& step);
-void solveStillVelocitiesInLanes(const ParticleContact* contacts, size_t count, const ContactParticles& particles,
-                                 const ContactStep& step);
-void solveStillPositionsInWideLanes(ParticleContact* contacts, size_t count, const ContactParticles& particles,
-                                    const ContactStep& step);
+void solveStillPositionsInLanes(ParticleContact* contacts, size_t count,
+                                const ContactParticles& particles, const ContactStep& step);
+void solveStillVelocitiesInLanes(const ParticleContact* contacts, size_t count,
+                                 const ContactParticles& particles, const ContactStep& step);
+void solveStillPositionsInWideLanes(ParticleContact* contacts, size_t count,
+                                    const ContactParticles& particles, const ContactStep& step);
 void solveStillVelocitiesInWideLanes(const ParticleContact* contacts, size_t count,
                                      const ContactParticles& particles, const ContactStep& step);
 
@@ -113,14 +115,17 @@ void solveStillVelocitiesInWideLanes(const ParticleContact* contacts, size_t cou
 /// contact, where `inLanes` gives `one`'s bits. (A run goes to the lanes whole: consecutive
 /// groups overlap in the processor.)
 template <class InLanes, class One>
-void forContactGroups(std::span<const ParticleContact> contacts, int group, InLanes&& inLanes, One&& one) {
+void forContactGroups(std::span<const ParticleContact> contacts, int group, InLanes&& inLanes,
+                      One&& one) {
     const size_t n = contacts.size(), size = static_cast<size_t>(group);
     size_t k = 0;
     while (k < n) {
         size_t run = 0;
         if (group > 0) {
-            while (n - k - run >= size && isStillGroup(contacts.data() + k + run, group)) run += size;
-            const size_t end = stillPrefix(contacts.data() + k + run, std::min(size - 1, n - k - run));
+            while (n - k - run >= size && isStillGroup(contacts.data() + k + run, group))
+                run += size;
+            const size_t end =
+                stillPrefix(contacts.data() + k + run, std::min(size - 1, n - k - run));
             if (end >= kShortestGroup) run += end;
         }
         if (run > 0) {

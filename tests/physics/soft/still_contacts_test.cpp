@@ -29,13 +29,17 @@ struct ContactsCase {
     ContactStep step;
 
     ContactParticles particles() {
-        return {.x = x.data(), .xPrev = xPrev.data(), .v = v.data(), .vPrev = vPrev.data(),
-                .invMass = invMass.data(), .heldImpulse = heldImpulse.data()};
+        return {.x = x.data(),
+                .xPrev = xPrev.data(),
+                .v = v.data(),
+                .vPrev = vPrev.data(),
+                .invMass = invMass.data(),
+                .heldImpulse = heldImpulse.data()};
     }
 };
 
 class Random {
-public:
+  public:
     explicit Random(uint64_t seed) : rng_(seed) {}
     double unit() { return std::uniform_real_distribution<double>(-1.0, 1.0)(rng_); }
     int below(int n) { return std::uniform_int_distribution<int>(0, n - 1)(rng_); }
@@ -43,10 +47,14 @@ public:
     /// Mostly ordinary, sometimes ±0 or NaN.
     double awkward(double value) {
         switch (below(24)) {
-            case 0: return 0.0;
-            case 1: return -0.0;
-            case 2: return kNaN;
-            default: return value;
+            case 0:
+                return 0.0;
+            case 1:
+                return -0.0;
+            case 2:
+                return kNaN;
+            default:
+                return value;
         }
     }
     Vec3 vector(double scale) { return Vec3(unit(), unit(), unit()) * scale; }
@@ -63,7 +71,7 @@ public:
         return vector(1.0).normalized();
     }
 
-private:
+  private:
     std::mt19937_64 rng_;
 };
 
@@ -73,18 +81,24 @@ ContactsCase randomCase(Random& random) {
     for (int p = 0; p < particleCount; ++p) {
         c.x.push_back(random.vector(1.0));
         // Some particles did not move (no slip), others moved a little or a lot.
-        c.xPrev.push_back(random.chance(0.15) ? c.x.back() : Vec3(c.x.back() + random.vector(random.chance(0.5) ? 1e-4 : 1e-2)));
+        c.xPrev.push_back(random.chance(0.15)
+                              ? c.x.back()
+                              : Vec3(c.x.back() + random.vector(random.chance(0.5) ? 1e-4 : 1e-2)));
         c.v.push_back(random.awkwardVector(random.chance(0.5) ? 0.1 : 5.0));
         c.vPrev.push_back(random.awkwardVector(random.chance(0.5) ? 0.01 : 5.0));
         c.invMass.push_back(random.chance(0.05) ? 0.0 : std::exp(3.0 * random.unit()));
         const int held = random.below(6);
-        c.heldImpulse.push_back(held == 0 ? 1e-5 * (1.5 + random.unit()) : held == 1 ? -1e-5 : held == 2 ? kNaN : 0.0);
+        c.heldImpulse.push_back(held == 0   ? 1e-5 * (1.5 + random.unit())
+                                : held == 1 ? -1e-5
+                                : held == 2 ? kNaN
+                                            : 0.0);
     }
     const double h = 1.0 / (60.0 * (1 + random.below(20)));
-    c.step = {.h = h,
-              .capPushOut = random.chance(0.7),
-              .gravityStep = Vec3(random.below(2) ? 0.0 : -0.0, -9.81 * h, random.below(2) ? 0.0 : -0.0),
-              .restingSpeed = 2.0 * 9.81 * h};
+    c.step = {
+        .h = h,
+        .capPushOut = random.chance(0.7),
+        .gravityStep = Vec3(random.below(2) ? 0.0 : -0.0, -9.81 * h, random.below(2) ? 0.0 : -0.0),
+        .restingSpeed = 2.0 * 9.81 * h};
     // Runs of still contacts on distinct particles, of every length from 0 to 20, each ended by
     // a moving contact or a still one on a particle of the run.
     for (int run = 0; run <= 20; ++run) {
@@ -95,7 +109,8 @@ ContactsCase randomCase(Random& random) {
             const bool ends = k == length;
             uint32_t p = static_cast<uint32_t>(random.below(particleCount));
             bool repeated = false;
-            for (uint32_t u : used) repeated = repeated || u == p;
+            for (uint32_t u : used)
+                repeated = repeated || u == p;
             if (ends && !used.empty() && random.chance(0.5)) {
                 p = used[static_cast<size_t>(random.below(static_cast<int>(used.size())))];
             } else if (!ends && repeated && random.chance(0.9)) {
@@ -112,12 +127,17 @@ ContactsCase randomCase(Random& random) {
             const double overlap = random.chance(0.3) ? 0.05 * random.unit() : 1e-3 * random.unit();
             contact.anchor = c.x[p] - contact.radius * contact.normal + overlap * contact.normal +
                              random.vector(0.01);
-            contact.staticFriction = random.chance(0.2) ? random.awkward(0.0) : random.awkward(0.3 + random.unit() * 0.3);
-            contact.dynamicFriction = random.chance(0.2) ? 0.0 : random.awkward(0.3 + random.unit() * 0.3);
+            contact.staticFriction = random.chance(0.2) ? random.awkward(0.0)
+                                                        : random.awkward(0.3 + random.unit() * 0.3);
+            contact.dynamicFriction =
+                random.chance(0.2) ? 0.0 : random.awkward(0.3 + random.unit() * 0.3);
             contact.restitution = random.chance(0.5) ? 0.0 : 0.5 + 0.5 * random.unit();
-            contact.lambdaNormal = random.chance(0.3) ? 0.0 : random.awkward(1e-4 * (1.0 + random.unit()));
-            contact.lambdaTangent = random.chance(0.5) ? 0.0 : random.awkward(1e-5 * (1.0 + random.unit()));
-            contact.frictionImpulse = random.chance(0.5) ? Vec3::Zero() : random.awkwardVector(1e-5);
+            contact.lambdaNormal =
+                random.chance(0.3) ? 0.0 : random.awkward(1e-4 * (1.0 + random.unit()));
+            contact.lambdaTangent =
+                random.chance(0.5) ? 0.0 : random.awkward(1e-5 * (1.0 + random.unit()));
+            contact.frictionImpulse =
+                random.chance(0.5) ? Vec3::Zero() : random.awkwardVector(1e-5);
             c.contacts.push_back(contact);
         }
     }
@@ -137,20 +157,28 @@ void solveMovingVelocity(const ParticleContact& c, const ContactParticles& parti
 }
 
 /// The same bits (NaN payloads alike).
-bool same(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
-bool same(const Vec3& a, const Vec3& b) { return same(a.x(), b.x()) && same(a.y(), b.y()) && same(a.z(), b.z()); }
+bool same(double a, double b) {
+    return std::memcmp(&a, &b, sizeof a) == 0;
+}
+bool same(const Vec3& a, const Vec3& b) {
+    return same(a.x(), b.x()) && same(a.y(), b.y()) && same(a.z(), b.z());
+}
 
 void expectSame(const ContactsCase& a, const ContactsCase& b, int trial) {
     for (size_t p = 0; p < a.x.size(); ++p) {
         EXPECT_TRUE(same(a.x[p], b.x[p])) << "trial " << trial << " particle " << p;
         EXPECT_TRUE(same(a.v[p], b.v[p])) << "trial " << trial << " particle " << p;
-        EXPECT_TRUE(same(a.heldImpulse[p], b.heldImpulse[p])) << "trial " << trial << " particle " << p;
+        EXPECT_TRUE(same(a.heldImpulse[p], b.heldImpulse[p]))
+            << "trial " << trial << " particle " << p;
     }
     for (size_t k = 0; k < a.contacts.size(); ++k) {
         const ParticleContact &ca = a.contacts[k], &cb = b.contacts[k];
-        EXPECT_TRUE(same(ca.lambdaNormal, cb.lambdaNormal)) << "trial " << trial << " contact " << k;
-        EXPECT_TRUE(same(ca.lambdaTangent, cb.lambdaTangent)) << "trial " << trial << " contact " << k;
-        EXPECT_TRUE(same(ca.frictionImpulse, cb.frictionImpulse)) << "trial " << trial << " contact " << k;
+        EXPECT_TRUE(same(ca.lambdaNormal, cb.lambdaNormal))
+            << "trial " << trial << " contact " << k;
+        EXPECT_TRUE(same(ca.lambdaTangent, cb.lambdaTangent))
+            << "trial " << trial << " contact " << k;
+        EXPECT_TRUE(same(ca.frictionImpulse, cb.frictionImpulse))
+            << "trial " << trial << " contact " << k;
     }
 }
 
@@ -158,12 +186,16 @@ void expectSame(const ContactsCase& a, const ContactsCase& b, int trial) {
 void solveOneByOne(ContactsCase& c) {
     const ContactParticles particles = c.particles();
     for (ParticleContact& contact : c.contacts) {
-        if (contact.still) solveStillContactPosition(contact, particles, c.step);
-        else solveMovingPosition(contact, particles);
+        if (contact.still)
+            solveStillContactPosition(contact, particles, c.step);
+        else
+            solveMovingPosition(contact, particles);
     }
     for (const ParticleContact& contact : c.contacts) {
-        if (contact.still) solveStillContactVelocity(contact, particles, c.step, false);
-        else solveMovingVelocity(contact, particles);
+        if (contact.still)
+            solveStillContactVelocity(contact, particles, c.step, false);
+        else
+            solveMovingVelocity(contact, particles);
     }
 }
 
@@ -175,20 +207,27 @@ int solveInGroups(ContactsCase& c, int group) {
         c.contacts, group,
         [&](size_t k, size_t count) {
             solveStillPositionGroups(&c.contacts[k], group, count, particles, c.step);
-            groups += static_cast<int>((count + static_cast<size_t>(group) - 1) / static_cast<size_t>(group));
+            groups += static_cast<int>((count + static_cast<size_t>(group) - 1) /
+                                       static_cast<size_t>(group));
         },
         [&](size_t k) {
             ParticleContact& contact = c.contacts[k];
-            if (contact.still) solveStillContactPosition(contact, particles, c.step);
-            else solveMovingPosition(contact, particles);
+            if (contact.still)
+                solveStillContactPosition(contact, particles, c.step);
+            else
+                solveMovingPosition(contact, particles);
         });
     forContactGroups(
         c.contacts, group,
-        [&](size_t k, size_t count) { solveStillVelocityGroups(&c.contacts[k], group, count, particles, c.step); },
+        [&](size_t k, size_t count) {
+            solveStillVelocityGroups(&c.contacts[k], group, count, particles, c.step);
+        },
         [&](size_t k) {
             const ParticleContact& contact = c.contacts[k];
-            if (contact.still) solveStillContactVelocity(contact, particles, c.step, false);
-            else solveMovingVelocity(contact, particles);
+            if (contact.still)
+                solveStillContactVelocity(contact, particles, c.step, false);
+            else
+                solveMovingVelocity(contact, particles);
         });
     return groups;
 }
@@ -212,7 +251,8 @@ void expectLanesMatchOneByOne(int group) {
 
 TEST(StillContacts, GroupsNeedStillContactsOnDistinctParticles) {
     std::vector<ParticleContact> contacts(8);
-    for (uint32_t k = 0; k < 8; ++k) contacts[k] = {.particle = 7 - k, .still = true};
+    for (uint32_t k = 0; k < 8; ++k)
+        contacts[k] = {.particle = 7 - k, .still = true};
     EXPECT_TRUE(isStillGroup(contacts.data(), 8));
     EXPECT_TRUE(isStillGroup(contacts.data(), 0));
     contacts[5].particle = contacts[2].particle;
@@ -223,7 +263,8 @@ TEST(StillContacts, GroupsNeedStillContactsOnDistinctParticles) {
     EXPECT_FALSE(isStillGroup(contacts.data(), 8));
     EXPECT_TRUE(isStillGroup(contacts.data(), 7));
     // Rising particles (the usual order), one of them twice.
-    for (uint32_t k = 0; k < 8; ++k) contacts[k] = {.particle = 2 * k, .still = true};
+    for (uint32_t k = 0; k < 8; ++k)
+        contacts[k] = {.particle = 2 * k, .still = true};
     EXPECT_TRUE(isStillGroup(contacts.data(), 8));
     contacts[4].particle = contacts[3].particle;
     EXPECT_FALSE(isStillGroup(contacts.data(), 8));
