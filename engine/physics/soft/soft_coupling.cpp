@@ -1,6 +1,7 @@
 // SoftSystem's coupling to rigid bodies: attachments (Eqs. 2-9) and the particle contacts'
 // solve (Eqs. 26-30 and 34), each particle standing in for a body with w = 1/m and no rotation
-// (paper section 4). Which contacts there are: soft_contacts.cpp.
+// (paper section 4). Which contacts there are: soft_contacts.cpp; those with still bodies, one
+// by one or in vector lanes: still_contacts.h.
 #include "physics/collision/narrowphase.h"
 #include "physics/soft/soft_system.h"
 #include "physics/soft/still_contacts.h"
@@ -12,6 +13,7 @@
 namespace substep {
 namespace {
 
+/// The still contacts' push-out speed and resting speed (still_contacts.h), moving bodies' alike.
 constexpr double kPushOutSpeed = kParticlePushOutSpeed;
 constexpr double kRestingSpeed = kParticleRestingSpeed;
 
