@@ -62,6 +62,7 @@ if [[ $stages == *" asan "* ]]; then
     distance_joint_test hinge_joint_test spherical_joint_test prismatic_joint_test fixed_joint_test
     soft_element_batch_test soft_shape_matching_test soft_rigid_mode_test soft_attachment_run_test
     soft_candidate_skips_test
+    soft_still_contacts_test
     # sandbox: whole-or-nothing outputs
     atomic_file_test output_transaction_test csv_writer_test
   )

@@ -1,8 +1,10 @@
 // SoftSystem's coupling to rigid bodies: attachments (Eqs. 2-9) and the particle contacts'
 // solve (Eqs. 26-30 and 34), each particle standing in for a body with w = 1/m and no rotation
-// (paper section 4). Which contacts there are: soft_contacts.cpp.
+// (paper section 4). Which contacts there are: soft_contacts.cpp; those with still bodies, one
+// by one or in vector lanes: still_contacts.h.
 #include "physics/collision/narrowphase.h"
 #include "physics/soft/soft_system.h"
+#include "physics/soft/still_contacts.h"
 
 #include <algorithm>
 #include <cmath>
@@ -11,11 +13,9 @@
 namespace substep {
 namespace {
 
-/// The speed (m/s) at which an overlap the motion does not explain is pushed out: the rigid
-/// contacts' value (contact.cpp), so a particle created sunk into the ground rises gently.
-constexpr double kPushOutSpeed = 1.0;
-/// Below this speed a contact's velocity is left alone (contact.cpp's kRestingSpeed).
-constexpr double kRestingSpeed = 1e-9;
+/// The still contacts' push-out speed and resting speed (still_contacts.h), moving bodies' alike.
+constexpr double kPushOutSpeed = kParticlePushOutSpeed;
+constexpr double kRestingSpeed = kParticleRestingSpeed;
 
 /// A body's generalised inverse mass for a correction along unit n at world offset r
 /// (Eqs. 2-3); 0 for static bodies.
@@ -80,40 +80,6 @@ bool staticSlip(const Body& b, const Vec3& r, const Vec3& local1, const Vec3& n,
     t = slip / length;
     deltaTangent = length / (w + bodyInverseMass(b, r, t));
     return true;
-}
-
-/// pushOut against a still body whose point is `anchor`: its velocity and generalised inverse
-/// mass are zero (and w + 0 = w), so the same depth, cap and Δλ_n without rotating r1.
-double pushOutOfStill(const SolverContext& ctx, const Vec3& anchor, const Vec3& n, double radius, Vec3& x, double w,
-                      const Vec3& v) {
-    double depth = (anchor - (x - radius * n)).dot(n);
-    if (depth > 0.0 && ctx.capPushOut) {
-        const double approach = -v.dot(n);
-        depth = std::min(depth, ctx.h * std::max(approach, kPushOutSpeed));
-    }
-    if (!(depth > 0.0)) return 0.0;
-    const double deltaLambda = depth / w;
-    x += (w * deltaLambda) * n;
-    return deltaLambda;
-}
-
-/// staticSlip against a still body: its point did not move, so the slip is the particle's own
-/// tangential motion.
-bool staticSlipOnStill(const Vec3& n, const Vec3& x, const Vec3& xPrev, double w, Vec3& t, double& deltaTangent) {
-    const Vec3 motion = x - xPrev;
-    const Vec3 slip = motion - motion.dot(n) * n;
-    const double length = slip.norm();
-    if (!(length > kDirectionEpsilon)) return false;
-    t = slip / length;
-    deltaTangent = length / w;
-    return true;
-}
-
-/// applyVelocityChange against a still body: the particle takes it all.
-inline void changeVelocityOnStill(Vec3& v, double w, const Vec3& change) {
-    if (!(change.norm() > kDirectionEpsilon)) return;
-    const Vec3 p = change / w;
-    v += w * p;
 }
 
 }  // namespace
@@ -273,48 +239,53 @@ double SoftSystem::takeHeldImpulse(SolverContext& ctx, ParticleContact& c) {
     return taken;
 }
 
+ContactParticles SoftSystem::contactParticles() {
+    return {.x = x_.data(), .xPrev = xPrev_.data(), .v = v_.data(), .vPrev = vPrev_.data(),
+            .invMass = invMass_.data(), .heldImpulse = heldImpulse_.data()};
+}
+
 void SoftSystem::solveContactsPerParticle(SolverContext& ctx, size_t first, size_t end) {
-    for (ParticleContact& c : std::span(contacts_).subspan(first, end - first)) {
-        const Body& b = ctx.bodies[c.body];
-        const Vec3& n = c.normal;
-        Vec3& x = x_[c.particle];
-        const double w = invMass_[c.particle];
-        // The elements' push this particle's normal did not take first (a moving body
-        // receives it), then Eq. 26.
-        const double held = takeHeldImpulse(ctx, c);
-        if (c.still) {
-            // The ground and the obstacles: the same steps with the body's terms left out.
+    // The ground and the obstacles (still bodies) with the body's terms left out, each contact
+    // changing its own particle only: groups of them on distinct particles side by side, in
+    // lanes (still_contacts.h); every other contact one by one, in order.
+    const ContactParticles particles = contactParticles();
+    const ContactStep step{.h = ctx.h, .capPushOut = ctx.capPushOut, .gravityStep = gravityStep_};
+    const std::span<ParticleContact> contacts = std::span(contacts_).subspan(first, end - first);
+    const int group = stillContactGroup(StillContactLanes::Widest);
+    forContactGroups(
+        contacts, group,
+        [&](size_t k, size_t count) { solveStillPositionGroups(&contacts[k], group, count, particles, step); },
+        [&](size_t k) {
+            ParticleContact& c = contacts[k];
+            if (c.still) {
+                solveStillContactPosition(c, particles, step);
+                return;
+            }
+            const Body& b = ctx.bodies[c.body];
+            const Vec3& n = c.normal;
+            Vec3& x = x_[c.particle];
+            const double w = invMass_[c.particle];
+            // The elements' push this particle's normal did not take first (a moving body
+            // receives it), then Eq. 26.
+            const double held = takeHeldImpulse(ctx, c);
             const double pushed =
-                pushOutOfStill(ctx, c.anchor, n, c.radius, x, w, v_[c.particle] + gravityStep_);
-            if (!(pushed > 0.0) && !(held > 0.0)) continue;
+                pushOut(ctx, c.body, c.local1, n, c.radius, x, w, v_[c.particle] + gravityStep_);
+            if (!(pushed > 0.0) && !(held > 0.0)) return;
             if (pushed > 0.0) c.lambdaNormal += pushed;
-            if (!(c.staticFriction > 0.0)) continue;
+            if (!(c.staticFriction > 0.0)) return;
+            // Eqs. 27-28: undo the tangential motion of the particle relative to the body's point
+            // during the substep while λ_t stays within μ_s λ_n.
+            const Vec3 r = b.q * c.local1;
             Vec3 t;
             double deltaTangent;
-            if (!staticSlipOnStill(n, x, xPrev_[c.particle], w, t, deltaTangent)) continue;
-            if (c.lambdaTangent + deltaTangent > c.staticFriction * c.lambdaNormal) continue;
+            if (!staticSlip(b, r, c.local1, n, x, xPrev_[c.particle], w, t, deltaTangent)) return;
+            if (c.lambdaTangent + deltaTangent > c.staticFriction * c.lambdaNormal) return;
             c.lambdaTangent += deltaTangent;
             c.frictionImpulse -= deltaTangent * t;
             x -= (w * deltaTangent) * t;
-            continue;
-        }
-        const double pushed =
-            pushOut(ctx, c.body, c.local1, n, c.radius, x, w, v_[c.particle] + gravityStep_);
-        if (!(pushed > 0.0) && !(held > 0.0)) continue;
-        if (pushed > 0.0) c.lambdaNormal += pushed;
-        if (!(c.staticFriction > 0.0)) continue;
-        // Eqs. 27-28: undo the tangential motion of the particle relative to the body's point
-        // during the substep while λ_t stays within μ_s λ_n.
-        const Vec3 r = b.q * c.local1;
-        Vec3 t;
-        double deltaTangent;
-        if (!staticSlip(b, r, c.local1, n, x, xPrev_[c.particle], w, t, deltaTangent)) continue;
-        if (c.lambdaTangent + deltaTangent > c.staticFriction * c.lambdaNormal) continue;
-        c.lambdaTangent += deltaTangent;
-        c.frictionImpulse -= deltaTangent * t;
-        x -= (w * deltaTangent) * t;
-        if (b.invMass > 0.0) applyImpulse(ctx, c.body, 0, deltaTangent * t, r.cross(deltaTangent * t), Vec3::Zero());
-    }
+            if (b.invMass > 0.0)
+                applyImpulse(ctx, c.body, 0, deltaTangent * t, r.cross(deltaTangent * t), Vec3::Zero());
+        });
 }
 
 void SoftSystem::solveContactsPerPatch(SolverContext& ctx) {
@@ -410,51 +381,50 @@ void SoftSystem::solveContactsPerPatch(SolverContext& ctx) {
 }
 
 void SoftSystem::solveContactVelocities(Body* bodies, double h, double gravity, size_t first, size_t end) {
-    const double restingSpeed = 2.0 * gravity * h;
-    for (size_t k = first; k < end; ++k) {
-        const ParticleContact& c = contacts_[k];
-        if (!(c.lambdaNormal > 0.0)) continue;
-        Body& b = bodies[c.body];
-        const Vec3& n = c.normal;
-        Vec3& v = v_[c.particle];
-        const double w = invMass_[c.particle];
-        // A sliding patch's contact had its μ_d in the solve.
-        const bool slid = patchFriction_ && c.lambdaTangent > 0.0 && k < contactPatch_.size() &&
-                          patches_[contactPatch_[k]].kept < 1.0;
-        if (c.still) {
-            // The ground and the obstacles: below, with the body's velocities and inverse mass,
-            // zero, left out (the same bits).
-            const double vn = v.dot(n);
-            const double vnBefore = vPrev_[c.particle].dot(n);
-            const double e = std::abs(vnBefore) <= restingSpeed ? 0.0 : c.restitution;
+    const ContactParticles particles = contactParticles();
+    const ContactStep step{.h = h, .restingSpeed = 2.0 * gravity * h};
+    // Still contacts on distinct particles in lanes, as in the position solve; not with
+    // friction per patch, whose sliding patches' contacts skip Eq. 30 here.
+    const int group = patchFriction_ ? 0 : stillContactGroup(StillContactLanes::Widest);
+    forContactGroups(
+        std::span(contacts_).subspan(first, end - first), group,
+        [&](size_t k, size_t count) {
+            solveStillVelocityGroups(&contacts_[first + k], group, count, particles, step);
+        },
+        [&](size_t index) {
+            const size_t k = first + index;
+            const ParticleContact& c = contacts_[k];
+            if (!(c.lambdaNormal > 0.0)) return;
+            // A sliding patch's contact had its μ_d in the solve.
+            const bool slid = patchFriction_ && c.lambdaTangent > 0.0 && k < contactPatch_.size() &&
+                              patches_[contactPatch_[k]].kept < 1.0;
+            if (c.still) {
+                // The ground and the obstacles: the body's velocities and inverse mass, zero,
+                // left out (the same bits).
+                solveStillContactVelocity(c, particles, step, slid);
+                return;
+            }
+            Body& b = bodies[c.body];
+            const Vec3& n = c.normal;
+            Vec3& v = v_[c.particle];
+            const double w = invMass_[c.particle];
+            const Vec3 r = b.q * c.local1;
+            // Eq. 34: the normal velocity becomes −e v̄_n (no bounce below 2|g|h).
+            const double vn = (v - pointVelocity(b, r)).dot(n);
+            const double vnBefore = (vPrev_[c.particle] - (b.vPrev + b.omegaPrev.cross(r))).dot(n);
+            const double e = std::abs(vnBefore) <= step.restingSpeed ? 0.0 : c.restitution;
             const double change = std::max(-e * vnBefore, 0.0) - vn;
-            if (std::abs(change) > kRestingSpeed) changeVelocityOnStill(v, w, change * n);
-            if (!(c.dynamicFriction > 0.0) || slid) continue;
-            const Vec3 slip = v - v.dot(n) * n;
+            if (std::abs(change) > kRestingSpeed) applyVelocityChange(v, w, b, r, change * n);
+            if (!(c.dynamicFriction > 0.0) || slid) return;
+            // Eq. 30 (ERRATA item 2's units): slip removed by at most h μ_d |f_n| = μ_d λ_n / h.
+            const Vec3 relative = v - pointVelocity(b, r);
+            const Vec3 slip = relative - relative.dot(n) * n;
             const double slipSpeed = slip.norm();
-            if (!(slipSpeed > kRestingSpeed)) continue;
+            if (!(slipSpeed > kRestingSpeed)) return;
             const Vec3 t = slip / slipSpeed;
-            const double maxChange = c.dynamicFriction * c.lambdaNormal / h * w;
-            changeVelocityOnStill(v, w, -std::min(maxChange, slipSpeed) * t);
-            continue;
-        }
-        const Vec3 r = b.q * c.local1;
-        // Eq. 34: the normal velocity becomes −e v̄_n (no bounce below 2|g|h).
-        const double vn = (v - pointVelocity(b, r)).dot(n);
-        const double vnBefore = (vPrev_[c.particle] - (b.vPrev + b.omegaPrev.cross(r))).dot(n);
-        const double e = std::abs(vnBefore) <= restingSpeed ? 0.0 : c.restitution;
-        const double change = std::max(-e * vnBefore, 0.0) - vn;
-        if (std::abs(change) > kRestingSpeed) applyVelocityChange(v, w, b, r, change * n);
-        if (!(c.dynamicFriction > 0.0) || slid) continue;
-        // Eq. 30 (ERRATA item 2's units): slip removed by at most h μ_d |f_n| = μ_d λ_n / h.
-        const Vec3 relative = v - pointVelocity(b, r);
-        const Vec3 slip = relative - relative.dot(n) * n;
-        const double slipSpeed = slip.norm();
-        if (!(slipSpeed > kRestingSpeed)) continue;
-        const Vec3 t = slip / slipSpeed;
-        const double maxChange = c.dynamicFriction * c.lambdaNormal / h * (w + bodyInverseMass(b, r, t));
-        applyVelocityChange(v, w, b, r, -std::min(maxChange, slipSpeed) * t);
-    }
+            const double maxChange = c.dynamicFriction * c.lambdaNormal / h * (w + bodyInverseMass(b, r, t));
+            applyVelocityChange(v, w, b, r, -std::min(maxChange, slipSpeed) * t);
+        });
 }
 
 int SoftSystem::activeContactCount() const {

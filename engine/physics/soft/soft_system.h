@@ -19,8 +19,10 @@
 #include "physics/soft/candidate_skips.h"
 #include "physics/soft/element_batch.h"
 #include "physics/soft/lattice.h"
+#include "physics/soft/particle_contact.h"
 #include "physics/soft/rigid_mode.h"
 #include "physics/soft/soft_body.h"
+#include "physics/soft/still_contacts.h"
 
 #include <array>
 #include <cstdint>
@@ -176,25 +178,6 @@ private:
         double clearLowX = 0.0, clearHighX = 0.0, clearLowZ = 0.0, clearHighZ = 0.0;
         double roam = 0.0;
     };
-    /// A contact point of this substep: the particle's surface point is x − radius n; the
-    /// body's is kept in its principal frame (r1); n points from the body to the particle.
-    struct ParticleContact {
-        uint32_t particle = 0;
-        uint32_t body = 0;
-        Vec3 local1 = Vec3::Zero();
-        Vec3 normal = Vec3::UnitY();
-        double radius = 0.0;
-        double staticFriction = 0.0, dynamicFriction = 0.0, restitution = 0.0;
-        double lambdaNormal = 0.0;
-        double lambdaTangent = 0.0;
-        Vec3 frictionImpulse = Vec3::Zero();  ///< Σ of the static friction's impulses on the particle
-        /// The body is still (static: no inverse mass, no velocity now or at the substep's start):
-        /// its point is `anchor` (world, b.x + b.q r1 as the solve computes it) all substep, and
-        /// its terms of Eqs. 26-30 and 34 are zero, so the solve leaves them out (the same bits).
-        bool still = false;
-        Vec3 anchor = Vec3::Zero();
-    };
-
     /// One soft body's contacts with one rigid body in a substep: their static friction holds
     /// or lets go together (solveContacts).
     struct ContactPatch {
@@ -219,6 +202,8 @@ private:
     void solveContactsPerParticle(SolverContext& ctx, size_t first, size_t end);
     void solveContactsPerPatch(SolverContext& ctx);
     void solveContactVelocities(Body* bodies, double h, double gravity, size_t first, size_t end);
+    /// The particles' arrays as the contacts' solves read them (still_contacts.h).
+    ContactParticles contactParticles();
     /// The velocity pass's changes to the particles passedVelocities_[first, end), all of one
     /// soft body or of several in runs, added to their bodies' kept moments.
     void keepPassedMoments(size_t first, size_t end);
