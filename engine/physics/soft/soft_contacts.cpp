@@ -67,15 +67,19 @@ double highestSampleUnder(const HeightfieldData& field, const Vec3& lo, const Ve
 ///   side, whichever is less (or the height above the field's highest sample, if larger); where
 ///   that leaves the particle within reach, the height above the planes of the cells within its
 ///   own reach (heightfieldGapBound), which on sloping cells is the distance, not the cells'
-///   highest sample 5 mm above it;
+///   highest sample 5 mm above it. Not for a field whose candidates the substeps also test
+///   against their clearance (`cleared`, a field in the world's axes): the clearance does that
+///   bound's work for the pairs the column's bound does not skip, at less cost (rc_car: the
+///   column's bound alone 0.96x the frame; heightfieldGapBound took 3.5 % of it);
 /// - anything else: the distance to its world bounds.
 class StaticGap {
 public:
-    /// `grid`: a heightfield's, which keeps the normals of the cells under the soft body's box.
+    /// `grid`: a heightfield's, which keeps the normals of the cells under the soft body's box;
+    /// `cleared`: the substeps test its candidates against their clearance (SoftSystem::clearanceOf).
     StaticGap(const Shape& shape, const Pose& pose, const Aabb& bounds, const Aabb& softBox, double radius,
-              HeightfieldGrid* grid)
+              HeightfieldGrid* grid, bool cleared)
         : shape_(shape), pose_(pose), plain_(heightfield_turns::isPlainIdentity(pose.rotation)), bounds_(bounds),
-          radius_(radius), grid_(grid) {
+          radius_(radius), grid_(grid), cleared_(cleared) {
         if (shape.type != ShapeType::Heightfield || !shape.heightfield || !grid) return;
         for (int corner = 0; corner < 8; ++corner)
             column_.grow(pose.applyInverse(Vec3(corner & 1 ? softBox.max.x() : softBox.min.x(),
@@ -103,7 +107,7 @@ public:
                 // larger where a soft body's box overhangs its column.
                 const double column =
                     std::max(local.y() - shape_.heightfield->maxHeight, std::min(local.y() - highest_, side)) - radius_;
-                if (column > reach) return column;
+                if (column > reach || cleared_) return column;
                 return std::max(column, heightfieldGapBound(*grid_, local, radius_ + reach) - radius_);
             }
             default: return (bounds_.min - p).cwiseMax(p - bounds_.max).cwiseMax(0.0).norm() - radius_;
@@ -126,6 +130,7 @@ private:
     Aabb column_;  ///< heightfield: the soft body's box in its frame
     double highest_ = 0.0;
     HeightfieldGrid* grid_;  ///< heightfield: its grid
+    bool cleared_;           ///< heightfield: its candidates' clearance does heightfieldGapBound's work
 };
 
 }  // namespace
@@ -191,12 +196,12 @@ void SoftSystem::collectBodyCandidates(uint32_t s, std::span<const Body> bodies,
                 slot.grid.reset(*slot.field);
                 grid = &slot.grid;
             }
-            const StaticGap gapOf(b.shape, pose, staticBounds, softBox, soft.radius, grid);
-            const bool decides = gapOf.tight();
             // A field in the world's axes takes the particle's world coordinates less its
             // position, exactly (a turn by the identity quaternion adds zeros), so its
             // clearance moves to the world by that translation.
             const bool clearance = grid && pose.rotation.w() == 1.0 && pose.rotation.vec().isZero(0.0);
+            const StaticGap gapOf(b.shape, pose, staticBounds, softBox, soft.radius, grid, clearance);
+            const bool decides = gapOf.tight();
             for (uint32_t i = first; i < end; ++i) {
                 const double reachOut = margin + 2.0 * dt * v_[i].norm() + fall;
                 const Aabb point = Aabb{x_[i], x_[i]}.inflated(soft.radius + reachOut);
