@@ -70,7 +70,7 @@ double highestSampleUnder(const HeightfieldData& field, const Vec3& lo, const Ve
 ///   highest sample 5 mm above it. Not for a field whose candidates the substeps also test
 ///   against their clearance (`cleared`, a field in the world's axes): the clearance does that
 ///   bound's work for the pairs the column's bound does not skip, at less cost (rc_car: the
-///   column's bound alone 0.96x the frame; heightfieldGapBound took 3.5 % of it);
+///   column's bound alone 0.97x the frame; heightfieldGapBound took 3.5 % of it);
 /// - anything else: the distance to its world bounds.
 class StaticGap {
 public:
