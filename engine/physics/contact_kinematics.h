@@ -1,6 +1,7 @@
 #pragma once
 /// What both contact solves (the one-point path in contact.cpp, the patches in contact_patch.cpp)
-/// share: a point's previous position and velocity, the push-out cap, and the thresholds.
+/// share: a point's previous position and velocity, the push-out cap, and the thresholds (the
+/// soft particles' contacts, still_contacts.h and soft_coupling.cpp, take the thresholds too).
 /// Internal to the contact solve.
 
 #include "physics/contact.h"

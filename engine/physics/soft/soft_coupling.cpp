@@ -13,9 +13,10 @@
 namespace substep {
 namespace {
 
-/// The still contacts' push-out speed and resting speed (still_contacts.h), moving bodies' alike.
-constexpr double kPushOutSpeed = kParticlePushOutSpeed;
-constexpr double kRestingSpeed = kParticleRestingSpeed;
+/// The rigid contacts' push-out speed and resting speed (contact_kinematics.h): a particle
+/// created sunk into the ground rises as gently as a body.
+using contact_detail::kPushOutSpeed;
+using contact_detail::kRestingSpeed;
 
 /// A body's generalised inverse mass for a correction along unit n at world offset r
 /// (Eqs. 2-3); 0 for static bodies.

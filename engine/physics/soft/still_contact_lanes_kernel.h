@@ -260,7 +260,7 @@ template <int L>
     D depth = S::dot(V{anchor.x - surface.x, anchor.y - surface.y, anchor.z - surface.z}, n);
     if (step.capPushOut) {
         const D approach = -S::dot(v, n);
-        const D slowest = S::all(kParticlePushOutSpeed);
+        const D slowest = S::all(contact_detail::kPushOutSpeed);
         const D allowed = S::all(step.h) * S::select(approach < slowest, slowest, approach);
         depth = S::select(depth > zero, S::select(allowed < depth, allowed, depth), depth);
     }
@@ -319,7 +319,7 @@ template <int L>
     const V vPrev = S::gather(particles.vPrev, index);
     const D w = S::gather(particles.invMass, index);
     const D zero = S::all(0.0);
-    const D epsilon = S::all(kDirectionEpsilon), resting = S::all(kParticleRestingSpeed);
+    const D epsilon = S::all(kDirectionEpsilon), resting = S::all(contact_detail::kRestingSpeed);
     const M pressed = lambdaNormal > zero;
 
     // Eq. 34: the normal velocity becomes −e v̄_n (no bounce below 2|g|h), the particle taking

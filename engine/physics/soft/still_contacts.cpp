@@ -38,7 +38,7 @@ void solveStillContactPosition(ParticleContact& c, const ContactParticles& parti
     double depth = (c.anchor - (x - c.radius * n)).dot(n);
     if (depth > 0.0 && step.capPushOut) {
         const double approach = -v.dot(n);
-        depth = std::min(depth, step.h * std::max(approach, kParticlePushOutSpeed));
+        depth = std::min(depth, step.h * std::max(approach, contact_detail::kPushOutSpeed));
     }
     double pushed = 0.0;
     if (depth > 0.0) {
@@ -84,12 +84,12 @@ void solveStillContactVelocity(const ParticleContact& c, const ContactParticles&
     const double vnBefore = particles.vPrev[c.particle].dot(n);
     const double e = std::abs(vnBefore) <= step.restingSpeed ? 0.0 : c.restitution;
     const double change = std::max(-e * vnBefore, 0.0) - vn;
-    if (std::abs(change) > kParticleRestingSpeed) changeVelocityOnStill(v, w, change * n);
+    if (std::abs(change) > contact_detail::kRestingSpeed) changeVelocityOnStill(v, w, change * n);
     if (!(c.dynamicFriction > 0.0) || slid) return;
     // Eq. 30 (ERRATA item 2's units): slip removed by at most h μ_d |f_n| = μ_d λ_n / h.
     const Vec3 slip = v - v.dot(n) * n;
     const double slipSpeed = slip.norm();
-    if (!(slipSpeed > kParticleRestingSpeed)) return;
+    if (!(slipSpeed > contact_detail::kRestingSpeed)) return;
     const Vec3 t = slip / slipSpeed;
     const double maxChange = c.dynamicFriction * c.lambdaNormal / step.h * w;
     changeVelocityOnStill(v, w, -std::min(maxChange, slipSpeed) * t);

@@ -8,6 +8,7 @@
 /// its order: the same bits as one after the other (rc_car's tyres hold about 450 contacts
 /// with the ground).
 
+#include "physics/contact_kinematics.h"
 #include "physics/math.h"
 #include "physics/soft/particle_contact.h"
 
@@ -17,13 +18,6 @@
 #include <span>
 
 namespace substep {
-
-/// The speed (m/s) at which an overlap the motion does not explain is pushed out: the rigid
-/// contacts' value (contact_kinematics.h), so a particle created sunk into the ground rises gently.
-inline constexpr double kParticlePushOutSpeed = 1.0;
-/// Below this speed a particle contact's velocity is left alone (contact_kinematics.h's
-/// kRestingSpeed).
-inline constexpr double kParticleRestingSpeed = 1e-9;
 
 /// The particles' arrays the contacts read and write (SoftSystem's, indexed by particle).
 struct ContactParticles {
