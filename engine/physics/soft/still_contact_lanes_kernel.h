@@ -122,13 +122,15 @@ template <class C>
     }
 }
 
-/// Lane l's contact: contacts[l], the last of `count` (1 to L) in the lanes past it. A lane
-/// that repeats a contact reads what the other one reads and writes what it writes: the group
-/// solves each contact once.
+/// Lane l's contact: contacts[l], the last of `count` (1 to L) in the lanes past it, and its
+/// particle. A lane that repeats a contact reads what the other one reads and writes what it
+/// writes: the group solves each contact once.
 template <int L, class C>
-[[gnu::always_inline]] inline void laneContacts(C* contacts, int count, C* (&lane)[L]) {
-    for (int l = 0; l < L; ++l)
+[[gnu::always_inline]] inline void laneContacts(C* contacts, int count, C* (&lane)[L], uint32_t (&particle)[L]) {
+    for (int l = 0; l < L; ++l) {
         lane[l] = contacts + (l < count ? l : count - 1);
+        particle[l] = lane[l]->particle;
+    }
 }
 
 /// L doubles, the comparisons' lanes (all ones where true), and three coordinates by lanes.
@@ -229,9 +231,7 @@ template <int L>
     using V = typename S::V;
     uint32_t index[L];
     decltype(contacts) lane[L];
-    laneContacts<L>(contacts, count, lane);
-    for (int l = 0; l < L; ++l)
-        index[l] = lane[l]->particle;
+    laneContacts<L>(contacts, count, lane, index);
     D normal[4], coefficients[4], tangent[4], anchored[4];
     loadColumns(lane, offsetof(ParticleContact, normal), normal);                // n, radius
     loadColumns(lane, offsetof(ParticleContact, staticFriction), coefficients);  // μ_s, μ_d, e, λ_n
@@ -307,9 +307,7 @@ template <int L>
     using V = typename S::V;
     uint32_t index[L];
     decltype(contacts) lane[L];
-    laneContacts<L>(contacts, count, lane);
-    for (int l = 0; l < L; ++l)
-        index[l] = lane[l]->particle;
+    laneContacts<L>(contacts, count, lane, index);
     D normal[4], coefficients[4];
     loadColumns(lane, offsetof(ParticleContact, normal), normal);                // n, radius
     loadColumns(lane, offsetof(ParticleContact, staticFriction), coefficients);  // μ_s, μ_d, e, λ_n
