@@ -2,61 +2,80 @@
 
 #include "physics/contact_lanes.h"
 
+#include <algorithm>
+
 namespace substep {
 
 using contact_detail::kContactLanes;
 
 void ContactSchedule::plan(std::span<const uint32_t> touching, std::span<const ContactPair> pairs,
-                           const Body* bodies) {
-    // A pair's partners come from the next kWindow − 1 pairs: wider finds fuller steps (four
-    // pairs in 29 % of spheres1000's steps at 8) but checks more bodies per pair.
-    constexpr size_t kWindow = 8;
+                           std::span<const Body> bodies) {
+    // A pair's partners come from the next kWindow − 1 pairs: wider finds fuller steps but looks
+    // at more pairs per step. spheres1000's steps hold 3.95 pairs at 32 (96 % of them full)
+    // against 2.89 at 8, and its solve and velocity pass take a fifth less time; 48 gained
+    // nothing more (docs/PERFORMANCE_LOG.md).
+    constexpr size_t kWindow = 32;
+    static_assert(kWindow <= 32, "`early` holds a bit per pair of the window");
     touching_.assign(touching.begin(), touching.end());
     // At most a count and an index per pair. Grown only: shrunk to the steps' length, the vector
     // would zero its tail again at every substep.
     if (steps_.size() < 2 * touching.size()) steps_.resize(2 * touching.size());
     // Each pair's moving bodies, read once: the window below looks at every pair up to
-    // kWindow − 1 times, and a body's record is a scattered 608 bytes.
+    // kWindow − 1 times. Whether a body moves is read from its record once per body, in order,
+    // rather than twice per pair from records a scattered 608 bytes each.
     constexpr uint32_t kStill = ~0u;  // a static or kinematic body, which the step may share
+    if (moves_.size() < bodies.size()) moves_.resize(bodies.size());
+    for (size_t b = 0; b < bodies.size(); ++b) moves_[b] = bodies[b].invMass != 0.0;
     candidates_.resize(touching.size());
     for (size_t k = 0; k < touching.size(); ++k) {
         const ContactPair& pair = pairs[touching[k]];
-        const auto moving = [&](uint32_t body) { return bodies[body].invMass != 0.0 ? body : kStill; };
+        const auto moving = [&](uint32_t body) { return moves_[body] ? body : kStill; };
         candidates_[k] = {moving(pair.body0), moving(pair.body1), pair.count == 1};
     }
+    // A body is blocked for the step being filled when its mark is the step's: one look per
+    // body, where a list of the step's blocked bodies took up to 2 kWindow compares. The marks
+    // carry over from plan to plan (mark_ only grows), so they are cleared only when it wraps.
+    if (blockedMark_.size() < bodies.size()) blockedMark_.resize(bodies.size(), 0);
+    // Locals, not members, in the loop: its stores to the marks and steps could otherwise alias
+    // them, and they would be read again at every look.
+    uint32_t* const marks = blockedMark_.data();
+    uint32_t* const steps = steps_.data();
+    const Candidate* const candidates = candidates_.data();
+    uint32_t mark = mark_;
+    const auto block = [&](const Candidate& c) {
+        if (c.moving0 != kStill) marks[c.moving0] = mark;
+        if (c.moving1 != kStill) marks[c.moving1] = mark;
+    };
+    const auto isBlocked = [&](uint32_t body) { return body != kStill && marks[body] == mark; };
     size_t written = 0;
     uint32_t early = 0;  // bit i: touching[k + i] already has its step
     for (size_t k = 0; k < touching.size(); ++k, early >>= 1) {
         if (early & 1u) continue;
         const size_t step = written;
-        steps_[written++] = 1;
-        steps_[written++] = touching[k];
-        if (!candidates_[k].onePoint) continue;
+        steps[written++] = 1;
+        steps[written++] = touching[k];
+        if (!candidates[k].onePoint) continue;
         // The moving bodies a partner must not touch: the step's and those of the pairs it passes.
-        uint32_t blocked[2 * kWindow];
-        size_t blockedCount = 0;
-        const auto block = [&](const Candidate& c) {
-            if (c.moving0 != kStill) blocked[blockedCount++] = c.moving0;
-            if (c.moving1 != kStill) blocked[blockedCount++] = c.moving1;
-        };
-        const auto isBlocked = [&](uint32_t body) {
-            if (body == kStill) return false;
-            for (size_t i = 0; i < blockedCount; ++i)
-                if (blocked[i] == body) return true;
-            return false;
-        };
-        block(candidates_[k]);
-        for (size_t i = 1; i < kWindow && k + i < touching.size() && steps_[step] < kContactLanes; ++i) {
+        if (++mark == 0) {  // the marks wrapped: none may look current
+            std::fill(blockedMark_.begin(), blockedMark_.end(), 0u);
+            mark = 1;
+        }
+        block(candidates[k]);
+        const size_t window = std::min(kWindow, touching.size() - k);
+        uint32_t taken = 1;
+        for (size_t i = 1; i < window && taken < kContactLanes; ++i) {
             if (early >> i & 1u) continue;
-            const Candidate& candidate = candidates_[k + i];
+            const Candidate& candidate = candidates[k + i];
             if (candidate.onePoint && !isBlocked(candidate.moving0) && !isBlocked(candidate.moving1)) {
-                steps_[written++] = touching[k + i];
-                ++steps_[step];
+                steps[written++] = touching[k + i];
+                ++taken;
                 early |= 1u << i;
             }
             block(candidate);
         }
+        steps[step] = taken;
     }
+    mark_ = mark;
     stepsLength_ = written;
 }
 

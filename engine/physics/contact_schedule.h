@@ -25,7 +25,7 @@ namespace substep {
 class ContactSchedule {
 public:
     /// Plans `touching` (indices into `pairs`, in their order) for the pairs' current bodies.
-    void plan(std::span<const uint32_t> touching, std::span<const ContactPair> pairs, const Body* bodies);
+    void plan(std::span<const uint32_t> touching, std::span<const ContactPair> pairs, std::span<const Body> bodies);
 
     /// The planned pairs in their listed order (Jacobi, whose gathered sums keep that order).
     std::span<const uint32_t> touching() const { return touching_; }
@@ -46,6 +46,10 @@ private:
     std::vector<uint32_t> steps_;  ///< the steps in its first stepsLength_ entries
     size_t stepsLength_ = 0;
     std::vector<Candidate> candidates_;  ///< scratch of plan()
+    /// Per body: the step it was last blocked for (plan()); mark_ is the current step's.
+    std::vector<uint32_t> blockedMark_;
+    std::vector<uint8_t> moves_;  ///< per body: whether it moves (inverse mass > 0), for plan()
+    uint32_t mark_ = 0;
 };
 
 /// The position solve of the planned pairs: solveContactPositions of each, in the schedule's

@@ -301,7 +301,7 @@ bool World::substep() {
     if (frame_.coloured)
         groupTouchingPairs();
     else
-        contactSchedule_.plan(touchingPairs_, contactPairs_, bodies_.data());
+        contactSchedule_.plan(touchingPairs_, contactPairs_, bodies_);
     if (soft) soft_->findContacts(bodies_, settings_.contactMargin, workerPool());
     if (soft) soft_->holdContactParticles();  // none unless SoftSystem::setHeldContacts
     lap(stepTimes_.narrowphase);

@@ -119,7 +119,7 @@ void World::groupTouchingPairs() {
         coloured_->touchingGrouped = false;
     else
         coloured_->touching.group(touchingPairs_, coloured_->pairColours.data());
-    coloured_->overflow.plan(coloured_->touching[ColourGroups::kOverflowGroup], contactPairs_, bodies_.data());
+    coloured_->overflow.plan(coloured_->touching[ColourGroups::kOverflowGroup], contactPairs_, bodies_);
 }
 
 void World::solveColouredPositions(SolverContext& ctx, JointBlockSolver* clusters) {

@@ -241,7 +241,7 @@ void expectLanesGiveTheBytesOfTheListedOrder() {
                                   inOrder);
         SolverContext inLanes{.bodies = bodies.data(), .h = h, .invH2 = 1.0 / (h * h), .capPushOut = !deep};
         ContactSchedule schedule;
-        schedule.plan(touching, pairs, bodies.data());
+        schedule.plan(touching, pairs, bodies);
         solveTouchingPositions(schedule, pairs, contacts, inLanes);
 
         for (size_t b = 0; b < bodies.size(); ++b) {
@@ -284,6 +284,41 @@ void expectLanesGiveTheBytesOfTheListedOrder() {
                 ASSERT_EQ(bodies[b].v[k], inOrderBodies[b].v[k]) << "round " << round << " body " << b;
                 ASSERT_EQ(bodies[b].omega[k], inOrderBodies[b].omega[k]) << "round " << round << " body " << b;
             }
+    }
+}
+
+// The schedule looks for a one-point pair's partners well past its next few pairs: in a pile,
+// sorted by first body, the next pairs mostly share a body with it (a window of eight filled
+// spheres1000's steps with 2.9 pairs on average, against 3.95 at 32). Pair 0 is followed by
+// twelve pairs on its first body, each also blocking a body of its own; three independent pairs
+// come after them, and join pair 0's step; the twelve keep their places, one step each.
+TEST(ContactScheduleTest, PartnersComeFromPastTheNextEightPairs) {
+    std::vector<Body> bodies;
+    bodies.push_back(makeBody({.shape = planeShape(Vec3::UnitY(), 0.0), .type = BodyType::Static}));
+    for (int i = 1; i < 30; ++i)
+        bodies.push_back(makeBody({.shape = sphereShape(0.1), .position = Vec3(0.3 * i, 0.1, 0.0)}));
+    std::vector<ContactPair> pairs;
+    const auto add = [&](uint32_t body0, uint32_t body1) {
+        pairs.push_back({.body0 = body0, .body1 = body1, .first = static_cast<uint32_t>(pairs.size()), .count = 1});
+    };
+    add(1, 2);
+    for (uint32_t other = 3; other < 15; ++other) add(1, other);
+    add(20, 21);
+    add(0, 22);  // the static plane blocks nothing
+    add(24, 25);
+    std::vector<uint32_t> touching(pairs.size());
+    for (uint32_t p = 0; p < touching.size(); ++p) touching[p] = p;
+    ContactSchedule schedule;
+    schedule.plan(touching, pairs, bodies);
+    const std::span<const uint32_t> steps = schedule.steps();
+    ASSERT_GE(steps.size(), 5u);
+    EXPECT_EQ(steps[0], 4u);
+    EXPECT_EQ(std::vector<uint32_t>(steps.begin() + 1, steps.begin() + 5), (std::vector<uint32_t>{0, 13, 14, 15}));
+    // Then the twelve, alone and in order.
+    ASSERT_EQ(steps.size(), 5u + 2 * 12);
+    for (uint32_t k = 0; k < 12; ++k) {
+        EXPECT_EQ(steps[5 + 2 * k], 1u);
+        EXPECT_EQ(steps[6 + 2 * k], 1 + k);
     }
 }
 
