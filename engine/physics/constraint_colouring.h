@@ -108,6 +108,9 @@ struct ColouredSolve {
     bool touchingGrouped = false;
     std::vector<ColourGroups::Counts> blockCounts;
     ColourGroups joints;                ///< the frame's live joints
+    /// Where thread t's share of every colour of touching pairs begins: at pair index
+    /// threadFirstPair[t] (one more entry, ~0, ends the last share).
+    std::vector<uint32_t> threadFirstPair;
 };
 
 }  // namespace substep

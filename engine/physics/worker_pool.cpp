@@ -104,9 +104,24 @@ void WorkerPool::drain(uint32_t epoch, int self) {
          block = claimFront(runs_[static_cast<size_t>(self)], epoch))
         execute(block);
     const int threads = this->threads();
+    if (pinned_.load(std::memory_order_relaxed)) return;  // forEachThread: its own block only
     for (int k = 1; k < threads; ++k) {
         BlockRun& other = runs_[static_cast<size_t>((self + k) % threads)];
         for (int block = claimBack(other, epoch); block >= 0; block = claimBack(other, epoch)) execute(block);
+    }
+}
+
+void WorkerPool::barrier(uint32_t& passed) {
+    ++passed;
+    const uint32_t all = passed * static_cast<uint32_t>(threads());
+    arrivals_.fetch_add(1, std::memory_order_acq_rel);
+    // Spin, as the others are a colour's work away; yield after a while, in case there are more
+    // threads than cores and the one waited for needs this core.
+    for (int spin = 0; arrivals_.load(std::memory_order_acquire) < all; ++spin) {
+        if (spin < kSpins)
+            relax();
+        else
+            std::this_thread::yield();
     }
 }
 

@@ -73,6 +73,25 @@ public:
             &groups);
     }
 
+    /// Calls body(thread) once on every thread of the pool at the same time, thread 0 being the
+    /// caller's, none taking another's call; returns when all are done. For loops split the same
+    /// way stage after stage: thread t then always visits the same bodies and pairs, and their
+    /// cache lines stay in its core (stealing moves them: on a machine where a line takes
+    /// ~160 ns from core to core, a pair solved by the thread that did not last write it cost
+    /// 75 to 108 ns against 62). Inside, barrier() waits for the other threads. `body` must not
+    /// throw, and every thread must call barrier() as often as the others.
+    template <class Body>
+    void forEachThread(Body&& body) {
+        if (workers_.empty()) return body(0);
+        arrivals_.store(0, std::memory_order_relaxed);
+        pinned_.store(true, std::memory_order_relaxed);
+        run(threads(), [](void* context, int thread) { (*static_cast<Body*>(context))(thread); }, &body);
+        pinned_.store(false, std::memory_order_relaxed);
+    }
+    /// Inside forEachThread: returns once every thread has called it as often as this one has;
+    /// `passed` counts this thread's calls (zero at the start of the body).
+    void barrier(uint32_t& passed);
+
     /// Most blocks one loop hands out (more are grouped).
     static constexpr int kMaxBlocks = 0xffff;
 
@@ -102,6 +121,11 @@ private:
     std::atomic<Task> task_{nullptr};
     std::atomic<void*> context_{nullptr};
     std::atomic<bool> stop_{false};
+    /// The current loop is forEachThread's: a thread runs its own block alone. Written before
+    /// the loop's epoch is published, so a thread that claims a block reads it right.
+    std::atomic<bool> pinned_{false};
+    /// Calls of barrier() in the current forEachThread, all threads together.
+    alignas(64) std::atomic<uint32_t> arrivals_{0};
 };
 
 }  // namespace substep

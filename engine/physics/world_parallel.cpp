@@ -63,6 +63,44 @@ void forChunks(WorkerPool* pool, size_t count, bool serial, const Run& run, size
     });
 }
 
+/// Solves the colours of `touching` (the overflow aside) one after another, `solve(pairs)` for
+/// each. With a pool, thread t solves the pairs of every colour from index firstPair[t] to
+/// before firstPair[t + 1] (a colour lists its pairs by index), and the threads wait for one
+/// another between colours (WorkerPool::forEachThread): each thread meets the same bodies and
+/// pairs colour after colour, pass after pass, and their cache lines stay in its core. Blocks
+/// handed out as they came moved them between the cores (docs/PERFORMANCE_LOG.md). A colour of
+/// fewer than kMinParallelPairs is thread 0's alone.
+template <class Solve>
+void solveColours(WorkerPool* pool, const ColourGroups& touching, std::span<const uint32_t> firstPair,
+                  const Solve& solve) {
+    constexpr int kOverflow = ColourGroups::kOverflowGroup;
+    if (pool == nullptr) {
+        for (int g = 0; g < kOverflow; ++g)
+            if (!touching[g].empty()) solve(touching[g]);
+        return;
+    }
+    pool->forEachThread([&](int thread) {
+        const auto t = static_cast<size_t>(thread);
+        uint32_t passed = 0;
+        bool aloneBefore = false;  // thread 0 solved small colours: the next shared one waits
+        for (int g = 0; g < kOverflow; ++g) {
+            const std::span<const uint32_t> pairs = touching[g];
+            if (pairs.empty()) continue;
+            if (pairs.size() < kMinParallelPairs) {
+                if (thread == 0) solve(pairs);
+                aloneBefore = true;
+                continue;
+            }
+            if (aloneBefore) pool->barrier(passed);
+            aloneBefore = false;
+            const auto first = std::lower_bound(pairs.begin(), pairs.end(), firstPair[t]);
+            const auto last = std::lower_bound(first, pairs.end(), firstPair[t + 1]);
+            solve(pairs.subspan(static_cast<size_t>(first - pairs.begin()), static_cast<size_t>(last - first)));
+            pool->barrier(passed);
+        }
+    });
+}
+
 }  // namespace
 
 bool World::colouredSolveActive() const {
@@ -120,6 +158,15 @@ void World::groupTouchingPairs() {
     else
         coloured_->touching.group(touchingPairs_, coloured_->pairColours.data());
     coloured_->overflow.plan(coloured_->touching[ColourGroups::kOverflowGroup], contactPairs_, bodies_);
+    // Each thread's share of the colours: an equal part of the touching pairs, which are listed
+    // by index (solveColours).
+    std::vector<uint32_t>& firstPair = coloured_->threadFirstPair;
+    const WorkerPool* const pool = workerPool();
+    const size_t threads = pool != nullptr ? static_cast<size_t>(pool->threads()) : 1;
+    const size_t touching = touchingPairs_.size();
+    firstPair.resize(threads + 1);
+    for (size_t t = 0; t < threads; ++t) firstPair[t] = t == 0 || touching == 0 ? 0u : touchingPairs_[touching * t / threads];
+    firstPair[threads] = ~0u;
 }
 
 void World::solveColouredPositions(SolverContext& ctx, JointBlockSolver* clusters) {
@@ -141,36 +188,21 @@ void World::solveColouredPositions(SolverContext& ctx, JointBlockSolver* cluster
             });
         }
     }
-    for (int g = 0; g < ColourGroups::kGroups; ++g) {
-        const std::span<const uint32_t> pairs = state.touching[g];
-        // A colour's pairs share no moving body: its one-point pairs go into lanes as they come.
-        // The overflow's may share bodies, and they are solved serially in their schedule.
-        if (g == kOverflow) {
-            solveTouchingPositions(state.overflow, contactPairs_, contacts_, ctx);
-            continue;
-        }
-        forChunks(pool, pairs.size(), false, [&](size_t first, size_t last) {
-            SolverContext local = ctx;
-            solveIndependentPositions(pairs.subspan(first, last - first), contactPairs_, contacts_, local);
-        }, kMinParallelPairs);
-    }
+    // A colour's pairs share no moving body: its one-point pairs go into lanes as they come.
+    solveColours(pool, state.touching, state.threadFirstPair, [&](std::span<const uint32_t> pairs) {
+        SolverContext local = ctx;
+        solveIndependentPositions(pairs, contactPairs_, contacts_, local);
+    });
+    // The overflow's pairs may share bodies: they are solved serially in their schedule.
+    solveTouchingPositions(state.overflow, contactPairs_, contacts_, ctx);
 }
 
 void World::solveColouredContactVelocities(double h, double gravity) {
     const ColouredSolve& state = *coloured_;
-    WorkerPool* const pool = workerPool();
-    constexpr int kOverflow = ColourGroups::kOverflowGroup;
-    for (int g = 0; g < ColourGroups::kGroups; ++g) {
-        const std::span<const uint32_t> pairs = state.touching[g];
-        if (g == kOverflow) {
-            solveTouchingVelocities(state.overflow, contactPairs_, contacts_, bodies_.data(), h, gravity);
-            continue;
-        }
-        forChunks(pool, pairs.size(), false, [&](size_t first, size_t last) {
-            solveIndependentVelocities(pairs.subspan(first, last - first), contactPairs_, contacts_, bodies_.data(), h,
-                                       gravity);
-        }, kMinParallelPairs);
-    }
+    solveColours(workerPool(), state.touching, state.threadFirstPair, [&](std::span<const uint32_t> pairs) {
+        solveIndependentVelocities(pairs, contactPairs_, contacts_, bodies_.data(), h, gravity);
+    });
+    solveTouchingVelocities(state.overflow, contactPairs_, contacts_, bodies_.data(), h, gravity);
 }
 
 }  // namespace substep

@@ -46,6 +46,33 @@ TEST(WorkerPoolTest, ManyShortLoopsInARow) {
     }
 }
 
+// forEachThread runs its body once on every thread, each with its own index, and barrier()
+// holds every thread until all have reached it: each round, every thread writes its slot, and
+// after the barrier every thread must see every slot of that round. More threads than this
+// machine's two cores too (the barrier then yields its core to the thread it waits for).
+TEST(WorkerPoolTest, EveryThreadRunsOnceAndBarriersHoldThemTogether) {
+    for (const int threads : {1, 2, 3, 8}) {
+        WorkerPool pool(threads);
+        for (int loop = 0; loop < 200; ++loop) {
+            std::vector<std::atomic<int>> calls(static_cast<size_t>(threads));
+            std::vector<std::atomic<int>> round(static_cast<size_t>(threads));
+            std::atomic<int> behind{0};
+            pool.forEachThread([&](int thread) {
+                calls[static_cast<size_t>(thread)].fetch_add(1);
+                uint32_t passed = 0;
+                for (int r = 1; r <= 5; ++r) {
+                    round[static_cast<size_t>(thread)].store(r);
+                    pool.barrier(passed);
+                    for (const std::atomic<int>& other : round) behind += other.load() < r;
+                    pool.barrier(passed);  // no one starts the next round before all have looked
+                }
+            });
+            for (const std::atomic<int>& count : calls) ASSERT_EQ(count.load(), 1) << threads << " threads, loop " << loop;
+            ASSERT_EQ(behind.load(), 0) << threads << " threads, loop " << loop;
+        }
+    }
+}
+
 /// 240 spheres and boxes dropped into a walled pit, some started inside one another.
 World pile(int threads, bool sleeping) {
     World world({.gravity = Vec3(0, -10, 0), .substeps = 10, .sleeping = sleeping, .threads = threads,
