@@ -48,7 +48,6 @@ private:
     std::vector<Candidate> candidates_;  ///< scratch of plan()
     /// Per body: the step it was last blocked for (plan()); mark_ is the current step's.
     std::vector<uint32_t> blockedMark_;
-    std::vector<uint8_t> moves_;  ///< per body: whether it moves (inverse mass > 0), for plan()
     uint32_t mark_ = 0;
 };
 
