@@ -1,7 +1,9 @@
 /// The world's parallel step (WorldSettings::threads): integration and velocity derivation in
-/// blocks of bodies, and the position solve and velocity pass by colour (constraint_colouring.h),
-/// each colour's constraints in blocks on the worker pool (each thread starting on its own run
-/// of blocks and taking the others' last ones when done, worker_pool.h).
+/// blocks of bodies, and the position solve and velocity pass by colour (constraint_colouring.h):
+/// a colour's joints in blocks on the worker pool (each thread starting on its own run of blocks
+/// and taking the others' last ones when done, worker_pool.h), a colour's contact pairs split
+/// into each thread's fixed share, the threads waiting for one another between colours
+/// (solveColours).
 ///
 /// Why the bytes do not depend on the thread count or the blocks: a block of the body loops
 /// writes its own bodies alone; a colour's constraints share no dynamic body, and each writes only
@@ -33,8 +35,9 @@ namespace {
 /// split, against 0.27 ms at 1 thread).
 constexpr size_t kMinParallelItems = 128;
 /// The same for a colour of contact pairs: a pile's last colours hold 30 to 100 pairs (a
-/// sphere pair costs ~150 ns), and with the blocks' stealing splitting them paid (spheres1000 at
-/// 2 threads 9.9-10.1 ms/frame at 32 against 10.2-10.3 at 128; docs/PERFORMANCE_LOG.md).
+/// sphere pair costs 60-150 ns), and splitting them paid (spheres1000 at 2 threads 9.9-10.1
+/// ms/frame at 32 against 10.2-10.3 at 128 with stealing blocks; with each thread's fixed share,
+/// 16, 32 and 64 measure alike; docs/PERFORMANCE_LOG.md).
 constexpr size_t kMinParallelPairs = 32;
 /// Smallest block of a parallel loop (items).
 constexpr size_t kMinBlockItems = 8;
