@@ -2,6 +2,10 @@
 
 #include <algorithm>
 
+#if defined(__linux__)
+#include <sched.h>
+#endif
+
 #if defined(__x86_64__) || defined(__i386__)
 #include <immintrin.h>
 #endif
@@ -27,9 +31,19 @@ uint64_t runState(uint32_t epoch, int front, int end) {
     return uint64_t{epoch} << 32 | uint64_t(front) << 16 | uint64_t(end);
 }
 
+/// CPUs this process may run on: its affinity mask's (taskset, a container's limit) on Linux,
+/// else the machine's.
+int availableCores() {
+#if defined(__linux__)
+    cpu_set_t mask;
+    if (sched_getaffinity(0, sizeof(mask), &mask) == 0) return std::max(CPU_COUNT(&mask), 1);
+#endif
+    return std::max(static_cast<int>(std::thread::hardware_concurrency()), 1);
+}
+
 }  // namespace
 
-WorkerPool::WorkerPool(int threads) {
+WorkerPool::WorkerPool(int threads) : cores_(availableCores()) {
     const int workers = std::max(threads, 1) - 1;
     runs_ = std::make_unique<BlockRun[]>(static_cast<size_t>(workers) + 1);
     workers_.reserve(static_cast<size_t>(workers));

@@ -72,14 +72,19 @@ void forChunks(WorkerPool* pool, size_t count, bool serial, const Run& run, size
 /// another between colours (WorkerPool::forEachThread): each thread meets the same bodies and
 /// pairs colour after colour, pass after pass, and their cache lines stay in its core. Blocks
 /// handed out as they came moved them between the cores (docs/PERFORMANCE_LOG.md). A colour of
-/// fewer than kMinParallelPairs is thread 0's alone.
+/// fewer than kMinParallelPairs is thread 0's alone. With more threads than cores, where a
+/// barrier would wait for a thread to get a core, each colour is handed out in blocks as before.
 template <class Solve>
 void solveColours(WorkerPool* pool, const ColourGroups& touching, std::span<const uint32_t> firstPair,
                   const Solve& solve) {
     constexpr int kOverflow = ColourGroups::kOverflowGroup;
-    if (pool == nullptr) {
-        for (int g = 0; g < kOverflow; ++g)
-            if (!touching[g].empty()) solve(touching[g]);
+    if (pool == nullptr || !pool->threadsFitCores()) {
+        for (int g = 0; g < kOverflow; ++g) {
+            const std::span<const uint32_t> pairs = touching[g];
+            forChunks(pool, pairs.size(), false, [&](size_t first, size_t last) {
+                solve(pairs.subspan(first, last - first));
+            }, kMinParallelPairs);
+        }
         return;
     }
     pool->forEachThread([&](int thread) {
@@ -96,8 +101,9 @@ void solveColours(WorkerPool* pool, const ColourGroups& touching, std::span<cons
             }
             if (aloneBefore) pool->barrier(passed);
             aloneBefore = false;
+            // Both ends from the whole colour, so that thread t's end is thread t + 1's start.
             const auto first = std::lower_bound(pairs.begin(), pairs.end(), firstPair[t]);
-            const auto last = std::lower_bound(first, pairs.end(), firstPair[t + 1]);
+            const auto last = std::lower_bound(pairs.begin(), pairs.end(), firstPair[t + 1]);
             solve(pairs.subspan(static_cast<size_t>(first - pairs.begin()), static_cast<size_t>(last - first)));
             pool->barrier(passed);
         }
