@@ -9,8 +9,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cstring>
+#include <thread>
 #include <vector>
 
 namespace substep {
@@ -74,6 +76,14 @@ TEST(WorkerPoolTest, EveryThreadRunsOnceAndBarriersHoldThemTogether) {
             ASSERT_EQ(behind.load(), 0) << threads << " threads, loop " << loop;
         }
     }
+}
+
+// More threads than the machine has CPUs never fit (forEachThread's barriers would wait for
+// threads to get a core; the world's colours then keep the stealing blocks); one thread always does.
+TEST(WorkerPoolTest, ThreadsFitCoresOnlyWhenEachCanHaveOne) {
+    EXPECT_TRUE(WorkerPool(1).threadsFitCores());
+    const int cpus = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    EXPECT_FALSE(WorkerPool(cpus + 1).threadsFitCores());
 }
 
 /// 240 spheres and boxes dropped into a walled pit, some started inside one another.
