@@ -16,21 +16,26 @@ void ContactSchedule::plan(std::span<const uint32_t> touching, std::span<const C
     // nothing more (docs/PERFORMANCE_LOG.md).
     constexpr size_t kWindow = 32;
     static_assert(kWindow <= 32, "`early` holds a bit per pair of the window");
-    touching_.assign(touching.begin(), touching.end());
-    // At most a count and an index per pair. Grown only: shrunk to the steps' length, the vector
-    // would zero its tail again at every substep.
-    if (steps_.size() < 2 * touching.size()) steps_.resize(2 * touching.size());
     // Each pair's moving bodies, read once: the window below looks at every pair up to
     // kWindow − 1 times, and a body's record is a scattered 608 bytes. (Read per pair, not once
     // per body into an array: a settled pile whose bodies nearly all sleep has few touching
     // pairs, and a pass over every body each substep cost it a fifth of its frame.)
     constexpr uint32_t kStill = ~0u;  // a static or kinematic body, which the step may share
-    candidates_.resize(touching.size());
+    const bool sameList = std::ranges::equal(touching, touching_);
+    next_.resize(touching.size());
     for (size_t k = 0; k < touching.size(); ++k) {
         const ContactPair& pair = pairs[touching[k]];
         const auto moving = [&](uint32_t body) { return bodies[body].invMass != 0.0 ? body : kStill; };
-        candidates_[k] = {moving(pair.body0), moving(pair.body1), pair.count == 1};
+        next_[k] = {moving(pair.body0), moving(pair.body1), pair.count == 1 ? 1u : 0u};
     }
+    // The steps are a function of the listed pairs and their candidates alone. A pile's touching
+    // pairs mostly stay from one substep to the next, and the look below is most of the plan.
+    if (sameList && next_ == candidates_) return;
+    candidates_.swap(next_);
+    touching_.assign(touching.begin(), touching.end());
+    // At most a count and an index per pair. Grown only: shrunk to the steps' length, the vector
+    // would zero its tail again at every substep.
+    if (steps_.size() < 2 * touching.size()) steps_.resize(2 * touching.size());
     // A body is blocked for the step being filled when its mark is the step's: one look per
     // body, where a list of the step's blocked bodies took up to 2 kWindow compares. The marks
     // carry over from plan to plan (mark_ only grows), so they are cleared only when it wraps.

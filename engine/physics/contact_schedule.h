@@ -39,13 +39,15 @@ private:
     struct Candidate {
         uint32_t moving0;
         uint32_t moving1;
-        bool onePoint;
+        uint32_t onePoint;  ///< 1 for a one-point pair
+        bool operator==(const Candidate&) const = default;
     };
 
     std::vector<uint32_t> touching_;
     std::vector<uint32_t> steps_;  ///< the steps in its first stepsLength_ entries
     size_t stepsLength_ = 0;
-    std::vector<Candidate> candidates_;  ///< scratch of plan()
+    std::vector<Candidate> candidates_;  ///< the planned pairs' candidates
+    std::vector<Candidate> next_;        ///< scratch of plan(): this substep's candidates
     /// Per body: the step it was last blocked for (plan()); mark_ is the current step's.
     std::vector<uint32_t> blockedMark_;
     uint32_t mark_ = 0;

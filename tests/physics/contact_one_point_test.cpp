@@ -322,6 +322,47 @@ TEST(ContactScheduleTest, PartnersComeFromPastTheNextEightPairs) {
     }
 }
 
+// A schedule keeps its steps while the listed pairs and what it read of them stay the same
+// (a pile's touching pairs mostly do, substep to substep). Whatever changed since its last plan,
+// a pair's point count, a body's mass, the bodies of the pair at an index (a new frame's pairs)
+// or the list, it plans again: its steps are those a new schedule plans.
+TEST(ContactScheduleTest, PlansAgainWhatChangedSinceItsLastPlan) {
+    std::vector<Body> bodies;
+    for (int i = 0; i < 12; ++i)
+        bodies.push_back(makeBody({.shape = sphereShape(0.1), .position = Vec3(0.3 * i, 0.1, 0.0)}));
+    std::vector<ContactPair> pairs;
+    for (uint32_t b = 0; b < 12; b += 2)  // six pairs of their own bodies: steps of 4 and 2
+        pairs.push_back({.body0 = b, .body1 = b + 1, .first = b / 2, .count = 1});
+    std::vector<uint32_t> touching(pairs.size());
+    for (uint32_t p = 0; p < touching.size(); ++p) touching[p] = p;
+    ContactSchedule kept;
+    const auto expectStepsOfANewPlan = [&](const char* what) {
+        SCOPED_TRACE(what);
+        kept.plan(touching, pairs, bodies);
+        ContactSchedule fresh;
+        fresh.plan(touching, pairs, bodies);
+        const std::span<const uint32_t> keptSteps = kept.steps();
+        const std::span<const uint32_t> freshSteps = fresh.steps();
+        EXPECT_EQ(std::vector<uint32_t>(keptSteps.begin(), keptSteps.end()),
+                  std::vector<uint32_t>(freshSteps.begin(), freshSteps.end()));
+        EXPECT_EQ(std::vector<uint32_t>(kept.touching().begin(), kept.touching().end()), touching);
+    };
+    expectStepsOfANewPlan("first plan");
+    ASSERT_EQ(kept.steps()[0], 4u);
+    expectStepsOfANewPlan("nothing changed");
+    // Each change below changes the steps.
+    pairs[1].count = 2;  // a patch leaves the lanes: {0, 2, 3, 4}, {1}, {5}
+    expectStepsOfANewPlan("a pair's point count");
+    pairs[2] = {.body0 = 1, .body1 = 8, .first = 2, .count = 1};  // shares body 1 with pair 0
+    expectStepsOfANewPlan("the bodies of a pair");
+    bodies[1] = makeBody({.shape = sphereShape(0.1), .type = BodyType::Static});  // blocks nothing
+    expectStepsOfANewPlan("a body's mass");
+    touching.erase(touching.begin() + 3);
+    expectStepsOfANewPlan("a pair gone from the list");
+    touching.clear();
+    expectStepsOfANewPlan("no pair");
+}
+
 TEST(ContactOnePointTest, TouchingPairsSolvedInLanesGiveTheBytesOfTheListedOrder) {
     using contact_detail::LaneIsa;
     // Every instruction set the lanes are compiled for that this CPU runs (the base one always).
