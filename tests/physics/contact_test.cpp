@@ -342,6 +342,40 @@ TEST(ContactTest, ParticleRestsOnTheGround) {
     EXPECT_LT(speed(world.body(particle)), 1e-3);
 }
 
+// Two spheres are a contact pair when their balls grown by the frame's motion meet, not when
+// only their boxes do. Diagonal neighbours at rest, whose pairing boxes overlap at a corner,
+// are no pair; the same neighbours closing fast are, and meet within the frame. A bound that
+// left out the motion would miss them: the struck sphere would not move.
+TEST(ContactTest, SpheresPairWhereTheirBallsGrownByTheFramesMotionMeet) {
+    const double radius = 0.5;
+    const double offset = 0.9;  // per axis: boxes 2 radius + 2 margin wide overlap; balls 1.27 apart
+    for (const double speed : {0.0, 20.0}) {
+        SCOPED_TRACE("closing speed " + std::to_string(speed));
+        World world({.gravity = Vec3::Zero(), .substeps = 20});
+        const BodyId still = world.createBody({.shape = sphereShape(radius), .mass = 1.0});
+        const Vec3 towards = -Vec3(1, 1, 0).normalized();
+        const BodyId mover = world.createBody({.shape = sphereShape(radius),
+                                               .mass = 1.0,
+                                               .position = Vec3(offset, offset, 0),
+                                               .velocity = speed * towards});
+        world.step(kDt);
+        if (speed == 0.0) {
+            EXPECT_EQ(world.contactPairs().size(), 0u);
+            continue;
+        }
+        // 0.27 m apart, closing 0.33 m in the frame: they meet and the still one is struck.
+        ASSERT_EQ(world.contactPairs().size(), 1u);
+        EXPECT_GT(world.body(still).v.dot(towards), 1.0);
+        EXPECT_GE((world.body(mover).x - world.body(still).x).norm(), 2 * radius - 0.01);
+    }
+    // Side by side within the contact margin: a pair, though nothing moves.
+    World world({.gravity = Vec3::Zero(), .substeps = 20});
+    world.createBody({.shape = sphereShape(radius), .mass = 1.0});
+    world.createBody({.shape = sphereShape(radius), .mass = 1.0, .position = Vec3(2 * radius + 0.001, 0, 0)});
+    world.step(kDt);
+    EXPECT_EQ(world.contactPairs().size(), 1u);
+}
+
 // Bodies joined by a joint do not collide unless the joint says so.
 TEST(ContactTest, JointedBodiesCollideOnlyWhenTheJointAllows) {
     for (bool collide : {false, true}) {
