@@ -117,7 +117,7 @@ void warnAboutDroppedContacts(const char* command, const World& world, long long
     std::fprintf(stderr,
                  "substep %s: warning: frame %lld found more than %zu contact pairs; %zu dropped "
                  "(bodies piled at one point?)\n",
-                 command, frame, kMaxContactPairs, world.droppedContactPairs());
+                 command, frame, world.contactPairCap(), world.droppedContactPairs());
 }
 
 int interruptSignal() {

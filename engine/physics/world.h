@@ -14,6 +14,7 @@
 #include "physics/math.h"
 #include "physics/sleep_islands.h"
 
+#include <algorithm>
 #include <chrono>
 #include <memory>
 #include <span>
@@ -32,8 +33,13 @@ struct SoftBodyReadout;
 struct SoftSurface;
 
 /// At most this many candidate contact pairs per frame (each holds at most kMaxContactPoints
-/// points): the bound on one frame's narrowphase work and memory for pathological scenes.
+/// points), or kMaxContactPairsPerBody per colliding body where that is more
+/// (World::contactPairCap): the bound on one frame's narrowphase work and memory for
+/// pathological scenes, linear in the bodies. Bodies piled at one point pair with every other;
+/// a crowd falling together pairs each body with its neighbours within the frame's motion
+/// (16000 spheres falling in ten layers: up to 255000 pairs, 16 a body).
 inline constexpr std::size_t kMaxContactPairs = std::size_t{1} << 17;
+inline constexpr std::size_t kMaxContactPairsPerBody = 32;
 
 struct WorldSettings {
     Vec3 gravity = Vec3(0.0, -9.81, 0.0);
@@ -262,9 +268,14 @@ public:
     /// frame's motion and the margin (broadphase.h). Empty for a body it left out, or while fewer
     /// than two bodies collide (no broadphase runs); infinite for a plane.
     const Aabb& broadphaseBounds(uint32_t index) const { return broadphase_.bounds(index); }
-    /// Candidate pairs beyond kMaxContactPairs that the last step dropped (0 in any sane
+    /// Candidate pairs beyond contactPairCap() that the last step dropped (0 in any sane
     /// scene; thousands of bodies piled at one point reach it). Callers warn about it.
     std::size_t droppedContactPairs() const { return droppedContactPairs_; }
+    /// The most contact pairs a frame keeps: kMaxContactPairs, or kMaxContactPairsPerBody per
+    /// colliding body where that is more.
+    std::size_t contactPairCap() const {
+        return std::max(kMaxContactPairs, kMaxContactPairsPerBody * static_cast<std::size_t>(collidingBodies_));
+    }
 
 private:
     /// Copies a definition's parameters into a joint whose bodies are set.

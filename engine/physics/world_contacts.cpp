@@ -110,10 +110,11 @@ void World::collectContactPairs(double dt) {
     droppedContactPairs_ = 0;
     // A sphere's box is a cube about its centre unless it is swept along the velocity.
     const bool spheresInCubes = !broadphase_.settings().sweptGrowth;
+    const size_t cap = contactPairCap();
     for (const BodyPair& candidate : broadphase_.pairs()) {
         // Bounded work per frame: beyond the cap, pairs are dropped (deterministically, the
         // last in sorted order) and counted for a warning.
-        if (contactPairs_.size() >= kMaxContactPairs) {
+        if (contactPairs_.size() >= cap) {
             ++droppedContactPairs_;
             continue;
         }
