@@ -1,21 +1,32 @@
 #!/usr/bin/python3
-# Draws docs/performance_growth.png from the figures of docs/PERFORMANCE_LOG.md ("How the cost grows"):
+# Draws docs/performance_growth.png from the figures of docs/PERFORMANCE_LOG.md ("How the cost grows",
+# and session 18's "Issue 18 on a fourth machine"):
 #   /usr/bin/python3 docs/performance_growth.py docs/performance_growth.png
 import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
-# BM_spheres_in_a_box/N/1, CPU ms per frame against contact points per frame (docs/PERFORMANCE_LOG.md)
-before = ([2283, 8713, 33430], [19.9, 87.0, 398])   # general correction path (2026-11-24, earlier session)
-after = ([2184, 8625, 33042], [16.4, 75.5, 418])    # fused one-point path
-fig, ax = plt.subplots(figsize=(6, 4.2))
-for (c, t), label, mark in ((before, "general correction path", "o"), (after, "fused one-point path", "s")):
-    ax.plot(c, t, mark + "-", label=label)
-    for x, y in zip(c, t): ax.annotate(f"{y:g} ms", (x, y), textcoords="offset points", xytext=(5, -12), fontsize=8)
-lin = [after[1][0] * c / after[0][0] for c in after[0][0:1] + [33042]]
-ax.plot([after[0][0], 33042], lin, ":", color="gray", label="linear in contacts from N = 1000")
+# N = 1000, 4000, 16000 spheres in a box (tests/benchmarks/pile_benchmark.cpp's spheresInABox),
+# one core: (contact points per frame, ms per frame).
+# Session 18, the fourth machine, build 700fdbe: frames 181-240, the pile settled.
+settled = ([2514, 10870, 43215], [7.83, 59.23, 287.65])
+# The same build, BM_spheres_in_a_box/N/1 (frames from 1 s: falling, landing, piling).
+falling = ([2501, 9140, 34547], [7.87, 56.3, 270])
+# 2026-11-24 (the Zen 4), BM_spheres_in_a_box/N/1 after the fused one-point path. Its 16000
+# spheres lost up to a third of their contact pairs to the fixed cap of 131072 while falling
+# (docs/STABILITY.md), so its last point is of a broken fall.
+zen4 = ([2184, 8625, 33042], [16.4, 75.5, 418])
+fig, ax = plt.subplots(figsize=(6.4, 4.4))
+for (c, t), label, mark in ((settled, "session 18, settled (frames 181-240)", "s"),
+                            (falling, "session 18, from 1 s (Google Benchmark)", "o"),
+                            (zen4, "2026-11-24, Zen 4, from 1 s (pairs capped at 16000)", "^")):
+    ax.plot(c, t, mark + "-", label=label, alpha=1.0 if "session 18" in label else 0.5)
+for x, y in zip(*settled):
+    ax.annotate(f"{y:g} ms", (x, y), textcoords="offset points", xytext=(6, -12), fontsize=8)
+linear = [settled[1][0] * c / settled[0][0] for c in (settled[0][0], settled[0][-1])]
+ax.plot([settled[0][0], settled[0][-1]], linear, ":", color="gray", label="linear in contacts from N = 1000 (settled)")
 ax.set_xscale("log"); ax.set_yscale("log")
 ax.set_xlabel("contact points per frame (N = 1000, 4000, 16000 spheres)")
-ax.set_ylabel("CPU ms per frame, 20 substeps, one core")
+ax.set_ylabel("ms per frame, 20 substeps, one core")
 ax.set_title("N spheres in a box: cost against contacts")
-ax.legend(fontsize=8); ax.grid(True, which="both", alpha=0.3)
+ax.legend(fontsize=7); ax.grid(True, which="both", alpha=0.3)
 fig.tight_layout(); fig.savefig(__import__("sys").argv[1], dpi=110)
