@@ -9,15 +9,15 @@ import matplotlib.pyplot as plt
 # one core: (contact points per frame, ms per frame).
 # Session 18, the fourth machine, build 700fdbe: frames 181-240, the pile settled.
 settled = ([2514, 10870, 43215], [7.83, 59.23, 287.65])
-# The same build, BM_spheres_in_a_box/N/1 (frames from 1 s: falling, landing, piling).
-falling = ([2501, 9140, 34547], [7.87, 56.3, 270])
+# The same build, BM_spheres_in_a_box/N/1: frames 61-120 (falling, landing, piling).
+falling = ([2274, 9278, 37916], [8.53, 56.2, 269])
 # 2026-11-24 (the Zen 4), BM_spheres_in_a_box/N/1 after the fused one-point path. Its 16000
 # spheres lost up to a third of their contact pairs to the fixed cap of 131072 while falling
 # (docs/STABILITY.md), so its last point is of a broken fall.
 zen4 = ([2184, 8625, 33042], [16.4, 75.5, 418])
 fig, ax = plt.subplots(figsize=(6.4, 4.4))
 for (c, t), label, mark in ((settled, "session 18, settled (frames 181-240)", "s"),
-                            (falling, "session 18, from 1 s (Google Benchmark)", "o"),
+                            (falling, "session 18, frames 61-120 (BM_spheres_in_a_box)", "o"),
                             (zen4, "2026-11-24, Zen 4, from 1 s (pairs capped at 16000)", "^")):
     ax.plot(c, t, mark + "-", label=label, alpha=1.0 if "session 18" in label else 0.5)
 for x, y in zip(*settled):
